@@ -1,0 +1,22 @@
+// Each `tetglow` subcommand lives in its own file and registers itself here.
+#pragma once
+#include <cmath>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+namespace tetglow::cli {
+
+void addTetrahedralizeCommand(CLI::App& app);
+void addGenerateCommand(CLI::App& app);
+
+// CLI11's range checks let NaN through (every comparison with NaN is false).
+inline const CLI::Validator kFinite{[](std::string& s) -> std::string {
+                                        double v = 0;
+                                        if (!CLI::detail::lexical_cast(s, v) || !std::isfinite(v))
+                                            return "value must be a finite number, got '" + s + "'";
+                                        return {};
+                                    },
+                                    "FINITE"};
+
+}  // namespace tetglow::cli

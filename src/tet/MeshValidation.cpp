@@ -1,0 +1,218 @@
+#include "tet/MeshValidation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numeric>
+#include <unordered_map>
+
+#include <glm/geometric.hpp>
+
+#include "tet/Predicates.h"
+#include "tet/SelfIntersection.h"
+
+namespace tetglow {
+namespace {
+
+std::string vec(const glm::dvec3& p) {
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "(%g, %g, %g)", p.x, p.y, p.z);
+    return buf;
+}
+
+std::string face(uint32_t t) { return "triangle " + std::to_string(t); }
+
+void checkFinite(const TriangleMesh& mesh) {
+    for (size_t v = 0; v < mesh.positions.size(); ++v) {
+        const auto& p = mesh.positions[v];
+        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+            throw InputError("vertex " + std::to_string(v) + " has a non-finite coordinate " + vec(p));
+        if (std::abs(p.x) > 1e30 || std::abs(p.y) > 1e30 || std::abs(p.z) > 1e30)
+            throw InputError("vertex " + std::to_string(v) + " is too large for float precision " + vec(p));
+    }
+}
+
+// Snaps to float, merges identical positions and drops unreferenced vertices; indices are remapped.
+void weldAndCompact(TriangleMesh& mesh, ValidationReport& report) {
+    for (auto& p : mesh.positions) p = glm::dvec3(glm::vec3(p));
+    std::vector<uint32_t> order(mesh.positions.size());
+    std::iota(order.begin(), order.end(), 0u);
+    auto less = [&](uint32_t a, uint32_t b) {
+        const auto &p = mesh.positions[a], &q = mesh.positions[b];
+        return std::tie(p.x, p.y, p.z, a) < std::tie(q.x, q.y, q.z, b);
+    };
+    std::sort(order.begin(), order.end(), less);
+    std::vector<uint32_t> canonical(mesh.positions.size());
+    for (size_t i = 0; i < order.size(); ++i) {
+        const bool same = i > 0 && mesh.positions[order[i]] == mesh.positions[order[i - 1]];
+        canonical[order[i]] = same ? canonical[order[i - 1]] : order[i];
+        report.weldedVertices += same;
+    }
+    std::vector<uint32_t> remap(mesh.positions.size(), UINT32_MAX);
+    std::vector<glm::dvec3> kept;
+    for (auto& t : mesh.triangles)
+        for (auto& v : t) {
+            uint32_t c = canonical[v];
+            if (remap[c] == UINT32_MAX) {
+                remap[c] = static_cast<uint32_t>(kept.size());
+                kept.push_back(mesh.positions[c]);
+            }
+            v = remap[c];
+        }
+    report.unusedVertices = mesh.positions.size() - report.weldedVertices - kept.size();
+    mesh.positions = std::move(kept);
+}
+
+bool collinear(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
+    // Collinear in 3D exactly when collinear in all three coordinate-plane projections.
+    return orient2d({a.x, a.y}, {b.x, b.y}, {c.x, c.y}) == 0 && orient2d({a.y, a.z}, {b.y, b.z}, {c.y, c.z}) == 0 &&
+           orient2d({a.z, a.x}, {b.z, b.x}, {c.z, c.x}) == 0;
+}
+
+void checkTriangles(const TriangleMesh& mesh) {
+    std::map<std::array<uint32_t, 3>, uint32_t> seen;
+    for (uint32_t t = 0; t < mesh.triangles.size(); ++t) {
+        auto v = mesh.triangles[t];
+        if (v[0] == v[1] || v[1] == v[2] || v[0] == v[2])
+            throw InputError("degenerate " + face(t) + ": a vertex is repeated");
+        if (collinear(mesh.positions[v[0]], mesh.positions[v[1]], mesh.positions[v[2]]))
+            throw InputError("degenerate " + face(t) + ": zero area (collinear corners) at " + vec(mesh.positions[v[0]]));
+        std::sort(v.begin(), v.end());
+        auto [it, inserted] = seen.emplace(v, t);
+        if (!inserted)
+            throw InputError("duplicate faces: " + face(it->second) + " and " + face(t) + " have the same corners");
+    }
+}
+
+uint64_t edgeKey(uint32_t a, uint32_t b) { return (uint64_t(std::min(a, b)) << 32) | std::max(a, b); }
+
+// Edge -> the triangles using it; each edge must have exactly two.
+std::unordered_map<uint64_t, std::vector<uint32_t>> edgeFaces(const TriangleMesh& mesh) {
+    std::unordered_map<uint64_t, std::vector<uint32_t>> edges;
+    edges.reserve(mesh.triangles.size() * 2);
+    for (uint32_t t = 0; t < mesh.triangles.size(); ++t)
+        for (int k = 0; k < 3; ++k) edges[edgeKey(mesh.triangles[t][k], mesh.triangles[t][(k + 1) % 3])].push_back(t);
+    return edges;
+}
+
+void checkManifold(const TriangleMesh& mesh, const std::unordered_map<uint64_t, std::vector<uint32_t>>& edges) {
+    // Report the edge whose first triangle comes first, so the message does not depend on hashing.
+    const std::pair<const uint64_t, std::vector<uint32_t>>* worst = nullptr;
+    for (const auto& e : edges)
+        if (e.second.size() != 2 && (!worst || e.second[0] < worst->second[0])) worst = &e;
+    if (!worst) return;
+    const uint32_t a = uint32_t(worst->first >> 32), b = uint32_t(worst->first);
+    const std::string edge = "edge (" + std::to_string(a) + ", " + std::to_string(b) + ") at " + vec(mesh.positions[a]);
+    if (worst->second.size() == 1)
+        throw InputError("mesh is not closed: " + edge + " belongs only to " + face(worst->second[0]) + " (a hole)");
+    throw InputError("non-manifold " + edge + " is shared by " + std::to_string(worst->second.size()) +
+                     " triangles (first: " + face(worst->second[0]) + ")");
+}
+
+bool sameDirection(const std::array<uint32_t, 3>& s, const std::array<uint32_t, 3>& t, uint32_t a, uint32_t b) {
+    // True when both triangles traverse edge a->b in the same direction (inconsistent winding).
+    auto has = [&](const std::array<uint32_t, 3>& f) {
+        for (int k = 0; k < 3; ++k)
+            if (f[k] == a && f[(k + 1) % 3] == b) return true;
+        return false;
+    };
+    return has(s) == has(t);
+}
+
+// Makes winding consistent within each connected shell by flood fill; returns shell id per triangle.
+std::vector<uint32_t> orientShells(TriangleMesh& mesh, const std::unordered_map<uint64_t, std::vector<uint32_t>>& edges,
+                                   ValidationReport& report) {
+    const uint32_t none = UINT32_MAX;
+    std::vector<uint32_t> shell(mesh.triangles.size(), none);
+    std::vector<uint32_t> stack;
+    for (uint32_t seed = 0; seed < mesh.triangles.size(); ++seed) {
+        if (shell[seed] != none) continue;
+        const uint32_t id = static_cast<uint32_t>(report.components++);
+        shell[seed] = id;
+        stack.push_back(seed);
+        while (!stack.empty()) {
+            const uint32_t t = stack.back();
+            stack.pop_back();
+            for (int k = 0; k < 3; ++k) {
+                const uint32_t a = mesh.triangles[t][k], b = mesh.triangles[t][(k + 1) % 3];
+                const auto& pair = edges.at(edgeKey(a, b));
+                const uint32_t n = pair[0] == t ? pair[1] : pair[0];
+                const bool flip = sameDirection(mesh.triangles[t], mesh.triangles[n], a, b);
+                if (shell[n] == none) {
+                    if (flip) {
+                        std::swap(mesh.triangles[n][1], mesh.triangles[n][2]);
+                        ++report.flippedTriangles;
+                    }
+                    shell[n] = id;
+                    stack.push_back(n);
+                } else if (flip) {
+                    throw InputError("mesh is not orientable (like a Moebius strip): " + face(t) + " and " + face(n) +
+                                     " cannot be wound consistently");
+                }
+            }
+        }
+    }
+    return shell;
+}
+
+// Generalized winding number of the given triangles around p (Van Oosterom-Strackee solid
+// angles): +-1 inside a closed shell, 0 outside, robust for p off the surface.
+double windingNumber(const TriangleMesh& mesh, const std::vector<uint32_t>& tris, const glm::dvec3& p) {
+    double omega = 0;
+    for (uint32_t t : tris) {
+        const glm::dvec3 a = mesh.corner(t, 0) - p, b = mesh.corner(t, 1) - p, c = mesh.corner(t, 2) - p;
+        const double la = glm::length(a), lb = glm::length(b), lc = glm::length(c);
+        omega += 2 * std::atan2(glm::dot(a, glm::cross(b, c)),
+                                la * lb * lc + glm::dot(a, b) * lc + glm::dot(b, c) * la + glm::dot(c, a) * lb);
+    }
+    return omega / (4 * M_PI);
+}
+
+// Shell nesting: a shell inside an odd number of others bounds a cavity and must wind inward.
+void orientOutward(TriangleMesh& mesh, const std::vector<uint32_t>& shell, ValidationReport& report) {
+    std::vector<std::vector<uint32_t>> members(report.components);
+    for (uint32_t t = 0; t < mesh.triangles.size(); ++t) members[shell[t]].push_back(t);
+    std::vector<int> depth(members.size(), 0);
+    if (members.size() > 1)
+        for (size_t s = 0; s < members.size(); ++s) {
+            const glm::dvec3 probe = mesh.corner(members[s][0], 0);  // shells do not touch, so probe is off the others
+            for (size_t o = 0; o < members.size(); ++o)
+                depth[s] += o != s && std::abs(windingNumber(mesh, members[o], probe)) > 0.5;
+        }
+    for (size_t s = 0; s < members.size(); ++s) {
+        double volume = 0;
+        const glm::dvec3 o = mesh.corner(members[s][0], 0);
+        for (uint32_t t : members[s])
+            volume += glm::dot(mesh.corner(t, 0) - o, glm::cross(mesh.corner(t, 1) - o, mesh.corner(t, 2) - o));
+        if ((volume > 0) != (depth[s] % 2 == 0)) {
+            for (uint32_t t : members[s]) std::swap(mesh.triangles[t][1], mesh.triangles[t][2]);
+            report.flippedTriangles += members[s].size();
+        }
+    }
+}
+
+}  // namespace
+
+ValidationReport validateAndRepair(TriangleMesh& mesh) {
+    ValidationReport report;
+    if (mesh.triangles.empty()) throw InputError("mesh has no triangles");
+    checkFinite(mesh);
+    weldAndCompact(mesh, report);
+    checkTriangles(mesh);
+    const auto edges = edgeFaces(mesh);
+    checkManifold(mesh, edges);
+    // Before orientation: nesting of shells means nothing once they cross.
+    if (auto hit = findSelfIntersection(mesh))
+        throw InputError("mesh intersects itself: " + face(hit->first) + " crosses " + face(hit->second));
+    const auto shell = orientShells(mesh, edges, report);
+    orientOutward(mesh, shell, report);
+    report.volume = signedVolume(mesh);
+    if (!(report.volume > 0)) throw InputError("mesh encloses no volume (signed volume " + std::to_string(report.volume) + ")");
+    if (report.weldedVertices) report.notes.push_back("welded " + std::to_string(report.weldedVertices) + " duplicate vertices");
+    if (report.unusedVertices) report.notes.push_back("removed " + std::to_string(report.unusedVertices) + " unused vertices");
+    if (report.flippedTriangles)
+        report.notes.push_back("flipped " + std::to_string(report.flippedTriangles) + " inward-wound triangles");
+    return report;
+}
+
+}  // namespace tetglow

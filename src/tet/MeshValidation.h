@@ -1,0 +1,27 @@
+// Checks and repairs a triangle mesh before TetGen sees it. Every failure is an InputError whose
+// one-line message names the problem and the first offending face, edge or vertex.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "tet/TriangleMesh.h"
+
+namespace tetglow {
+
+struct ValidationReport {
+    size_t weldedVertices = 0;       // exact duplicate positions merged
+    size_t unusedVertices = 0;       // vertices no triangle references, removed
+    size_t flippedTriangles = 0;     // inward or inconsistent winding, fixed
+    size_t components = 0;           // closed shells
+    double volume = 0;               // enclosed volume after repair
+    std::vector<std::string> notes;  // what was repaired, one line each
+};
+
+// In order: finite coordinates; positions snapped to float (Embree's precision, so Embree and
+// the tets see bit-identical vertices); exact duplicate vertices welded; unused vertices
+// removed; no degenerate (repeated or collinear corners) or duplicate triangles; every edge
+// shared by exactly two triangles; no self-intersections; consistent, outward winding per
+// shell (fixed, not rejected); positive volume.
+ValidationReport validateAndRepair(TriangleMesh& mesh);
+
+}  // namespace tetglow

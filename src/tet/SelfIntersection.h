@@ -1,0 +1,16 @@
+// Finds triangles of a mesh that intersect each other other than along the edges and vertices
+// they share. TetGen cannot recover such a boundary and may crash on it.
+#pragma once
+#include <cstdint>
+#include <optional>
+#include <utility>
+
+#include "tet/TriangleMesh.h"
+
+namespace tetglow {
+
+// The first intersecting pair (lowest first index), or nothing. Exact predicates; the mesh must
+// already be free of degenerate triangles.
+std::optional<std::pair<uint32_t, uint32_t>> findSelfIntersection(const TriangleMesh& mesh);
+
+}  // namespace tetglow

@@ -1,0 +1,138 @@
+#include "tet/SurfaceBVH.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include <glm/geometric.hpp>
+
+namespace tetglow {
+
+RTCDevice embreeDevice() {
+    // One device for the process: Embree's thread pool and allocator are process-wide anyway.
+    static RTCDevice device = [] {
+        RTCDevice d = rtcNewDevice(nullptr);
+        if (!d) throw std::runtime_error("cannot create an Embree device");
+        return d;
+    }();
+    return device;
+}
+
+SurfaceBVH::SurfaceBVH(const std::vector<glm::dvec3>& positions, const std::vector<std::array<uint32_t, 3>>& triangles) {
+    RTCDevice device = embreeDevice();
+    scene_ = rtcNewScene(device);
+    // Robust mode: watertight triangle tests, so rays through edges are not lost between faces.
+    rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
+    RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                          3 * sizeof(float), positions.size()));
+    for (size_t i = 0; i < positions.size(); ++i)
+        for (int k = 0; k < 3; ++k) v[3 * i + k] = float(positions[i][k]);
+    auto* idx = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                               3 * sizeof(uint32_t), triangles.size()));
+    normals_.resize(triangles.size());
+    corners_.resize(triangles.size());
+    for (size_t t = 0; t < triangles.size(); ++t) {
+        for (int k = 0; k < 3; ++k) idx[3 * t + k] = triangles[t][k];
+        const glm::dvec3 a = positions[triangles[t][0]];
+        normals_[t] = glm::cross(positions[triangles[t][1]] - a, positions[triangles[t][2]] - a);
+        corners_[t] = a;
+    }
+    rtcCommitGeometry(geom);
+    rtcAttachGeometry(scene_, geom);
+    rtcReleaseGeometry(geom);
+    rtcCommitScene(scene_);
+}
+
+SurfaceBVH::~SurfaceBVH() { rtcReleaseScene(scene_); }
+
+double SurfaceBVH::refine(const Ray& ray, uint32_t triangle, float t) const {
+    // Embree's float t is off by ~1e-7 / sin(angle) at grazing angles; the plane equation in
+    // double is not.
+    const double nd = glm::dot(normals_[triangle], ray.d);
+    return nd != 0 ? glm::dot(normals_[triangle], corners_[triangle] - ray.o) / nd : double(t);
+}
+
+namespace {
+
+// The filter sees every candidate hit; these contexts decide which ones count.
+struct QueryContext {
+    RTCIntersectContext base;
+    const SurfaceBVH* bvh;
+    Ray ray;
+    double tnear;
+    Facing facing;
+    uint32_t skip;
+    std::vector<SurfaceHit>* collect;  // when set: record and reject every hit
+    int* count;                        // when set: count and reject every hit
+};
+
+void filter(const RTCFilterFunctionNArguments* args) {
+    auto* ctx = reinterpret_cast<QueryContext*>(args->context);
+    if (ctx->count) {
+        ++*ctx->count;
+        args->valid[0] = 0;
+        return;
+    }
+    const uint32_t prim = RTCHitN_primID(args->hit, args->N, 0);
+    // Embree's window is widened for float rounding; the exact window applies to the refined t.
+    const double t = ctx->bvh->refine(ctx->ray, prim, RTCRayN_tfar(args->ray, args->N, 0));
+    const bool entering = glm::dot(ctx->ray.d, ctx->bvh->normal(prim)) < 0;
+    if (ctx->collect) {
+        if (t >= ctx->tnear) ctx->collect->push_back({t, prim, entering});
+        args->valid[0] = 0;
+        return;
+    }
+    if (t < ctx->tnear || prim == ctx->skip || (ctx->facing == Facing::Entering && !entering) ||
+        (ctx->facing == Facing::Exiting && entering))
+        args->valid[0] = 0;
+}
+
+RTCRayHit makeRay(const Ray& ray, double tnear, double tfar) {
+    RTCRayHit rh{};
+    rh.ray.org_x = float(ray.o.x), rh.ray.org_y = float(ray.o.y), rh.ray.org_z = float(ray.o.z);
+    rh.ray.dir_x = float(ray.d.x), rh.ray.dir_y = float(ray.d.y), rh.ray.dir_z = float(ray.d.z);
+    // Rounded down by a margin above Embree's float error, so no hit at tnear is lost.
+    rh.ray.tnear = float(std::max(tnear * (1 - 1e-6) - 1e-12, 0.0));
+    rh.ray.tfar = std::isfinite(tfar) && tfar < 3e38 ? float(tfar) : INFINITY;
+    rh.ray.mask = UINT32_MAX;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    return rh;
+}
+
+}  // namespace
+
+std::optional<SurfaceHit> SurfaceBVH::intersect(const Ray& ray, double tnear, double tfar, Facing facing,
+                                                uint32_t skip) const {
+    QueryContext ctx{{}, this, ray, tnear, facing, skip, nullptr, nullptr};
+    rtcInitIntersectContext(&ctx.base);
+    ctx.base.filter = filter;
+    RTCRayHit rh = makeRay(ray, tnear, tfar);
+    rtcIntersect1(scene_, &ctx.base, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
+    const uint32_t prim = rh.hit.primID;
+    return SurfaceHit{std::max(tnear, refine(ray, prim, rh.ray.tfar)), prim, glm::dot(ray.d, normals_[prim]) < 0};
+}
+
+std::vector<SurfaceHit> SurfaceBVH::allHits(const Ray& ray, double tnear) const {
+    std::vector<SurfaceHit> hits;
+    QueryContext ctx{{}, this, ray, tnear, Facing::Any, UINT32_MAX, &hits, nullptr};
+    rtcInitIntersectContext(&ctx.base);
+    ctx.base.filter = filter;
+    RTCRayHit rh = makeRay(ray, tnear, INFINITY);
+    rtcIntersect1(scene_, &ctx.base, &rh);
+    std::sort(hits.begin(), hits.end(), [](const SurfaceHit& a, const SurfaceHit& b) { return a.t < b.t; });
+    return hits;
+}
+
+int SurfaceBVH::crossings(const Ray& ray) const {
+    int count = 0;
+    QueryContext ctx{{}, this, ray, 0, Facing::Any, UINT32_MAX, nullptr, &count};
+    rtcInitIntersectContext(&ctx.base);
+    ctx.base.filter = filter;
+    RTCRayHit rh = makeRay(ray, 0, INFINITY);
+    rtcIntersect1(scene_, &ctx.base, &rh);
+    return count;
+}
+
+}  // namespace tetglow

@@ -1,0 +1,50 @@
+// Embree's BVH over a closed surface: entry points into the medium, re-entry for concave
+// shapes, and the crossing counts of the parity test.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include <embree3/rtcore.h>
+#include <glm/vec3.hpp>
+
+#include "tet/Ray.h"
+
+namespace tetglow {
+
+struct SurfaceHit {
+    double t;
+    uint32_t triangle;
+    bool entering;  // the ray crosses from outside to inside (against the outward normal)
+};
+
+enum class Facing { Any, Entering, Exiting };
+
+class SurfaceBVH {
+public:
+    SurfaceBVH(const std::vector<glm::dvec3>& positions, const std::vector<std::array<uint32_t, 3>>& triangles);
+    ~SurfaceBVH();
+    SurfaceBVH(const SurfaceBVH&) = delete;
+    SurfaceBVH& operator=(const SurfaceBVH&) = delete;
+
+    // Closest hit with t in (tnear, tfar] of the given facing, ignoring triangle `skip`.
+    std::optional<SurfaceHit> intersect(const Ray& ray, double tnear, double tfar, Facing facing = Facing::Any,
+                                        uint32_t skip = UINT32_MAX) const;
+    // Every triangle the ray crosses for t > tnear, sorted by t (one traversal).
+    std::vector<SurfaceHit> allHits(const Ray& ray, double tnear = 0) const;
+    // How many triangles the ray crosses for t > 0 (one traversal): the parity test's count.
+    int crossings(const Ray& ray) const;
+
+    const glm::dvec3& normal(uint32_t triangle) const { return normals_[triangle]; }  // outward, not unit
+    // The ray parameter of the triangle's plane, in double precision.
+    double refine(const Ray& ray, uint32_t triangle, float embreeT) const;
+
+private:
+    RTCScene scene_ = nullptr;
+    std::vector<glm::dvec3> normals_, corners_;
+};
+
+RTCDevice embreeDevice();
+
+}  // namespace tetglow

@@ -1,0 +1,54 @@
+// The medium's interior as tetrahedra: compact arrays, face adjacency, exact boundary.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "tet/TriangleMesh.h"
+
+namespace tetglow {
+
+// Local faces: face j of a tet is opposite its vertex j. kInwardFace[j] lists the other three
+// local vertices in the order whose normal points into a positively oriented tet.
+inline constexpr int kInwardFace[4][3] = {{1, 3, 2}, {0, 2, 3}, {0, 3, 1}, {0, 1, 2}};
+
+struct TetMesh {
+    // The surface's vertices come first, in the surface's order; interior Steiner points follow.
+    std::vector<glm::dvec3> vertices;
+    // Positively oriented: dot(v1 - v0, cross(v2 - v0, v3 - v0)) > 0.
+    std::vector<std::array<uint32_t, 4>> tets;
+    // adjacency[t][j], across face j: >= 0 is 4 * neighbour + the neighbour's local face;
+    // < 0 is ~s for surface triangle s (the medium's boundary).
+    std::vector<std::array<int32_t, 4>> adjacency;
+    // The validated boundary, wound outward; its vertex ids index `vertices`.
+    std::vector<std::array<uint32_t, 3>> surface;
+    // surfaceFace[s] = 4 * tet + local face: the one tet face that is surface triangle s.
+    std::vector<uint32_t> surfaceFace;
+
+    size_t surfaceVertexCount = 0;
+
+    static bool isBoundary(int32_t adj) { return adj < 0; }
+    static uint32_t neighbourTet(int32_t adj) { return uint32_t(adj) >> 2; }
+    static int neighbourFace(int32_t adj) { return adj & 3; }
+    static uint32_t surfaceTriangle(int32_t adj) { return ~uint32_t(adj); }
+
+    double tetVolume(uint32_t t) const;
+    double volume() const;               // sum of tet volumes
+    double surfaceVolume() const;        // the boundary's own volume (divergence theorem)
+    glm::dvec3 centroid(uint32_t t) const;
+    size_t bytesPerTet() const { return sizeof(tets[0]) + sizeof(adjacency[0]); }
+    TriangleMesh surfaceMesh() const;
+    // The surface triangle on the other side of edge (a, b) of surface triangle s, found by
+    // turning around the edge through the tets (no extra storage).
+    uint32_t surfaceAcross(uint32_t s, uint32_t a, uint32_t b) const;
+};
+
+// Binary cache file. `read` returns false (never throws) if the file is absent, from another
+// version, or damaged, so a stale cache only costs a new tetrahedralization.
+void writeTetMesh(const TetMesh& mesh, uint64_t key, const std::string& path);
+bool readTetMesh(TetMesh& mesh, uint64_t key, const std::string& path);
+
+}  // namespace tetglow

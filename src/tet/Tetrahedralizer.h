@@ -1,0 +1,35 @@
+// Validated surface -> TetMesh, through TetGen with the boundary preserved (-pY).
+#pragma once
+#include <string>
+
+#include "tet/MeshValidation.h"
+#include "tet/TetMesh.h"
+
+namespace tetglow {
+
+struct TetOptions {
+    // Steiner points only where a scene needs them (heterogeneous density): 0 disables each.
+    double radiusEdgeRatio = 0;  // TetGen -q
+    double maxVolume = 0;        // TetGen -a
+    std::string cacheDir;        // "" = $TETGLOW_CACHE_DIR, else $XDG_CACHE_HOME/tetglow, else ~/.cache/tetglow
+    bool useCache = true;
+
+    std::string switches() const;  // the TetGen command line these options give
+};
+
+struct TetStats {
+    double seconds = 0;      // validation + tetrahedralization (or cache read)
+    bool fromCache = false;
+    std::string cacheFile;   // "" when caching is off or the directory is not writable
+};
+
+// Validates and repairs `surface` (see validateAndRepair), then tetrahedralizes its interior.
+// TetGen runs in a child process, so its crashes and thrown ints become InputErrors here.
+TetMesh tetrahedralize(TriangleMesh surface, const TetOptions& options = {}, TetStats* stats = nullptr,
+                       ValidationReport* report = nullptr);
+
+// TetGen on a surface as it is, without validation or cache: shows what tetglow survives when
+// TetGen fails (0 tets, a thrown int, a crash), each as an InputError. For tests.
+TetMesh tetrahedralizeUnchecked(const TriangleMesh& surface, const std::string& switches);
+
+}  // namespace tetglow

@@ -1,0 +1,40 @@
+// A closed triangle mesh: the boundary of a medium or a surface in the scene.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+namespace tetglow {
+
+// Input that cannot be used: broken meshes, bad files. The message is one line naming the problem.
+struct InputError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+struct TriangleMesh {
+    std::vector<glm::dvec3> positions;
+    std::vector<std::array<uint32_t, 3>> triangles;
+
+    glm::dvec3 corner(uint32_t tri, int k) const { return positions[triangles[tri][k]]; }
+};
+
+struct Bounds3 {
+    glm::dvec3 lo{1e300}, hi{-1e300};
+    void extend(const glm::dvec3& p);
+    double diagonal() const;
+};
+
+Bounds3 bounds(const TriangleMesh& mesh);
+// Signed volume by the divergence theorem (positive for outward winding).
+double signedVolume(const TriangleMesh& mesh);
+
+// Reads OBJ or OFF (chosen by extension, then by content). Throws InputError naming file and line.
+// Warnings (such as a missing mtllib) go to `warnings`.
+TriangleMesh readMesh(const std::string& path, std::vector<std::string>* warnings = nullptr);
+void writeObj(const TriangleMesh& mesh, const std::string& path, const std::string& header = "");
+
+}  // namespace tetglow
