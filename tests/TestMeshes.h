@@ -1,0 +1,34 @@
+// Meshes the tests build themselves, and where to find the others.
+#pragma once
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "tet/TriangleMesh.h"
+
+namespace tetglow::test {
+
+TriangleMesh box(glm::dvec3 lo = glm::dvec3(0), glm::dvec3 hi = glm::dvec3(1));
+TriangleMesh icosphere(int subdivisions, double radius = 1, glm::dvec3 centre = glm::dvec3(0));
+TriangleMesh merge(const TriangleMesh& a, const TriangleMesh& b);
+
+// The demo fish and blub, spot, bob from ../shared/meshes (path "" when that folder is absent:
+// tests skip those with a message).
+struct NamedMesh {
+    std::string name, path;
+};
+std::vector<NamedMesh> referenceMeshes();
+std::string sharedMesh(const std::string& name);  // "" when ../shared/meshes is absent
+
+// A fresh temporary directory for this test.
+std::string tempDir();
+std::string writeTemp(const std::string& name, const std::string& contents);
+
+struct CommandResult {
+    int exitCode;
+    std::string out, err;
+};
+// Runs the tetglow binary with the given arguments (shell-quoted by the caller).
+CommandResult runTetglow(const std::string& args);
+
+}  // namespace tetglow::test

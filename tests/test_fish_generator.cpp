@@ -1,0 +1,200 @@
+// The procedural demo fish: valid TetGen input at every resolution, and the committed
+// scenes/meshes/fish.obj is exactly what the generator makes by default.
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <numeric>
+#include <set>
+#include <tuple>
+
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+
+#include "scene/FishGenerator.h"
+#include "tet/SelfIntersection.h"
+
+namespace tetglow {
+namespace {
+
+FishParams resolution(int rings, int segments) {
+    FishParams p;
+    p.rings = rings;
+    p.segments = segments;
+    return p;
+}
+
+// Balanced resolutions from coarse to the ~200k triangles of the render-cost study.
+const std::vector<FishParams> kResolutions = {resolution(16, 16), resolution(32, 24), resolution(64, 48),
+                                              FishParams{}, resolution(200, 160), resolution(440, 420)};
+
+// Every undirected edge is shared by exactly two triangles that run it in opposite directions.
+void expectClosedAndConsistent(const TriangleMesh& m) {
+    std::map<std::pair<uint32_t, uint32_t>, int> directed;
+    for (const auto& t : m.triangles)
+        for (int k = 0; k < 3; ++k) ++directed[{t[k], t[(k + 1) % 3]}];
+    for (const auto& [edge, count] : directed) {
+        ASSERT_EQ(count, 1) << "edge " << edge.first << "-" << edge.second << " used twice in one direction";
+        const auto twin = directed.find({edge.second, edge.first});
+        ASSERT_TRUE(twin != directed.end()) << "edge " << edge.first << "-" << edge.second << " is a boundary";
+    }
+}
+
+double minAngleDegrees(const TriangleMesh& m) {
+    double smallest = 180;
+    for (uint32_t t = 0; t < m.triangles.size(); ++t)
+        for (int k = 0; k < 3; ++k) {
+            const glm::dvec3 a = glm::normalize(m.corner(t, (k + 1) % 3) - m.corner(t, k));
+            const glm::dvec3 b = glm::normalize(m.corner(t, (k + 2) % 3) - m.corner(t, k));
+            smallest = std::min(smallest, std::acos(std::clamp(glm::dot(a, b), -1.0, 1.0)) * 180 / std::numbers::pi);
+        }
+    return smallest;
+}
+
+// Connected shells (by shared vertices), as a shell index per vertex.
+std::vector<uint32_t> shells(const TriangleMesh& m, uint32_t& count) {
+    std::vector<uint32_t> parent(m.positions.size());
+    std::iota(parent.begin(), parent.end(), 0u);
+    auto root = [&](uint32_t v) {
+        while (parent[v] != v) v = parent[v] = parent[parent[v]];
+        return v;
+    };
+    for (const auto& t : m.triangles) parent[root(t[1])] = parent[root(t[2])] = root(t[0]);
+    std::map<uint32_t, uint32_t> index;
+    std::vector<uint32_t> shell(m.positions.size());
+    for (uint32_t v = 0; v < shell.size(); ++v) shell[v] = index.emplace(root(v), index.size()).first->second;
+    count = static_cast<uint32_t>(index.size());
+    return shell;
+}
+
+// Rounded to float. Through a volatile: GCC 12's SLP vectorizer at -O2 drops the rounding from
+// paired double -> float -> double casts.
+double toFloat(double x) {
+    volatile float rounded = static_cast<float>(x);
+    return rounded;
+}
+
+void expectValidMedium(const TriangleMesh& m) {
+    expectClosedAndConsistent(m);
+    EXPECT_GT(signedVolume(m), 0) << "inward winding";
+    EXPECT_GT(minAngleDegrees(m), 1.0) << "sliver triangles";
+
+    std::set<std::tuple<double, double, double>> distinct;
+    for (const auto& p : m.positions) {
+        EXPECT_TRUE(toFloat(p.x) == p.x && toFloat(p.y) == p.y && toFloat(p.z) == p.z)
+            << "position not rounded to float";
+        distinct.insert({p.x, p.y, p.z});
+    }
+    EXPECT_EQ(distinct.size(), m.positions.size()) << "duplicate vertices";
+    const auto hit = findSelfIntersection(m);
+    EXPECT_FALSE(hit) << "triangles " << hit->first << " and " << hit->second << " intersect";
+}
+
+TEST(FishGenerator, DefaultIsAValidMedium) {
+    const TriangleMesh m = makeFish();
+    EXPECT_GE(m.triangles.size(), 5000u);
+    EXPECT_LE(m.triangles.size(), 20000u);
+    expectValidMedium(m);
+
+    // About 2 long, nose at +x, about 0.8 tall, centred near the origin.
+    const Bounds3 b = bounds(m);
+    EXPECT_NEAR(b.hi.x - b.lo.x, 2.0, 0.1);
+    EXPECT_NEAR(b.hi.y - b.lo.y, 0.8, 0.1);
+    EXPECT_LT(std::abs(b.lo.x + b.hi.x), 0.2);
+}
+
+TEST(FishGenerator, EveryResolutionIsAValidMedium) {
+    for (const auto& p : kResolutions) {
+        SCOPED_TRACE(std::to_string(p.rings) + " x " + std::to_string(p.segments));
+        expectValidMedium(makeFish(p));
+    }
+}
+
+TEST(FishGenerator, ShapeKnobsAtTheirLimitsStayValid) {
+    FishParams thin;
+    thin.finThickness = 0.02;
+    thin.tailFork = 0.3;
+    thin.lureRadius = 0.1;
+    expectValidMedium(makeFish(thin));
+    FishParams plain;
+    plain.finThickness = 0.08;
+    plain.tailFork = 0;
+    plain.lureRadius = 0;
+    expectValidMedium(makeFish(plain));
+}
+
+// Why it cannot self-intersect at any resolution: mirror-symmetric about z = 0, with the half
+// at z >= 0 a height field over the x-y plane, so no triangle of it folds over in projection.
+TEST(FishGenerator, LeftHalfProjectsWithoutFolds) {
+    for (const auto& p : kResolutions) {
+        const TriangleMesh m = makeFish(p);
+        size_t folds = 0;
+        for (uint32_t t = 0; t < m.triangles.size(); ++t) {
+            const glm::dvec3 a = m.corner(t, 0), b = m.corner(t, 1), c = m.corner(t, 2);
+            if (a.z < 0 || b.z < 0 || c.z < 0) continue;
+            folds += (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x) <= 0;
+        }
+        EXPECT_EQ(folds, 0u) << p.rings << " x " << p.segments;
+    }
+}
+
+TEST(FishGenerator, BodyAndLureAreSeparateShells) {
+    const TriangleMesh m = makeFish();
+    uint32_t count = 0;
+    const std::vector<uint32_t> shell = shells(m, count);
+    ASSERT_EQ(count, 2u);
+    // Disjoint bounding boxes along x: the lure floats wholly ahead of the nose.
+    Bounds3 box[2];
+    for (uint32_t v = 0; v < m.positions.size(); ++v) box[shell[v]].extend(m.positions[v]);
+    EXPECT_TRUE(box[0].hi.x < box[1].lo.x || box[1].hi.x < box[0].lo.x);
+
+    FishParams noLure;
+    noLure.lureRadius = 0;
+    shells(makeFish(noLure), count);
+    EXPECT_EQ(count, 1u);
+}
+
+// Documented: about 1.1 * rings * segments triangles, growing with rings * segments.
+TEST(FishGenerator, TriangleCountScalesWithRingsTimesSegments) {
+    size_t previous = 0;
+    for (const auto& p : kResolutions) {
+        const size_t n = makeFish(p).triangles.size();
+        const double perCell = double(n) / (p.rings * p.segments);
+        EXPECT_GT(perCell, 0.95) << p.rings << " x " << p.segments;
+        EXPECT_LT(perCell, 1.25) << p.rings << " x " << p.segments;
+        EXPECT_GT(n, previous);
+        previous = n;
+    }
+    EXPECT_LT(makeFish(resolution(16, 16)).triangles.size(), 500u);      // a few hundred
+    EXPECT_GT(makeFish(resolution(440, 420)).triangles.size(), 180000u);  // ~200k
+}
+
+TEST(FishGenerator, RejectsParametersOutOfRange) {
+    EXPECT_THROW(makeFish(resolution(7, 16)), InputError);
+    EXPECT_THROW(makeFish(resolution(16, 4)), InputError);
+    EXPECT_THROW(makeFish(resolution(4096, 2048)), InputError);
+    EXPECT_THROW(makeFish(resolution(400, 20)), InputError);  // needle triangles
+    FishParams p;
+    p.finThickness = 0.001;
+    EXPECT_THROW(makeFish(p), InputError);
+    p = {};
+    p.lureRadius = std::nan("");
+    EXPECT_THROW(makeFish(p), InputError);
+}
+
+TEST(FishGenerator, CommittedObjIsTheDefaultFish) {
+    const TriangleMesh expected = makeFish();
+    const TriangleMesh committed = readMesh(TETGLOW_SOURCE_DIR "/scenes/meshes/fish.obj");
+    ASSERT_EQ(committed.positions.size(), expected.positions.size()) << "regenerate: tetglow generate fish -o scenes/meshes/fish.obj";
+    ASSERT_EQ(committed.triangles.size(), expected.triangles.size());
+    // Nine digits bring float positions back exactly once snapped to float, as validation does.
+    for (size_t v = 0; v < expected.positions.size(); ++v) {
+        ASSERT_LT(glm::distance(committed.positions[v], expected.positions[v]), 1e-6) << "vertex " << v;
+        const glm::dvec3& c = committed.positions[v];
+        ASSERT_EQ(glm::dvec3(toFloat(c.x), toFloat(c.y), toFloat(c.z)), expected.positions[v]) << "vertex " << v;
+    }
+    EXPECT_EQ(committed.triangles, expected.triangles);
+}
+
+}  // namespace
+}  // namespace tetglow

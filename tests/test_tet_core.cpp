@@ -1,0 +1,291 @@
+// Properties of the tetrahedralization and the walks, on the demo fish and on blub, spot and
+// bob when ../shared/meshes is present.
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <set>
+
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+
+#include "TestMeshes.h"
+#include "tet/Predicates.h"
+#include "tet/Tetrahedralizer.h"
+#include "tet/TetVolume.h"
+
+namespace tetglow {
+namespace {
+
+TetOptions noCache() {
+    TetOptions o;
+    o.useCache = false;
+    return o;
+}
+
+// The medium's length along the ray from Embree's boundary hits: the ray is cut at every hit
+// (t refined in double), at every end of a walk segment and at `extra`, and each piece counts
+// when its midpoint is inside by the parity test (majority of 5 rays). Embree can report a
+// crossing twice, or miss it, exactly at a vertex; the cuts make that harmless.
+double embreeChord(const SurfaceBVH& bvh, const Ray& ray, std::vector<double> cuts, double merge) {
+    for (const auto& h : bvh.allHits(ray)) cuts.push_back(h.t);
+    std::sort(cuts.begin(), cuts.end());
+    double length = 0, last = -INFINITY;
+    std::vector<double> ts;
+    for (double t : cuts)
+        if (t - last > merge) ts.push_back(last = t);
+    for (size_t i = 0; i + 1 < ts.size(); ++i)
+        if (insideByParity(bvh, ray.at(0.5 * (ts[i] + ts[i + 1])), 5)) length += ts[i + 1] - ts[i];
+    return length;
+}
+
+struct WalkResult {
+    double length = 0;
+    size_t steps = 0;
+    bool ok = true;
+    std::vector<double> ends;  // where segments start and stop
+};
+
+WalkResult walk(const TetVolume& volume, const Ray& ray) {
+    WalkResult r;
+    r.ok = volume.traverse(
+        ray, 0, INFINITY,
+        [&](const WalkSegment& s) {
+            r.length += s.tOut - s.tIn;
+            ++r.steps;
+            r.ends.push_back(s.tIn);
+            r.ends.push_back(s.tOut);
+            return true;
+        },
+        TetVolume::kOutside);
+    return r;
+}
+
+glm::dvec3 uniformDirection(std::mt19937_64& rng) {
+    std::uniform_real_distribution<double> u(0, 1);
+    const double z = 2 * u(rng) - 1, phi = 2 * M_PI * u(rng), s = std::sqrt(1 - z * z);
+    return {s * std::cos(phi), s * std::sin(phi), z};
+}
+
+class TetCore : public testing::TestWithParam<test::NamedMesh> {
+protected:
+    void SetUp() override {
+        if (GetParam().path.empty()) GTEST_SKIP() << GetParam().name << ".obj not tested: ../shared/meshes not found";
+        volume_ = std::make_unique<TetVolume>(tetrahedralize(readMesh(GetParam().path), noCache()));
+        Bounds3 b;
+        for (const auto& v : mesh().vertices) b.extend(v);
+        bounds_ = b;
+        diag_ = b.diagonal();
+    }
+    const TetMesh& mesh() const { return volume_->mesh(); }
+
+    std::unique_ptr<TetVolume> volume_;
+    Bounds3 bounds_;
+    double diag_ = 0;
+};
+
+TEST_P(TetCore, VolumeMatchesSurface) {
+    const double surface = mesh().surfaceVolume(), tets = mesh().volume();
+    EXPECT_GT(surface, 0);
+    EXPECT_NEAR(tets, surface, 1e-9 * surface);
+}
+
+TEST_P(TetCore, TetsArePositivelyOrientedAndCompact) {
+    const auto& m = mesh();
+    for (uint32_t t = 0; t < m.tets.size(); ++t) {
+        const auto& v = m.tets[t];
+        ASSERT_LT(orient3d(m.vertices[v[0]], m.vertices[v[1]], m.vertices[v[2]], m.vertices[v[3]]), 0) << "tet " << t;
+    }
+    EXPECT_LE(m.bytesPerTet(), 32u);
+}
+
+TEST_P(TetCore, NeighboursAreReciprocal) {
+    const auto& m = mesh();
+    for (uint32_t t = 0; t < m.tets.size(); ++t)
+        for (int j = 0; j < 4; ++j) {
+            const int32_t adj = m.adjacency[t][j];
+            if (TetMesh::isBoundary(adj)) continue;
+            const uint32_t n = TetMesh::neighbourTet(adj);
+            const int k = TetMesh::neighbourFace(adj);
+            ASSERT_EQ(m.adjacency[n][k], int32_t(4 * t + j)) << "tet " << t << " face " << j;
+            // The shared face has the same three vertices seen from both sides.
+            std::array<uint32_t, 3> a, b;
+            for (int i = 0; i < 3; ++i) a[i] = m.tets[t][kInwardFace[j][i]], b[i] = m.tets[n][kInwardFace[k][i]];
+            std::sort(a.begin(), a.end());
+            std::sort(b.begin(), b.end());
+            ASSERT_EQ(a, b);
+        }
+}
+
+TEST_P(TetCore, BoundaryFacesAreSurfaceTrianglesOneToOne) {
+    const auto& m = mesh();
+    const TriangleMesh input = [&] {
+        TriangleMesh s = readMesh(GetParam().path);
+        validateAndRepair(s);
+        return s;
+    }();
+    ASSERT_EQ(m.surface.size(), input.triangles.size());
+    std::vector<int> seen(m.surface.size(), 0);
+    size_t boundaryFaces = 0;
+    for (uint32_t t = 0; t < m.tets.size(); ++t)
+        for (int j = 0; j < 4; ++j) {
+            const int32_t adj = m.adjacency[t][j];
+            if (!TetMesh::isBoundary(adj)) continue;
+            ++boundaryFaces;
+            const uint32_t s = TetMesh::surfaceTriangle(adj);
+            ASSERT_LT(s, m.surface.size());
+            ++seen[s];
+            EXPECT_EQ(m.surfaceFace[s], 4 * t + j);
+            // Same corners, bit for bit, as the input triangle; wound outward.
+            std::array<uint32_t, 3> face, tri = m.surface[s];
+            for (int i = 0; i < 3; ++i) face[i] = m.tets[t][kInwardFace[j][i]];
+            for (int i = 0; i < 3; ++i) EXPECT_EQ(m.vertices[tri[i]], input.positions[input.triangles[s][i]]);
+            std::sort(face.begin(), face.end());
+            std::sort(tri.begin(), tri.end());
+            EXPECT_EQ(face, tri);
+        }
+    EXPECT_EQ(boundaryFaces, m.surface.size());
+    EXPECT_TRUE(std::all_of(seen.begin(), seen.end(), [](int c) { return c == 1; }));
+}
+
+TEST_P(TetCore, LocationAgreesWithParity) {
+    std::mt19937_64 rng(7);
+    std::uniform_real_distribution<double> u(0, 1);
+    const TriangleMesh surface = mesh().surfaceMesh();
+    int disagreements = 0, inside = 0;
+    for (int i = 0; i < 100000; ++i) {
+        const glm::dvec3 p = bounds_.lo + (bounds_.hi - bounds_.lo) * glm::dvec3(u(rng), u(rng), u(rng));
+        const int64_t t = volume_->locate(p);
+        inside += t >= 0;
+        if (t >= 0) {  // the answer really contains p
+            const auto& v = mesh().tets[size_t(t)];
+            for (int j = 0; j < 4; ++j) {
+                const int* f = kInwardFace[j];
+                ASSERT_LE(orient3d(mesh().vertices[v[f[0]]], mesh().vertices[v[f[1]]], mesh().vertices[v[f[2]]], p), 0);
+            }
+        }
+        if ((t >= 0) == insideByParity(volume_->bvh(), p, 5)) continue;
+        // Only points within 1e-6 of the diagonal from the surface may disagree.
+        double d = INFINITY;
+        for (uint32_t s = 0; s < surface.triangles.size(); ++s) {
+            const glm::dvec3 a = surface.corner(s, 0), n = glm::normalize(glm::cross(surface.corner(s, 1) - a, surface.corner(s, 2) - a));
+            d = std::min(d, std::abs(glm::dot(p - a, n)));
+        }
+        EXPECT_LT(d, 1e-6 * diag_) << "point " << p.x << ' ' << p.y << ' ' << p.z;
+        ++disagreements;
+    }
+    EXPECT_GT(inside, 1000);
+    EXPECT_LT(disagreements, 10);
+}
+
+TEST_P(TetCore, RandomRayChordsMatchEmbree) {
+    std::mt19937_64 rng(11);
+    std::uniform_real_distribution<double> u(0, 1);
+    size_t maxSteps = 0;
+    int hitting = 0;
+    for (int i = 0; i < 100000; ++i) {
+        const glm::dvec3 target = bounds_.lo + (bounds_.hi - bounds_.lo) * glm::dvec3(u(rng), u(rng), u(rng));
+        const glm::dvec3 d = uniformDirection(rng);
+        const Ray ray{target - d * diag_, d};
+        const WalkResult w = walk(*volume_, ray);
+        ASSERT_TRUE(w.ok) << "walk lost on ray " << i;
+        const double ref = embreeChord(volume_->bvh(), ray, w.ends, 1e-9 * diag_);
+        ASSERT_NEAR(w.length, ref, 1e-6 * diag_) << "ray " << i;
+        hitting += ref > 0;
+        maxSteps = std::max(maxSteps, w.steps);
+    }
+    EXPECT_GT(hitting, 10000);
+    EXPECT_LE(maxSteps, mesh().tets.size());
+}
+
+// Rays exactly through vertices, along interior tet edges and through edge midpoints: the
+// cases where sign tests are exactly zero and only the tie-break keeps the walk consistent.
+// Rays along a surface edge are left out: their chord is undefined (rays on either side
+// differ by the edge). Known residue, measured in docs/RESULTS.md: up to 0.3% of these rays
+// (where the surface pinches at a vertex on the ray) are off by more than 1e-6 diagonals, and
+// a few in 10,000 walks are lost; the bounds below hold that residue to account.
+TEST_P(TetCore, DegenerateRaysMatchEmbree) {
+    const auto& m = mesh();
+    std::mt19937_64 rng(5);
+    const size_t stride = std::max<size_t>(1, m.vertices.size() / 3000);
+    int rays = 0, lost = 0, mismatched = 0;
+    std::set<std::pair<uint32_t, uint32_t>> surfaceEdges;
+    for (const auto& f : m.surface)
+        for (int k = 0; k < 3; ++k) surfaceEdges.insert(std::minmax(f[k], f[(k + 1) % 3]));
+    auto check = [&](const Ray& ray, double tVertex) {
+        const WalkResult w = walk(*volume_, ray);
+        ++rays;
+        if (!w.ok) return void(++lost);
+        EXPECT_LE(w.steps, m.tets.size());
+        std::vector<double> cuts = w.ends;
+        cuts.push_back(tVertex);
+        mismatched += std::abs(w.length - embreeChord(volume_->bvh(), ray, cuts, 1e-9 * diag_)) > 1e-6 * diag_;
+    };
+    std::vector<std::vector<uint32_t>> ring(m.vertices.size());  // surface neighbours
+    for (const auto& [a, b] : surfaceEdges) ring[a].push_back(b), ring[b].push_back(a);
+    for (size_t v = 0; v < m.vertices.size(); v += stride)
+        for (int axis = 0; axis < 3; ++axis) {
+            glm::dvec3 d(0);
+            d[axis] = 1;  // axis-aligned from outside: the line passes exactly through the vertex
+            const bool alongEdge = std::any_of(ring[v].begin(), ring[v].end(), [&](uint32_t w) {
+                const glm::dvec3 e = m.vertices[w] - m.vertices[v];
+                return e[(axis + 1) % 3] == 0 && e[(axis + 2) % 3] == 0;
+            });
+            if (!alongEdge) check({m.vertices[v] - d * (2 * diag_), d}, 2 * diag_);
+        }
+    for (size_t t = 0; t < m.tets.size(); t += std::max<size_t>(1, m.tets.size() / 3000)) {
+        const int i = int(rng() % 4), j = (i + 1 + int(rng() % 3)) % 4;
+        const glm::dvec3 a = m.vertices[m.tets[t][i]], b = m.vertices[m.tets[t][j]];
+        const glm::dvec3 d = b - a;  // exact for float vertices: the line holds a and b exactly
+        const double back = std::ldexp(1.0, int(std::ceil(std::log2(2 * diag_ / glm::length(d)))));
+        // Along a surface edge the chord is undefined (rays beside it differ by the edge).
+        if (!surfaceEdges.count(std::minmax(m.tets[t][i], m.tets[t][j]))) check({a - d * back, d}, back);
+        glm::dvec3 axis(0);
+        axis[int(rng() % 3)] = 1;
+        check({(a + b) * 0.5 - axis * (2 * diag_), axis}, 2 * diag_);
+    }
+    EXPECT_GT(rays, 3000);
+    EXPECT_LE(lost, rays / 5000) << lost << " of " << rays << " walks lost";
+    EXPECT_LE(mismatched, rays / 200) << mismatched << " of " << rays << " chords off by more than 1e-6 diagonals";
+}
+
+TEST_P(TetCore, WalkFromInsideMatchesWalkFromOutside) {
+    // Starting at a located interior point gives the same exit as entering from outside.
+    std::mt19937_64 rng(3);
+    std::uniform_real_distribution<double> u(0, 1);
+    int tested = 0;
+    while (tested < 2000) {
+        const glm::dvec3 p = bounds_.lo + (bounds_.hi - bounds_.lo) * glm::dvec3(u(rng), u(rng), u(rng));
+        const int64_t t = volume_->locate(p);
+        if (t < 0) continue;
+        const glm::dvec3 d = uniformDirection(rng);
+        const Ray ray{p - d * (2 * diag_), d};
+        double inner = 0, outer = 0;
+        volume_->traverse(ray, 2 * diag_, INFINITY, [&](const WalkSegment& s) { return inner += s.tOut - s.tIn, true; }, t);
+        volume_->traverse(ray, 2 * diag_, INFINITY, [&](const WalkSegment& s) { return outer += s.tOut - s.tIn, true; },
+                          TetVolume::kUnknown);
+        double full = 0;
+        volume_->traverse(
+            ray, 0, INFINITY,
+            [&](const WalkSegment& s) {
+                if (s.tOut > 2 * diag_) full += s.tOut - std::max(s.tIn, 2 * diag_);
+                return true;
+            },
+            TetVolume::kOutside);
+        ASSERT_NEAR(inner, full, 1e-6 * diag_);
+        ASSERT_NEAR(outer, full, 1e-6 * diag_);
+        ++tested;
+    }
+}
+
+}  // namespace
+namespace test {
+void PrintTo(const NamedMesh& m, std::ostream* os) { *os << m.name; }
+}  // namespace test
+namespace {
+
+std::string meshName(const testing::TestParamInfo<test::NamedMesh>& info) { return info.param.name; }
+
+INSTANTIATE_TEST_SUITE_P(Meshes, TetCore, testing::ValuesIn(test::referenceMeshes()), meshName);
+
+}  // namespace
+}  // namespace tetglow
