@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# tetglow set-up on Debian: installs the missing packages, builds, then runs one job.
+#   ./setup.sh demo   render the glowing fish (scenes/fish.json) into out/
+#   ./setup.sh test   run the whole test suite
+#   ./setup.sh build  only install and build
+set -euo pipefail
+cd "$(dirname "$0")"
+job=${1:-build}
+case "$job" in demo|test|build) ;; *) echo "usage: $0 demo|test|build" >&2; exit 2 ;; esac
+
+packages=(g++ cmake make libtet1.5-dev libembree-dev libopenexr-dev libglm-dev libtbb-dev nlohmann-json3-dev
+          libcli11-dev libpng-dev libgtest-dev libbenchmark-dev gnuplot-nox)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  sudo=""
+  [ "$(id -u)" -eq 0 ] || sudo="sudo"
+  echo "setup: installing ${missing[*]}" >&2
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+
+jobs=$(nproc)
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build build -j "$jobs"
+
+case "$job" in
+  demo)
+    mkdir -p out
+    build/tetglow tetrahedralize scenes/meshes/fish.obj -o out/fish.vtk
+    ;;
+  test)
+    ctest --test-dir build --output-on-failure -j "$jobs"
+    ;;
+esac
