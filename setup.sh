@@ -30,6 +30,7 @@ case "$job" in
   demo)
     mkdir -p out
     build/tetglow tetrahedralize scenes/meshes/fish.obj -o out/fish.vtk
+    echo "demo: out/fish.vtk (tetrahedralized demo fish; open in ParaView)"
     ;;
   test)
     ctest --test-dir build --output-on-failure -j "$jobs"

@@ -20,6 +20,8 @@ struct Fixture {
     std::vector<Ray> rays;                        // each crosses the medium
     std::vector<uint32_t> entries;                // Embree's entry triangle per ray
     std::vector<std::vector<glm::dvec3>> paths;   // ray-march sample points, inside and outside
+    std::vector<std::vector<glm::dvec3>> inside;  // the samples of each path inside the medium
+    double spacing = 0;                           // between samples, in t
 };
 
 const Fixture& fixture() {
@@ -40,9 +42,14 @@ const Fixture& fixture() {
             if (!hit) continue;
             f.rays.push_back(ray);
             f.entries.push_back(hit->triangle);
-            std::vector<glm::dvec3> path;  // the seed's ray march: 200 steps across the box
-            for (int k = 0; k < 200; ++k) path.push_back(ray.at((k + 0.5) * 2 * diag / 200));
+            std::vector<glm::dvec3> path, in;  // the seed's ray march: 200 steps across the box
+            f.spacing = 2 * diag / 200;
+            for (int k = 0; k < 200; ++k) {
+                path.push_back(ray.at((k + 0.5) * f.spacing));
+                if (f.volume->locate(path.back()) >= 0) in.push_back(path.back());
+            }
             f.paths.push_back(std::move(path));
+            if (!in.empty()) f.inside.push_back(std::move(in));
         }
         return f;
     }();
@@ -89,15 +96,22 @@ void BM_EmbreeEntryExit(benchmark::State& state) {
 BENCHMARK(BM_EmbreeEntryExit);
 
 void BM_LocateAlongPath(benchmark::State& state) {
-    // Each sample located from the previous one's tet, as a ray march does.
+    // The ray march's inside test with tets: walk the ray once, then each sample's tet is the
+    // segment holding it (-1 between segments). The walk's cost is included.
     const Fixture& f = fixture();
     size_t i = 0, points = 0;
+    std::vector<WalkSegment> segments;
     for (auto _ : state) {
-        int64_t hint = -1;
-        for (const auto& p : f.paths[i++ % f.paths.size()]) {
-            const int64_t t = f.volume->locate(p, hint);
-            if (t >= 0) hint = t;
-            benchmark::DoNotOptimize(t);
+        const size_t r = i++ % f.rays.size();
+        const Ray& ray = f.rays[r];
+        segments.clear();
+        f.volume->traverse(ray, 0, INFINITY, [&](const WalkSegment& s) { return segments.push_back(s), true; },
+                           TetVolume::kOutside);
+        size_t k = 0;
+        for (int j = 0; j < 200; ++j) {
+            const double t = (j + 0.5) * f.spacing;
+            while (k < segments.size() && segments[k].tOut < t) ++k;
+            benchmark::DoNotOptimize(k < segments.size() && segments[k].tIn <= t ? int64_t(segments[k].tet) : -1);
         }
         points += 200;
     }
@@ -105,6 +119,20 @@ void BM_LocateAlongPath(benchmark::State& state) {
     state.counters["bytes/tet"] = double(f.volume->mesh().bytesPerTet());
 }
 BENCHMARK(BM_LocateAlongPath);
+
+void BM_LocateWithHint(benchmark::State& state) {
+    // Point location by visibility walk from the previous sample's tet, for the samples inside.
+    const Fixture& f = fixture();
+    size_t i = 0, points = 0;
+    for (auto _ : state) {
+        const auto& path = f.inside[i++ % f.inside.size()];
+        int64_t hint = -1;
+        for (const auto& p : path) benchmark::DoNotOptimize(hint = f.volume->locate(p, hint));
+        points += path.size();
+    }
+    state.counters["points/s"] = benchmark::Counter(double(points), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_LocateWithHint);
 
 void BM_ParityAlongPath(benchmark::State& state) {
     const Fixture& f = fixture();

@@ -2,6 +2,7 @@
 // bob when ../shared/meshes is present.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <random>
 #include <set>
 
@@ -243,6 +244,8 @@ TEST_P(TetCore, DegenerateRaysMatchEmbree) {
         axis[int(rng() % 3)] = 1;
         check({(a + b) * 0.5 - axis * (2 * diag_), axis}, 2 * diag_);
     }
+    std::printf("degenerate rays on %s: %d, lost %d, chord off by > 1e-6 diagonals %d\n", GetParam().name.c_str(), rays,
+                lost, mismatched);
     EXPECT_GT(rays, 3000);
     EXPECT_LE(lost, rays / 5000) << lost << " of " << rays << " walks lost";
     EXPECT_LE(mismatched, rays / 200) << mismatched << " of " << rays << " chords off by more than 1e-6 diagonals";
