@@ -145,3 +145,17 @@ TEST(TetGenFailures, SelfIntersectionGivesAnErrorNotACrash) {
 
 }  // namespace
 }  // namespace tetglow
+
+namespace tetglow {
+namespace {
+
+TEST(ValidInput, PositionsAreSnappedToFloat) {
+    // Embree stores floats: the tets must see the very same vertices.
+    TriangleMesh m = test::icosphere(1, 0.1, {0.1, 0.2, 0.3});
+    validateAndRepair(m);
+    for (const auto& p : m.positions)
+        for (int k = 0; k < 3; ++k) ASSERT_EQ(p[k], roundToFloat(p[k])) << p.x << ' ' << p.y << ' ' << p.z;
+}
+
+}  // namespace
+}  // namespace tetglow

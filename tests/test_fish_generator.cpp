@@ -67,13 +67,6 @@ std::vector<uint32_t> shells(const TriangleMesh& m, uint32_t& count) {
     return shell;
 }
 
-// Rounded to float. Through a volatile: GCC 12's SLP vectorizer at -O2 drops the rounding from
-// paired double -> float -> double casts.
-double toFloat(double x) {
-    volatile float rounded = static_cast<float>(x);
-    return rounded;
-}
-
 void expectValidMedium(const TriangleMesh& m) {
     expectClosedAndConsistent(m);
     EXPECT_GT(signedVolume(m), 0) << "inward winding";
@@ -81,7 +74,7 @@ void expectValidMedium(const TriangleMesh& m) {
 
     std::set<std::tuple<double, double, double>> distinct;
     for (const auto& p : m.positions) {
-        EXPECT_TRUE(toFloat(p.x) == p.x && toFloat(p.y) == p.y && toFloat(p.z) == p.z)
+        EXPECT_TRUE(roundToFloat(p.x) == p.x && roundToFloat(p.y) == p.y && roundToFloat(p.z) == p.z)
             << "position not rounded to float";
         distinct.insert({p.x, p.y, p.z});
     }
@@ -191,7 +184,7 @@ TEST(FishGenerator, CommittedObjIsTheDefaultFish) {
     for (size_t v = 0; v < expected.positions.size(); ++v) {
         ASSERT_LT(glm::distance(committed.positions[v], expected.positions[v]), 1e-6) << "vertex " << v;
         const glm::dvec3& c = committed.positions[v];
-        ASSERT_EQ(glm::dvec3(toFloat(c.x), toFloat(c.y), toFloat(c.z)), expected.positions[v]) << "vertex " << v;
+        ASSERT_EQ(glm::dvec3(roundToFloat(c.x), roundToFloat(c.y), roundToFloat(c.z)), expected.positions[v]) << "vertex " << v;
     }
     EXPECT_EQ(committed.triangles, expected.triangles);
 }

@@ -77,14 +77,8 @@ struct Ring {
     std::vector<double> piece, fraction;
 };
 
-// Rounds to float, so that positions survive the OBJ's nine digits and validation's snap to float
-// unchanged. Through a volatile: GCC 12's SLP vectorizer at -O2 drops the rounding from paired
-// double -> float -> double casts, glm::dvec3(glm::vec3(p)) included.
-double toFloat(double x) {
-    volatile float rounded = static_cast<float>(x);
-    return rounded;
-}
-glm::dvec3 toFloat(const glm::dvec3& p) { return {toFloat(p.x), toFloat(p.y), toFloat(p.z)}; }
+// Rounded to float, so that positions survive the OBJ's nine digits and validation's snap.
+glm::dvec3 toFloat(const glm::dvec3& p) { return {roundToFloat(p.x), roundToFloat(p.y), roundToFloat(p.z)}; }
 
 // The boundary's left half as a fine polyline of (z, y), from the section's end at height `end`
 // to the equator; the spacing shrinks towards `end`, where lobes close with a vertical tangent.
@@ -379,7 +373,7 @@ TriangleMesh makeFish(const FishParams& p) {
             ring.fraction = ring.piece;
             ring.equator = n;
         }
-        for (auto& q : ring.left) q.x = toFloat(q.x - fork(s, p) * std::abs(q.y));
+        for (auto& q : ring.left) q.x = roundToFloat(q.x - fork(s, p) * std::abs(q.y));
         body.push_back(ring);
     }
 

@@ -34,7 +34,7 @@ void checkFinite(const TriangleMesh& mesh) {
 
 // Snaps to float, merges identical positions and drops unreferenced vertices; indices are remapped.
 void weldAndCompact(TriangleMesh& mesh, ValidationReport& report) {
-    for (auto& p : mesh.positions) p = glm::dvec3(glm::vec3(p));
+    for (auto& p : mesh.positions) p = {roundToFloat(p.x), roundToFloat(p.y), roundToFloat(p.z)};
     std::vector<uint32_t> order(mesh.positions.size());
     std::iota(order.begin(), order.end(), 0u);
     auto less = [&](uint32_t a, uint32_t b) {
