@@ -29,7 +29,8 @@ double side(uint32_t ia, const glm::dvec2& a, uint32_t ib, const glm::dvec2& b) 
     return kTie;  // edge parallel to the ray: any fixed choice per edge is consistent
 }
 
-TetWalk::TetWalk(const TetMesh& mesh, const Ray& ray) : mesh_(&mesh), o_(ray.o), d_(ray.d) {
+TetWalk::TetWalk(const TetMesh& mesh, const Ray& ray)
+    : mesh_(&mesh), o_(ray.o), d_(ray.d), maxSteps_(mesh.tets.size() + 8) {
     invDD_ = 1.0 / glm::dot(d_, d_);
     // Duff et al. 2017 orthonormal basis with cross(u, v) = n, so counter-clockwise in the
     // projection means a face normal pointing along the ray.
@@ -51,8 +52,9 @@ double TetWalk::faceT(const Vertex& e, const Vertex& x, const Vertex& y, double 
     return (we * e.t + wx * x.t + wy * y.t) / sum;
 }
 
-void TetWalk::setFace(uint32_t tet, Vertex a, Vertex b, Vertex c, double ab, double bc, double ca) {
+void TetWalk::setFace(uint32_t tet, int apex, Vertex a, Vertex b, Vertex c, double ab, double bc, double ca) {
     tet_ = tet;
+    apex_ = apex;
     face_[0] = a, face_[1] = b, face_[2] = c;
     side_[0] = ab, side_[1] = bc, side_[2] = ca;
 }
@@ -64,7 +66,7 @@ bool TetWalk::tryEnter(uint32_t s) {
     const Vertex a = project(tv[face[0]]), b = project(tv[face[1]]), c = project(tv[face[2]]);
     const double ab = side(a.id, a.uv, b.id, b.uv), bc = side(b.id, b.uv, c.id, c.uv), ca = side(c.id, c.uv, a.id, a.uv);
     if (!(ab > 0 && bc > 0 && ca > 0)) return false;
-    setFace(tet, a, b, c, ab, bc, ca);
+    setFace(tet, int(f & 3), a, b, c, ab, bc, ca);
     tIn_ = tEntry_ = faceT(a, b, c, ab, bc, ca);
     entryTriangle_ = s;
     return true;
@@ -144,7 +146,7 @@ TetWalk TetWalk::start(const TetMesh& mesh, const Ray& ray, uint32_t tet, double
 
 bool TetWalk::next(WalkSegment& segment) {
     if (state_ != State::Walking) return false;
-    if (++steps_ > mesh_->tets.size() + 8) {
+    if (++steps_ > maxSteps_) {
         state_ = State::Lost;
         return false;
     }
@@ -153,10 +155,7 @@ bool TetWalk::next(WalkSegment& segment) {
         pending_.reset();
         return cross(f.opposite, f.e, f.x, f.y, f.sEX, f.sXY, f.sYE, segment);
     }
-    const auto& tv = mesh_->tets[tet_];
-    int le = 0;  // the apex: the vertex not on the entry face
-    while (tv[le] == face_[0].id || tv[le] == face_[1].id || tv[le] == face_[2].id) ++le;
-    const Vertex e = project(tv[le]);
+    const Vertex e = project(mesh_->tets[tet_][apex_]);  // the vertex not on the entry face
     const Vertex &a = face_[0], &b = face_[1], &c = face_[2];
     const double sa = side(e.id, e.uv, a.id, a.uv);
     // The origin lies in exactly one of the projected faces (e,a,b), (e,b,c), (e,c,a); two sides
@@ -191,7 +190,7 @@ bool TetWalk::cross(int opposite, const Vertex& e, const Vertex& x, const Vertex
         exitNearEdge_ = !(smallest > 1e-6 * sum);
         exitTriangle_ = TetMesh::surfaceTriangle(adj);
     } else {
-        setFace(TetMesh::neighbourTet(adj), e, x, y, sEX, sXY, sYE);
+        setFace(TetMesh::neighbourTet(adj), TetMesh::neighbourFace(adj), e, x, y, sEX, sXY, sYE);
     }
     return true;
 }

@@ -76,14 +76,16 @@ private:
     bool enterAround(uint32_t s, double tLo, double tHi);
     bool cross(int opposite, const Vertex& e, const Vertex& x, const Vertex& y, double sEX, double sXY, double sYE,
                WalkSegment& segment);
-    void setFace(uint32_t tet, Vertex a, Vertex b, Vertex c, double ab, double bc, double ca);  // by value: callers pass face_ itself
+    void setFace(uint32_t tet, int apex, Vertex a, Vertex b, Vertex c, double ab, double bc, double ca);  // by value: callers pass face_ itself
     double faceT(const Vertex& e, const Vertex& x, const Vertex& y, double sEX, double sXY, double sYE) const;
 
     const TetMesh* mesh_;
     glm::dvec3 o_, d_, u_, v_;
+    size_t maxSteps_;  // a walk can visit each tet once; more means it was lost
     double invDD_;
     State state_ = State::Walking;
     uint32_t tet_ = 0;
+    int apex_ = 0;       // local index of the vertex opposite the entry face
     Vertex face_[3];     // entry face of tet_, counter-clockwise around the origin
     double side_[3]{};   // side(face_[k], face_[k+1]) > 0
     double tIn_ = 0, tEntry_ = 0;
