@@ -53,7 +53,7 @@ uint32_t TetMesh::surfaceAcross(uint32_t s, uint32_t a, uint32_t b) const {
 
 namespace {
 
-constexpr char kMagic[8] = {'T', 'G', 'L', 'W', 'T', 'E', 'T', '2'};
+constexpr char kMagic[8] = {'T', 'G', 'L', 'W', 'T', 'E', 'T', '3'};  // 3: tets in Morton order
 
 template <class T>
 void put(std::ostream& out, const std::vector<T>& v) {

@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include <fcntl.h>
+#include <glm/common.hpp>
 #include <tetgen.h>
 
 #include "tet/Predicates.h"
@@ -225,12 +226,31 @@ TetMesh assemble(const TriangleMesh& surface, const RawTets& raw) {
         }
     }
 
+    // Kept tets in Morton order of their centroids: a walk's next tet is then usually close in
+    // memory (TetGen's order is not spatial).
+    Bounds3 box;
+    for (const auto& v : m.vertices) box.extend(v);
+    const glm::dvec3 scale = 1023.0 / glm::max(box.hi - box.lo, glm::dvec3(1e-300));
+    auto spread = [](uint64_t x) {  // 10 bits -> every third of 30
+        x = (x | (x << 16)) & 0x030000FF;
+        x = (x | (x << 8)) & 0x0300F00F;
+        x = (x | (x << 4)) & 0x030C30C3;
+        return (x | (x << 2)) & 0x09249249;
+    };
+    std::vector<std::pair<uint64_t, uint32_t>> order;
+    for (uint32_t t = 0; t < nt; ++t) {
+        if (keepRegion[region[t]] != 1) continue;
+        const auto& v = tets[t];
+        const glm::dvec3 c = (m.vertices[v[0]] + m.vertices[v[1]] + m.vertices[v[2]] + m.vertices[v[3]]) * 0.25;
+        const glm::dvec3 q = glm::clamp((c - box.lo) * scale, 0.0, 1023.0);
+        order.push_back({spread(uint64_t(q.x)) | spread(uint64_t(q.y)) << 1 | spread(uint64_t(q.z)) << 2, t});
+    }
+    std::sort(order.begin(), order.end());
     std::vector<int64_t> newIndex(nt, -1);
-    for (size_t t = 0; t < nt; ++t)
-        if (keepRegion[region[t]] == 1) {
-            newIndex[t] = int64_t(m.tets.size());
-            m.tets.push_back(tets[t]);
-        }
+    for (const auto& [code, t] : order) {
+        newIndex[t] = int64_t(m.tets.size());
+        m.tets.push_back(tets[t]);
+    }
     m.adjacency.resize(m.tets.size());
     m.surface = surface.triangles;
     m.surfaceVertexCount = surface.positions.size();
