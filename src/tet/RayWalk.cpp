@@ -68,7 +68,6 @@ bool TetWalk::tryEnter(uint32_t s) {
     if (!(ab > 0 && bc > 0 && ca > 0)) return false;
     setFace(tet, int(f & 3), a, b, c, ab, bc, ca);
     tIn_ = tEntry_ = faceT(a, b, c, ab, bc, ca);
-    entryTriangle_ = s;
     return true;
 }
 

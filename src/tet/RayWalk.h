@@ -49,8 +49,6 @@ public:
     // medium there depends on what lies beyond, which the exit face alone cannot tell.
     bool exitDegenerate() const { return exitDegenerate_; }
     double exitT() const { return tIn_; }                     // where the last segment ended
-    double entryT() const { return tEntry_; }
-    uint32_t entryTriangle() const { return entryTriangle_; }
     size_t steps() const { return steps_; }
 
 private:
@@ -89,7 +87,7 @@ private:
     Vertex face_[3];     // entry face of tet_, counter-clockwise around the origin
     double side_[3]{};   // side(face_[k], face_[k+1]) > 0
     double tIn_ = 0, tEntry_ = 0;
-    uint32_t exitTriangle_ = 0, entryTriangle_ = UINT32_MAX;
+    uint32_t exitTriangle_ = 0;
     size_t steps_ = 0;
     bool exitDegenerate_ = false, exitNearEdge_ = false;
     std::optional<Pending> pending_;

@@ -62,7 +62,6 @@ struct QueryContext {
     Ray ray;
     double tnear;
     Facing facing;
-    uint32_t skip;
     std::vector<SurfaceHit>* collect;  // when set: record and reject every hit
     int* count;                        // when set: count and reject every hit
 };
@@ -83,9 +82,7 @@ void filter(const RTCFilterFunctionNArguments* args) {
         args->valid[0] = 0;
         return;
     }
-    if (t < ctx->tnear || prim == ctx->skip || (ctx->facing == Facing::Entering && !entering) ||
-        (ctx->facing == Facing::Exiting && entering))
-        args->valid[0] = 0;
+    if (t < ctx->tnear || (ctx->facing == Facing::Entering && !entering)) args->valid[0] = 0;
 }
 
 RTCRayHit makeRay(const Ray& ray, double tnear, double tfar) {
@@ -102,9 +99,8 @@ RTCRayHit makeRay(const Ray& ray, double tnear, double tfar) {
 
 }  // namespace
 
-std::optional<SurfaceHit> SurfaceBVH::intersect(const Ray& ray, double tnear, double tfar, Facing facing,
-                                                uint32_t skip) const {
-    QueryContext ctx{{}, this, ray, tnear, facing, skip, nullptr, nullptr};
+std::optional<SurfaceHit> SurfaceBVH::intersect(const Ray& ray, double tnear, double tfar, Facing facing) const {
+    QueryContext ctx{{}, this, ray, tnear, facing, nullptr, nullptr};
     rtcInitIntersectContext(&ctx.base);
     ctx.base.filter = filter;
     RTCRayHit rh = makeRay(ray, tnear, tfar);
@@ -116,7 +112,7 @@ std::optional<SurfaceHit> SurfaceBVH::intersect(const Ray& ray, double tnear, do
 
 std::vector<SurfaceHit> SurfaceBVH::allHits(const Ray& ray, double tnear) const {
     std::vector<SurfaceHit> hits;
-    QueryContext ctx{{}, this, ray, tnear, Facing::Any, UINT32_MAX, &hits, nullptr};
+    QueryContext ctx{{}, this, ray, tnear, Facing::Any, &hits, nullptr};
     rtcInitIntersectContext(&ctx.base);
     ctx.base.filter = filter;
     RTCRayHit rh = makeRay(ray, tnear, INFINITY);
@@ -127,7 +123,7 @@ std::vector<SurfaceHit> SurfaceBVH::allHits(const Ray& ray, double tnear) const 
 
 int SurfaceBVH::crossings(const Ray& ray) const {
     int count = 0;
-    QueryContext ctx{{}, this, ray, 0, Facing::Any, UINT32_MAX, nullptr, &count};
+    QueryContext ctx{{}, this, ray, 0, Facing::Any, nullptr, &count};
     rtcInitIntersectContext(&ctx.base);
     ctx.base.filter = filter;
     RTCRayHit rh = makeRay(ray, 0, INFINITY);

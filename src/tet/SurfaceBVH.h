@@ -19,7 +19,7 @@ struct SurfaceHit {
     bool entering;  // the ray crosses from outside to inside (against the outward normal)
 };
 
-enum class Facing { Any, Entering, Exiting };
+enum class Facing { Any, Entering };
 
 class SurfaceBVH {
 public:
@@ -28,9 +28,8 @@ public:
     SurfaceBVH(const SurfaceBVH&) = delete;
     SurfaceBVH& operator=(const SurfaceBVH&) = delete;
 
-    // Closest hit with t in (tnear, tfar] of the given facing, ignoring triangle `skip`.
-    std::optional<SurfaceHit> intersect(const Ray& ray, double tnear, double tfar, Facing facing = Facing::Any,
-                                        uint32_t skip = UINT32_MAX) const;
+    // Closest hit with t in [tnear, tfar] of the given facing.
+    std::optional<SurfaceHit> intersect(const Ray& ray, double tnear, double tfar, Facing facing = Facing::Any) const;
     // Every triangle the ray crosses for t > tnear, sorted by t (one traversal).
     std::vector<SurfaceHit> allHits(const Ray& ray, double tnear = 0) const;
     // How many triangles the ray crosses for t > 0 (one traversal): the parity test's count.
