@@ -292,3 +292,25 @@ INSTANTIATE_TEST_SUITE_P(Meshes, TetCore, testing::ValuesIn(test::referenceMeshe
 
 }  // namespace
 }  // namespace tetglow
+
+namespace tetglow {
+namespace {
+
+TEST(TetWalkDegenerate, BodyDiagonalThroughAPinch) {
+    // Two cubes touching at one corner; the diagonal along (1, 1, 1) passes exactly through
+    // both outer corners and the pinch, where the walk leaves one shell and must find the next.
+    TetOptions o;
+    o.useCache = false;
+    const TetVolume volume(tetrahedralize(test::merge(test::box(), test::box(glm::dvec3(1), glm::dvec3(2))), o));
+    for (const double s : {1.0, -1.0}) {
+        const glm::dvec3 d(s, s, s);
+        const Ray ray{glm::dvec3(1) - 2.0 * d, d};  // through the cubes for t in [1, 3]
+        double length = 0;
+        ASSERT_TRUE(volume.traverse(ray, 0, INFINITY, [&](const WalkSegment& w) { return length += w.tOut - w.tIn, true; },
+                                    TetVolume::kOutside));
+        EXPECT_NEAR(length, 2.0, 1e-6);
+    }
+}
+
+}  // namespace
+}  // namespace tetglow

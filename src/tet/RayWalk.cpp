@@ -59,15 +59,22 @@ void TetWalk::setFace(uint32_t tet, int apex, Vertex a, Vertex b, Vertex c, doub
     side_[0] = ab, side_[1] = bc, side_[2] = ca;
 }
 
-bool TetWalk::tryEnter(uint32_t s) {
-    const uint32_t f = mesh_->surfaceFace[s], tet = f >> 2;
-    const auto& tv = mesh_->tets[tet];
+std::array<TetWalk::Vertex, 3> TetWalk::projectSurface(uint32_t s) const {
+    const uint32_t f = mesh_->surfaceFace[s];
+    const auto& tv = mesh_->tets[f >> 2];
     const int* face = kInwardFace[f & 3];
-    const Vertex a = project(tv[face[0]]), b = project(tv[face[1]]), c = project(tv[face[2]]);
+    return {project(tv[face[0]]), project(tv[face[1]]), project(tv[face[2]])};
+}
+
+bool TetWalk::tryEnter(uint32_t s, double tLo, double tHi) {
+    const auto [a, b, c] = projectSurface(s);
     const double ab = side(a.id, a.uv, b.id, b.uv), bc = side(b.id, b.uv, c.id, c.uv), ca = side(c.id, c.uv, a.id, a.uv);
     if (!(ab > 0 && bc > 0 && ca > 0)) return false;
-    setFace(tet, int(f & 3), a, b, c, ab, bc, ca);
-    tIn_ = tEntry_ = faceT(a, b, c, ab, bc, ca);
+    const double t = faceT(a, b, c, ab, bc, ca);
+    if (t < tLo || t > tHi) return false;
+    const uint32_t f = mesh_->surfaceFace[s];
+    setFace(f >> 2, int(f & 3), a, b, c, ab, bc, ca);
+    tIn_ = t;
     return true;
 }
 
@@ -79,7 +86,7 @@ bool TetWalk::enterAround(uint32_t s, double tLo, double tHi) {
         for (int guard = 0; guard < 1024; ++guard) {
             around = mesh_->surfaceAcross(around, v, from);
             if (around == s) break;
-            if (tryEnter(around) && tEntry_ >= tLo && tEntry_ <= tHi) return true;
+            if (tryEnter(around, tLo, tHi)) return true;
             const auto& t = mesh_->surface[around];  // continue across the other edge at v
             for (int i = 0; i < 3; ++i)
                 if (t[i] != v && t[i] != from) {
@@ -92,23 +99,21 @@ bool TetWalk::enterAround(uint32_t s, double tLo, double tHi) {
 }
 
 TetWalk TetWalk::enter(const TetMesh& mesh, const Ray& ray, uint32_t s) {
-    TetWalk w(mesh, ray);
-    // Embree's float test and the exact one can disagree only at an edge or a vertex of s, so
-    // the entry, if any, is among the triangles around s's corners.
-    if (w.tryEnter(s) || w.enterAround(s, -INFINITY, INFINITY)) return w;
+    if (auto w = enterNear(mesh, ray, s, -INFINITY, INFINITY)) return *w;
     // The exact tests say the ray only touches the surface here: an empty walk.
-    const uint32_t f = mesh.surfaceFace[s];
-    const auto& tv = mesh.tets[f >> 2];
-    const int* face = kInwardFace[f & 3];
-    w.tIn_ = w.tEntry_ = w.faceT(w.project(tv[face[0]]), w.project(tv[face[1]]), w.project(tv[face[2]]), 0, 0, 0);
+    TetWalk w(mesh, ray);
+    const auto [a, b, c] = w.projectSurface(s);
+    w.tIn_ = w.faceT(a, b, c, 0, 0, 0);
     w.state_ = State::Exited;
     w.exitTriangle_ = s;
     return w;
 }
 
 std::optional<TetWalk> TetWalk::enterNear(const TetMesh& mesh, const Ray& ray, uint32_t s, double tLo, double tHi) {
+    // Embree's float test and the exact one can disagree only at an edge or a vertex of s, so
+    // the entry, if any, is through s or a triangle around its corners.
     TetWalk w(mesh, ray);
-    if ((w.tryEnter(s) && w.tEntry_ >= tLo && w.tEntry_ <= tHi) || w.enterAround(s, tLo, tHi)) return w;
+    if (w.tryEnter(s, tLo, tHi) || w.enterAround(s, tLo, tHi)) return w;
     return std::nullopt;
 }
 
@@ -138,7 +143,7 @@ TetWalk TetWalk::start(const TetMesh& mesh, const Ray& ray, uint32_t tet, double
     // Pose the exit face as the entry face of the tet across it, then emit the first segment.
     const Vertex &a = p[kInwardFace[best][0]], &b = p[kInwardFace[best][2]], &c = p[kInwardFace[best][1]];
     w.tet_ = tet;
-    w.tIn_ = w.tEntry_ = tStart;
+    w.tIn_ = tStart;
     w.pending_ = Pending{best, a, b, c, bestSides[0], bestSides[1], bestSides[2]};
     return w;
 }

@@ -7,6 +7,7 @@
 // to zero are computed exactly (Shewchuk's orient2d); exact zeros (rays through vertices and
 // edges) are broken by simulation of simplicity, as if the ray were moved by (eps, eps^2).
 #pragma once
+#include <array>
 #include <cstdint>
 #include <optional>
 
@@ -69,7 +70,9 @@ private:
     TetWalk(const TetMesh& mesh, const Ray& ray);
     Vertex project(uint32_t id) const;
     int localIndex(uint32_t id) const;
-    bool tryEnter(uint32_t s);  // enters through s if the exact tests put the ray inside it
+    std::array<Vertex, 3> projectSurface(uint32_t s) const;  // s's face in its tet, wound inward
+    // Enters through s if the exact tests put the ray inside it at a t in [tLo, tHi].
+    bool tryEnter(uint32_t s, double tLo, double tHi);
     // tryEnter on the triangles sharing a corner with s, accepting entries with t in [tLo, tHi].
     bool enterAround(uint32_t s, double tLo, double tHi);
     bool cross(int opposite, const Vertex& e, const Vertex& x, const Vertex& y, double sEX, double sXY, double sYE,
@@ -86,7 +89,7 @@ private:
     int apex_ = 0;       // local index of the vertex opposite the entry face
     Vertex face_[3];     // entry face of tet_, counter-clockwise around the origin
     double side_[3]{};   // side(face_[k], face_[k+1]) > 0
-    double tIn_ = 0, tEntry_ = 0;
+    double tIn_ = 0;
     uint32_t exitTriangle_ = 0;
     size_t steps_ = 0;
     bool exitDegenerate_ = false, exitNearEdge_ = false;

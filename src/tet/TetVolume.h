@@ -73,10 +73,16 @@ bool TetVolume::traverse(const Ray& ray, double tmin, double tmax, Visitor&& vis
     // on is decided on a line shifted by 1e-9 diagonals (the chord changes by about as much):
     // it re-enters through a triangle around the crossing, or it was never outside, and then
     // the tet holding its point just beyond is around the crossing too.
-    const glm::dvec3 side(ray.d.y - ray.d.z, ray.d.z - ray.d.x, ray.d.x - ray.d.y);
-    const Ray shifted{ray.o + side * (shift_ / glm::length(side)), ray.d};
+    auto shiftedRay = [&] {
+        // Perpendicular to d in a direction unrelated to the axes (meshes often have vertices
+        // in axis-aligned rows); the second vector covers d parallel to the first.
+        glm::dvec3 side = glm::cross(ray.d, glm::dvec3(0.5257, 0.6172, 0.5853));
+        if (glm::dot(side, side) < 0.01 * glm::dot(ray.d, ray.d)) side = glm::cross(ray.d, glm::dvec3(0.6172, -0.5853, 0.5257));
+        return Ray{ray.o + glm::normalize(side) * shift_, ray.d};
+    };
     auto resumeBeyond = [&](uint32_t triangle) {
         const double window = 1e-6 * (1 + std::abs(t)), probe = t + shift_ / glm::length(ray.d);
+        const Ray shifted = shiftedRay();
         if ((walk = TetWalk::enterNear(mesh_, shifted, triangle, t, t + window))) return true;
         const uint32_t face = mesh_.surfaceFace[triangle];
         const int64_t inside = probe < tmax ? locateAroundFace(shifted.at(probe), face >> 2, face & 3) : -1;
@@ -106,6 +112,7 @@ bool TetVolume::traverse(const Ray& ray, double tmin, double tmax, Visitor&& vis
             const double tx = hits[next].t, tp = tx - 1e-6 * (tx - t);
             uint32_t tet = mesh_.surfaceFace[hits[next++].triangle] >> 2;  // next to the exit
             // On the shifted line: this one may pass exactly through the vertex Embree missed.
+            const Ray shifted = shiftedRay();
             if (!(tp > t) || !visibilityWalk(shifted.at(tp), tet)) continue;
             std::vector<WalkSegment> before;
             TetWalk back = TetWalk::start(mesh_, Ray{shifted.o, -shifted.d}, tet, -tp);
