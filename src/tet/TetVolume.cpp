@@ -77,8 +77,7 @@ bool TetVolume::visibilityWalk(const glm::dvec3& p, uint32_t& t) const {
         for (int k = 0; k < 4 && beyond < 0; ++k) {
             const int j = int(k + step) & 3;
             if (j == came) continue;
-            const int* f = kInwardFace[j];
-            if (orient3d(mesh_.vertices[v[f[0]]], mesh_.vertices[v[f[1]]], mesh_.vertices[v[f[2]]], p) > 0) beyond = j;
+            if (beyondFace(t, j, p)) beyond = j;
         }
         if (beyond < 0) return true;
         const int32_t adj = mesh_.adjacency[t][beyond];
@@ -89,12 +88,15 @@ bool TetVolume::visibilityWalk(const glm::dvec3& p, uint32_t& t) const {
     return false;
 }
 
-bool TetVolume::contains(uint32_t t, const glm::dvec3& p) const {
+bool TetVolume::beyondFace(uint32_t t, int j, const glm::dvec3& p) const {
     const auto& v = mesh_.tets[t];
-    for (int j = 0; j < 4; ++j) {
-        const int* f = kInwardFace[j];
-        if (orient3d(mesh_.vertices[v[f[0]]], mesh_.vertices[v[f[1]]], mesh_.vertices[v[f[2]]], p) > 0) return false;
-    }
+    const int* f = kInwardFace[j];
+    return orient3d(mesh_.vertices[v[f[0]]], mesh_.vertices[v[f[1]]], mesh_.vertices[v[f[2]]], p) > 0;
+}
+
+bool TetVolume::contains(uint32_t t, const glm::dvec3& p) const {
+    for (int j = 0; j < 4; ++j)
+        if (beyondFace(t, j, p)) return false;
     return true;
 }
 

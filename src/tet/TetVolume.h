@@ -28,6 +28,9 @@ public:
     // orientation tests, and where the medium is concave, a line walk with Embree re-entry.
     int64_t locate(const glm::dvec3& p, int64_t hint = -1) const;
 
+    // Tet t holds p, its faces included (exact).
+    bool contains(uint32_t t, const glm::dvec3& p) const;
+
     // Visits, in order, the segments of the ray inside the medium within [tmin, tmax], clipped;
     // the visitor returns false to stop early. `start` is the tet holding ray.at(tmin), or
     // kOutside / kUnknown. Returns false only if a walk was lost (exact predicates prevent it).
@@ -38,7 +41,8 @@ private:
     uint32_t gridTet(const glm::dvec3& p) const;
     // Walks from t towards p; true with t holding p, false when a surface face blocks the way.
     bool visibilityWalk(const glm::dvec3& p, uint32_t& t) const;
-    bool contains(uint32_t t, const glm::dvec3& p) const;
+    // p strictly on the outer side of face j of tet t (exact).
+    bool beyondFace(uint32_t t, int j, const glm::dvec3& p) const;
     // The tet holding p among those sharing a corner with face `face` of `tet`, or -1.
     int64_t locateAroundFace(const glm::dvec3& p, uint32_t tet, int face) const;
     int64_t lineLocate(uint32_t from, const glm::dvec3& p) const;
