@@ -4,13 +4,11 @@
 #include <string>
 #include <vector>
 
+#include "scene/Shapes.h"
 #include "tet/TriangleMesh.h"
 
 namespace tetglow::test {
 
-TriangleMesh box(glm::dvec3 lo = glm::dvec3(0), glm::dvec3 hi = glm::dvec3(1));
-TriangleMesh icosphere(int subdivisions, double radius = 1, glm::dvec3 centre = glm::dvec3(0));
-TriangleMesh merge(const TriangleMesh& a, const TriangleMesh& b);
 
 // The demo fish and blub, spot, bob from ../shared/meshes (path "" when that folder is absent:
 // tests skip those with a message).

@@ -11,8 +11,6 @@
 namespace tetglow {
 namespace {
 
-using test::box;
-
 std::string objText(const TriangleMesh& m) {
     std::string s;
     for (const auto& p : m.positions) s += "v " + std::to_string(p.x) + " " + std::to_string(p.y) + " " + std::to_string(p.z) + "\n";
@@ -39,12 +37,12 @@ TEST(BadInput, MeshWithHole) {
 }
 
 TEST(BadInput, SelfIntersectingMesh) {
-    expectRejected(objText(test::merge(box(), box(glm::dvec3(0.5), glm::dvec3(1.5)))), "intersects itself: triangle");
+    expectRejected(objText(merge(box(), box(glm::dvec3(0.5), glm::dvec3(1.5)))), "intersects itself: triangle");
 }
 
 TEST(BadInput, NonManifoldEdge) {
     // Two cubes sharing only an edge: that edge has four triangles.
-    expectRejected(objText(test::merge(box(), box({1, 1, 0}, {2, 2, 1}))), "non-manifold edge");
+    expectRejected(objText(merge(box(), box({1, 1, 0}, {2, 2, 1}))), "non-manifold edge");
 }
 
 TEST(BadInput, DuplicateFaces) {
@@ -94,14 +92,14 @@ TEST(BadInput, BadArgumentsAreUsageErrors) {
 }
 
 TEST(ValidInput, TwoSeparateShellsBothBecomeMedium) {
-    const TriangleMesh m = test::merge(box(), test::icosphere(2, 0.5, {3, 0.5, 0.5}));
+    const TriangleMesh m = merge(box(), icosphere(2, 0.5, {3, 0.5, 0.5}));
     TetStats stats;
     ValidationReport report;
     TetOptions o;
     o.useCache = false;
     const TetMesh tets = tetrahedralize(m, o, &stats, &report);
     EXPECT_EQ(report.components, 2u);
-    TriangleMesh sphere = test::icosphere(2, 0.5, {3, 0.5, 0.5});
+    TriangleMesh sphere = icosphere(2, 0.5, {3, 0.5, 0.5});
     const double expected = 1.0 + validateAndRepair(sphere).volume;  // float-snapped, as the tets see it
     EXPECT_NEAR(tets.volume(), expected, 1e-9 * expected);
 }
@@ -118,10 +116,10 @@ TEST(ValidInput, InwardWindingIsFixed) {
 
 TEST(ValidInput, CavityIsNotMedium) {
     // A box with a spherical hole inside: the tets fill only the space between them.
-    TriangleMesh cavity = test::icosphere(2, 0.3, glm::dvec3(0.5));
+    TriangleMesh cavity = icosphere(2, 0.3, glm::dvec3(0.5));
     TetOptions o;
     o.useCache = false;
-    const TetMesh tets = tetrahedralize(test::merge(box(), cavity), o);
+    const TetMesh tets = tetrahedralize(merge(box(), cavity), o);
     const double expected = 1.0 - validateAndRepair(cavity).volume;  // float-snapped, as the tets see it
     EXPECT_NEAR(tets.volume(), expected, 1e-9);
 }
@@ -134,7 +132,7 @@ TEST(TetGenFailures, OpenMeshGivesAnErrorNotAnEmptyMesh) {
 }
 
 TEST(TetGenFailures, SelfIntersectionGivesAnErrorNotACrash) {
-    const TriangleMesh m = test::merge(box(), box(glm::dvec3(0.5), glm::dvec3(1.5)));
+    const TriangleMesh m = merge(box(), box(glm::dvec3(0.5), glm::dvec3(1.5)));
     try {
         tetrahedralizeUnchecked(m, "pYnQz");
         ADD_FAILURE() << "TetGen accepted a self-intersecting mesh";
@@ -151,7 +149,7 @@ namespace {
 
 TEST(ValidInput, PositionsAreSnappedToFloat) {
     // Embree stores floats: the tets must see the very same vertices.
-    TriangleMesh m = test::icosphere(1, 0.1, {0.1, 0.2, 0.3});
+    TriangleMesh m = icosphere(1, 0.1, {0.1, 0.2, 0.3});
     validateAndRepair(m);
     for (const auto& p : m.positions)
         for (int k = 0; k < 3; ++k) ASSERT_EQ(p[k], roundToFloat(p[k])) << p.x << ' ' << p.y << ' ' << p.z;

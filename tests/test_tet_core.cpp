@@ -157,7 +157,9 @@ TEST_P(TetCore, LocationAgreesWithParity) {
         const glm::dvec3 p = bounds_.lo + (bounds_.hi - bounds_.lo) * glm::dvec3(u(rng), u(rng), u(rng));
         const int64_t t = volume_->locate(p);
         inside += t >= 0;
-        if (t >= 0) ASSERT_TRUE(volume_->contains(uint32_t(t), p));  // the answer really holds p
+        if (t >= 0) {
+            ASSERT_TRUE(volume_->contains(uint32_t(t), p));  // the answer really holds p
+        }
         if ((t >= 0) == insideByParity(volume_->bvh(), p, 5)) continue;
         // Only points within 1e-6 of the diagonal from the surface may disagree.
         double d = INFINITY;
@@ -295,7 +297,7 @@ TEST(TetWalkDegenerate, BodyDiagonalThroughAPinch) {
     // both outer corners and the pinch, where the walk leaves one shell and must find the next.
     TetOptions o;
     o.useCache = false;
-    const TetVolume volume(tetrahedralize(test::merge(test::box(), test::box(glm::dvec3(1), glm::dvec3(2))), o));
+    const TetVolume volume(tetrahedralize(merge(box(), box(glm::dvec3(1), glm::dvec3(2))), o));
     for (const double s : {1.0, -1.0}) {
         const glm::dvec3 d(s, s, s);
         const Ray ray{glm::dvec3(1) - 2.0 * d, d};  // through the cubes for t in [1, 3]

@@ -18,29 +18,36 @@ RTCDevice embreeDevice() {
     return device;
 }
 
-SurfaceBVH::SurfaceBVH(const std::vector<glm::dvec3>& positions, const std::vector<std::array<uint32_t, 3>>& triangles) {
-    RTCDevice device = embreeDevice();
-    scene_ = rtcNewScene(device);
-    // Robust mode: watertight triangle tests, so rays through edges are not lost between faces.
-    rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
-    RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+unsigned attachTriangles(RTCScene scene, const std::vector<glm::dvec3>& positions,
+                         const std::vector<std::array<uint32_t, 3>>& triangles) {
+    RTCGeometry geom = rtcNewGeometry(embreeDevice(), RTC_GEOMETRY_TYPE_TRIANGLE);
     auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                                           3 * sizeof(float), positions.size()));
     for (size_t i = 0; i < positions.size(); ++i)
         for (int k = 0; k < 3; ++k) v[3 * i + k] = float(positions[i][k]);
     auto* idx = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
                                                                3 * sizeof(uint32_t), triangles.size()));
+    for (size_t t = 0; t < triangles.size(); ++t)
+        for (int k = 0; k < 3; ++k) idx[3 * t + k] = triangles[t][k];
+    rtcCommitGeometry(geom);
+    const unsigned id = rtcAttachGeometry(scene, geom);
+    rtcReleaseGeometry(geom);
+    return id;
+}
+
+SurfaceBVH::SurfaceBVH(const std::vector<glm::dvec3>& positions, const std::vector<std::array<uint32_t, 3>>& triangles) {
+    RTCDevice device = embreeDevice();
+    scene_ = rtcNewScene(device);
+    // Robust mode: watertight triangle tests, so rays through edges are not lost between faces.
+    rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
+    attachTriangles(scene_, positions, triangles);
     normals_.resize(triangles.size());
     corners_.resize(triangles.size());
     for (size_t t = 0; t < triangles.size(); ++t) {
-        for (int k = 0; k < 3; ++k) idx[3 * t + k] = triangles[t][k];
         const glm::dvec3 a = positions[triangles[t][0]];
         normals_[t] = glm::cross(positions[triangles[t][1]] - a, positions[triangles[t][2]] - a);
         corners_[t] = a;
     }
-    rtcCommitGeometry(geom);
-    rtcAttachGeometry(scene_, geom);
-    rtcReleaseGeometry(geom);
     rtcCommitScene(scene_);
 }
 

@@ -45,5 +45,8 @@ private:
 };
 
 RTCDevice embreeDevice();
+// Adds the triangles to `scene` as one Embree geometry (positions in float) and returns its id.
+unsigned attachTriangles(RTCScene scene, const std::vector<glm::dvec3>& positions,
+                         const std::vector<std::array<uint32_t, 3>>& triangles);
 
 }  // namespace tetglow

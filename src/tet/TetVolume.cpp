@@ -72,7 +72,6 @@ bool TetVolume::visibilityWalk(const glm::dvec3& p, uint32_t& t) const {
     // count, which keeps the walk from cycling in degenerate configurations.
     int came = -1;
     for (size_t step = 0; step <= mesh_.tets.size(); ++step) {
-        const auto& v = mesh_.tets[t];
         int beyond = -1;
         for (int k = 0; k < 4 && beyond < 0; ++k) {
             const int j = int(k + step) & 3;
