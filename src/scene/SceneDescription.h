@@ -1,0 +1,103 @@
+// A scene as the user described it: plain data, every path resolved and every mesh loaded and
+// placed in world space. The renderer builds its acceleration structures from this.
+#pragma once
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "photon/Spectrum.h"
+#include "tet/Tetrahedralizer.h"
+#include "tet/TriangleMesh.h"
+
+namespace tetglow {
+
+struct CameraDesc {
+    glm::dvec3 position{0, 0, 5}, lookAt{0}, up{0, 1, 0};
+    double fov = 40;  // degrees across the shorter image axis (pbrt's convention)
+    int width = 400, height = 400;
+};
+
+enum class LightType { Point, Spot, Quad, Environment };
+
+struct LightDesc {
+    LightType type = LightType::Point;
+    RGB intensity{0};  // point, spot: radiant intensity (W/sr)
+    RGB radiance{0};   // quad, environment: emitted radiance
+    glm::dvec3 position{0}, lookAt{0, -1, 0};  // point, spot (spot axis: lookAt - position)
+    // Spot: pbrt-v3's cone. Full intensity within coneAngle - coneDelta of the axis, none
+    // beyond coneAngle, smoothstep-like falloff ((cos - cosTotal) / (cosStart - cosTotal))^4 between.
+    double coneAngle = 30, coneDelta = 5;  // degrees
+    // Spot: 0 is a point; > 0 makes it a disk of this radius facing the axis, with the same
+    // intensity profile, so paths through specular surfaces can reach it.
+    double radius = 0;
+    glm::dvec3 corner{0}, edge0{1, 0, 0}, edge1{0, 0, 1};  // quad: emits along cross(edge0, edge1)
+    bool twoSided = false;                                // quad
+};
+
+enum class MaterialType {
+    Diffuse,     // Lambertian, reflectance per channel
+    Dielectric,  // smooth glass-like interface with index of refraction `ior`
+    Interface,   // index-matched: light passes unchanged (only a medium boundary)
+};
+
+struct MaterialDesc {
+    MaterialType type = MaterialType::Diffuse;
+    RGB reflectance{0.5};
+    double ior = 1.5;
+};
+
+struct SurfaceDesc {
+    std::string name;   // for messages: the JSON path or the mesh file
+    TriangleMesh mesh;  // world space
+    MaterialDesc material;
+};
+
+// Per-vertex density: evaluated at every tet vertex and interpolated linearly inside each tet.
+struct DensityDesc {
+    enum class Type { Constant, Linear, Noise } type = Type::Constant;
+    double offset = 1;                 // constant value; linear: offset + dot(gradient, x)
+    glm::dvec3 gradient{0};            // linear
+    double frequency = 4, amplitude = 0.5;  // noise: offset * (1 + amplitude * noise(frequency * x))
+    uint32_t seed = 1;                 // noise
+    bool isConstant() const { return type == Type::Constant; }
+};
+
+struct MediumDesc {
+    std::string name;      // for messages
+    TriangleMesh boundary; // world space, closed; tetrahedralized when the scene is built
+    RGB sigmaA{0}, sigmaS{1};  // per unit length, already multiplied by `scale`
+    double g = 0;              // Henyey-Greenstein asymmetry, in (-1, 1)
+    RGB emission{0};           // emitted radiance per unit length (times density)
+    DensityDesc density;
+    MaterialDesc boundaryMaterial{MaterialType::Interface};  // Dielectric or Interface
+    TetOptions tetOptions;     // Steiner points only when asked (heterogeneous density)
+};
+
+enum class IntegratorType { VolPath, Single, Photon };
+enum class BoundaryMode { Tet, Parity, Bbox };
+
+struct IntegratorDesc {
+    IntegratorType type = IntegratorType::VolPath;
+    int spp = 16;
+    int maxDepth = 64;      // volpath, photon: scattering and surface events per path
+    uint64_t seed = 0;
+    // single
+    BoundaryMode boundary = BoundaryMode::Tet;
+    double stepSize = 0.02;  // ray-march step, world units
+    int parityRays = 1;      // parity boundary: rays per inside test (majority)
+};
+
+struct SceneDesc {
+    std::string path;  // the scene file
+    CameraDesc camera;
+    std::vector<LightDesc> lights;
+    std::vector<SurfaceDesc> surfaces;
+    std::vector<MediumDesc> media;
+    IntegratorDesc integrator;
+    std::string output;  // default image path from the file ("" when not given)
+};
+
+}  // namespace tetglow

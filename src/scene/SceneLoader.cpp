@@ -1,0 +1,238 @@
+#include "scene/SceneLoader.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+#include <glm/geometric.hpp>
+
+#include "scene/JsonReader.h"
+#include "scene/SceneShapes.h"
+
+namespace tetglow {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr int kMaxResolution = 16384;
+constexpr int kMaxParityRays = 15;
+constexpr Range kUnitInterval{.lo = 0, .hi = 1};
+
+std::string readText(const std::string& path) {
+    std::error_code ec;
+    if (!fs::exists(path, ec)) throw InputError(path + ": no such file");
+    if (fs::is_directory(path, ec)) throw InputError(path + ": is a directory, not a scene file");
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(path + ": cannot open");
+    std::ostringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
+RGB rgb(const JsonValue& v) { return v.vec3OrScalar(kNonNegative); }
+
+double scaleOf(JsonObject& o) {
+    const JsonValue scale = o["scale"];
+    return scale ? scale.number(kNonNegative) : 1.0;
+}
+
+bool parallel(const glm::dvec3& a, const glm::dvec3& b) {
+    return glm::length(glm::cross(a, b)) <= 1e-9 * glm::length(a) * glm::length(b);
+}
+
+std::vector<JsonValue> optionalArray(const JsonValue& v) { return v ? v.array() : std::vector<JsonValue>{}; }
+
+// "/media/0 (meshes/fish.obj)": the JSON path, and the mesh file where there is one.
+std::string nameOf(const JsonValue& v, const Shape& shape) {
+    return shape.file.empty() ? v.path() : v.path() + " (" + shape.file + ")";
+}
+
+CameraDesc readCamera(JsonObject& o) {
+    CameraDesc c;
+    c.position = o["position"].vec3();
+    const JsonValue lookAt = o["look_at"];
+    c.lookAt = lookAt.vec3();
+    if (c.lookAt == c.position) lookAt.fail("a point other than \"position\"");
+    const JsonValue up = o["up"];
+    if (up) c.up = up.vec3();
+    if (parallel(c.up, c.lookAt - c.position))
+        up.error("the up direction must not be zero or parallel to the view direction (look_at - position)");
+    if (auto f = o["fov"]) c.fov = f.number({.lo = 0, .hi = 180, .loOpen = true, .hiOpen = true});
+    if (auto f = o["resolution"]) {
+        const auto size = f.array();
+        if (size.size() != 2) f.fail("[width, height]");
+        c.width = int(size[0].integer(1, kMaxResolution));
+        c.height = int(size[1].integer(1, kMaxResolution));
+    }
+    return c;
+}
+
+IntegratorDesc readIntegrator(JsonObject& o) {
+    IntegratorDesc d;
+    constexpr int64_t kMaxInt = std::numeric_limits<int>::max();
+    if (auto f = o["type"])
+        d.type = f.choice<IntegratorType>(
+            {{"volpath", IntegratorType::VolPath}, {"single", IntegratorType::Single}, {"photon", IntegratorType::Photon}});
+    if (auto f = o["spp"]) d.spp = int(f.integer(1, kMaxInt));
+    if (auto f = o["max_depth"]) d.maxDepth = int(f.integer(1, kMaxInt));
+    if (auto f = o["seed"]) d.seed = uint64_t(f.integer(0));
+    if (auto f = o["boundary"])
+        d.boundary = f.choice<BoundaryMode>({{"tet", BoundaryMode::Tet}, {"parity", BoundaryMode::Parity}, {"bbox", BoundaryMode::Bbox}});
+    if (auto f = o["step"]) d.stepSize = f.number(kPositive);
+    if (auto f = o["parity_rays"]) {
+        d.parityRays = int(f.integer(1, kMaxParityRays));
+        // A majority vote needs an odd count.
+        if (d.parityRays % 2 == 0) f.fail("an odd integer in 1.." + std::to_string(kMaxParityRays));
+    }
+    return d;
+}
+
+void readSpotCone(JsonObject& o, LightDesc& l) {
+    const JsonValue lookAt = o["look_at"];
+    l.lookAt = lookAt.vec3();
+    if (l.lookAt == l.position) lookAt.fail("a point other than \"position\"");
+    if (auto f = o["cone_angle"]) l.coneAngle = f.number({.lo = 0, .hi = 90, .loOpen = true});
+    // The default falloff band narrows with a cone narrower than itself.
+    l.coneDelta = std::min(l.coneDelta, l.coneAngle);
+    if (auto f = o["cone_delta"]) l.coneDelta = f.number({.lo = 0, .hi = l.coneAngle});
+    if (auto f = o["radius"]) l.radius = f.number(kNonNegative);
+}
+
+LightDesc readLight(JsonObject& o) {
+    LightDesc l;
+    l.type = o["type"].choice<LightType>({{"point", LightType::Point},
+                                           {"spot", LightType::Spot},
+                                           {"quad", LightType::Quad},
+                                           {"environment", LightType::Environment}});
+    const double scale = scaleOf(o);
+    if (l.type == LightType::Point || l.type == LightType::Spot) {
+        l.position = o["position"].vec3();
+        l.intensity = scale * rgb(o["intensity"]);
+    }
+    if (l.type == LightType::Spot) readSpotCone(o, l);
+    if (l.type == LightType::Quad) {
+        const Parallelogram p = readParallelogram(o);
+        l.corner = p.corner;
+        l.edge0 = p.edge0;
+        l.edge1 = p.edge1;
+        if (auto f = o["two_sided"]) l.twoSided = f.boolean();
+    }
+    if (l.type == LightType::Quad || l.type == LightType::Environment) l.radiance = scale * rgb(o["radiance"]);
+    return l;
+}
+
+using MaterialChoices = std::initializer_list<std::pair<std::string_view, MaterialType>>;
+
+MaterialDesc readMaterial(JsonObject& o, MaterialChoices types) {
+    MaterialDesc m;
+    m.type = o["type"].choice<MaterialType>(types);
+    if (m.type == MaterialType::Diffuse)
+        if (auto f = o["reflectance"]) m.reflectance = f.vec3OrScalar(kUnitInterval);  // energy-conserving
+    if (m.type == MaterialType::Dielectric)
+        if (auto f = o["ior"]) m.ior = f.number(kPositive);
+    return m;
+}
+
+SurfaceDesc readSurface(JsonObject& o, const fs::path& dir) {
+    Shape shape = o["shape"].readObject([&](JsonObject& s) { return readShape(s, dir, false); });
+    SurfaceDesc d;
+    d.name = nameOf(o.self(), shape);
+    d.mesh = std::move(shape.mesh);
+    if (auto f = o["material"])
+        d.material = f.readObject([](JsonObject& m) {
+            return readMaterial(m, {{"diffuse", MaterialType::Diffuse},
+                                    {"dielectric", MaterialType::Dielectric},
+                                    {"interface", MaterialType::Interface}});
+        });
+    return d;
+}
+
+DensityDesc readDensity(JsonObject& o) {
+    using Type = DensityDesc::Type;
+    DensityDesc d;
+    d.type = o["type"].choice<Type>({{"constant", Type::Constant}, {"linear", Type::Linear}, {"noise", Type::Noise}});
+    switch (d.type) {
+    case Type::Constant:
+        if (auto f = o["value"]) d.offset = f.number(kNonNegative);
+        break;
+    case Type::Linear:
+        if (auto f = o["offset"]) d.offset = f.number();
+        d.gradient = o["gradient"].vec3();
+        break;
+    case Type::Noise:
+        if (auto f = o["offset"]) d.offset = f.number(kNonNegative);
+        if (auto f = o["amplitude"]) d.amplitude = f.number(kNonNegative);
+        if (auto f = o["frequency"]) d.frequency = f.number(kPositive);
+        if (auto f = o["seed"]) d.seed = uint32_t(f.integer(0, std::numeric_limits<uint32_t>::max()));
+        break;
+    }
+    return d;
+}
+
+TetOptions readTetOptions(JsonObject& o) {
+    TetOptions t;
+    if (auto f = o["quality"]) {
+        t.radiusEdgeRatio = f.number(kNonNegative);
+        // TetGen's -q cannot reach a radius-edge ratio of 1 or less.
+        if (t.radiusEdgeRatio > 0 && t.radiusEdgeRatio <= 1) f.fail("0 (off) or a radius-edge ratio > 1");
+    }
+    if (auto f = o["max_volume"]) t.maxVolume = f.number(kNonNegative);
+    return t;
+}
+
+MediumDesc readMedium(JsonObject& o, const fs::path& dir) {
+    Shape shape = o["shape"].readObject([&](JsonObject& s) { return readShape(s, dir, true); });
+    MediumDesc m;
+    m.name = nameOf(o.self(), shape);
+    m.boundary = std::move(shape.mesh);
+    const double scale = scaleOf(o);
+    if (auto f = o["sigma_a"]) m.sigmaA = rgb(f);
+    if (auto f = o["sigma_s"]) m.sigmaS = rgb(f);
+    m.sigmaA *= scale;
+    m.sigmaS *= scale;
+    if (auto f = o["g"]) m.g = f.number({.lo = -1, .hi = 1, .loOpen = true, .hiOpen = true});
+    if (auto f = o["emission"]) m.emission = rgb(f);
+    if (auto f = o["density"]) m.density = f.readObject(readDensity);
+    if (auto f = o["boundary"])
+        m.boundaryMaterial = f.readObject([](JsonObject& b) {
+            return readMaterial(b, {{"interface", MaterialType::Interface}, {"dielectric", MaterialType::Dielectric}});
+        });
+    if (auto f = o["tetgen"]) m.tetOptions = f.readObject(readTetOptions);
+    return m;
+}
+
+bool emits(const SceneDesc& s) {
+    for (const LightDesc& l : s.lights)
+        if (l.intensity != RGB(0) || l.radiance != RGB(0)) return true;
+    for (const MediumDesc& m : s.media)
+        if (m.emission != RGB(0)) return true;
+    return false;
+}
+
+SceneDesc readScene(JsonObject& o, const std::string& path) {
+    const fs::path dir = fs::path(path).parent_path();
+    SceneDesc s;
+    s.path = path;
+    s.camera = o["camera"].readObject(readCamera);
+    if (auto f = o["integrator"]) s.integrator = f.readObject(readIntegrator);
+    if (auto f = o["output"]) s.output = (dir / f.string()).string();
+    for (const JsonValue& v : optionalArray(o["lights"])) s.lights.push_back(v.readObject(readLight));
+    for (const JsonValue& v : optionalArray(o["surfaces"]))
+        s.surfaces.push_back(v.readObject([&](JsonObject& x) { return readSurface(x, dir); }));
+    for (const JsonValue& v : optionalArray(o["media"]))
+        s.media.push_back(v.readObject([&](JsonObject& x) { return readMedium(x, dir); }));
+    if (!emits(s))
+        o["lights"].error("nothing emits light: add a light with non-zero intensity or radiance, or give a medium an \"emission\"");
+    return s;
+}
+
+}  // namespace
+
+SceneDesc loadScene(const std::string& path) {
+    const nlohmann::json doc = parseJson(readText(path), path);
+    return JsonValue(&doc, nlohmann::json::json_pointer(), path).readObject([&](JsonObject& o) { return readScene(o, path); });
+}
+
+}  // namespace tetglow
