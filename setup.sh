@@ -28,9 +28,8 @@ cmake --build build -j "$jobs"
 
 case "$job" in
   demo)
-    mkdir -p out
-    build/tetglow tetrahedralize scenes/meshes/fish.obj -o out/fish.vtk
-    echo "demo: out/fish.vtk (tetrahedralized demo fish; open in ParaView)"
+    build/tetglow render scenes/fish.json -o out/fish.exr
+    echo "demo: out/fish.exr (linear HDR) and out/fish.png (preview)"
     ;;
   test)
     ctest --test-dir build --output-on-failure -j "$jobs"

@@ -10,6 +10,9 @@ int main(int argc, char** argv) {
     app.require_subcommand(1);
     tetglow::cli::addTetrahedralizeCommand(app);
     tetglow::cli::addGenerateCommand(app);
+    tetglow::cli::addRenderCommand(app);
+    tetglow::cli::addDiffCommand(app);
+    tetglow::cli::addValidateCommand(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

@@ -1,0 +1,136 @@
+// tetglow render SCENE: tetrahedralize every medium the scene names (cached), then render.
+#include <atomic>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+
+#include "cli/Commands.h"
+#include "cli/Progress.h"
+#include "render/ImageIO.h"
+#include "render/Renderer.h"
+#include "scene/SceneLoader.h"
+
+namespace tetglow::cli {
+namespace {
+
+struct Options {
+    std::string scene, output, integrator, boundary, resolution;
+    int spp = 0, threads = 0, maxDepth = 0;
+    double step = 0, exposure = 0;
+    int64_t seed = -1;
+};
+
+std::atomic<bool> interrupted{false};
+// A second Ctrl-C ends the program at once.
+void onInterrupt(int) {
+    interrupted = true;
+    std::signal(SIGINT, SIG_DFL);
+}
+
+// Ctrl-C stops the render after the tiles in flight; the image so far is still written.
+class InterruptGuard {
+public:
+    InterruptGuard() {
+        struct sigaction action {};
+        action.sa_handler = onInterrupt;
+        sigemptyset(&action.sa_mask);
+        sigaction(SIGINT, &action, &previous_);
+    }
+    ~InterruptGuard() { sigaction(SIGINT, &previous_, nullptr); }
+
+private:
+    struct sigaction previous_ {};
+};
+
+void applyOverrides(const Options& o, SceneDesc& scene) {
+    IntegratorDesc& integ = scene.integrator;
+    if (o.integrator == "volpath") integ.type = IntegratorType::VolPath;
+    if (o.integrator == "single") integ.type = IntegratorType::Single;
+    if (o.integrator == "photon") integ.type = IntegratorType::Photon;
+    if (o.boundary == "tet") integ.boundary = BoundaryMode::Tet;
+    if (o.boundary == "parity") integ.boundary = BoundaryMode::Parity;
+    if (o.boundary == "bbox") integ.boundary = BoundaryMode::Bbox;
+    if (o.spp) integ.spp = o.spp;
+    if (o.maxDepth) integ.maxDepth = o.maxDepth;
+    if (o.step > 0) integ.stepSize = o.step;
+    if (o.seed >= 0) integ.seed = uint64_t(o.seed);
+    if (!o.resolution.empty()) {
+        int w = 0, h = 0;
+        char end = 0;
+        if (std::sscanf(o.resolution.c_str(), "%dx%d%c", &w, &h, &end) != 2 || w < 1 || h < 1 || w > 16384 || h > 16384)
+            throw CLI::ValidationError("--resolution", "expected WxH with 1 <= W, H <= 16384, got '" + o.resolution + "'");
+        scene.camera.width = w, scene.camera.height = h;
+    }
+}
+
+std::string outputPath(const Options& o, const SceneDesc& scene) {
+    if (!o.output.empty()) return o.output;
+    if (!scene.output.empty()) return scene.output;
+    return std::filesystem::path(o.scene).stem().string() + ".exr";
+}
+
+void run(const Options& o) {
+    SceneDesc desc = loadScene(o.scene);
+    applyOverrides(o, desc);
+    const std::string output = outputPath(o, desc);
+    if (std::filesystem::path(output).extension() != ".exr") throw InputError(output + ": the output must be an .exr file");
+    const auto parent = std::filesystem::path(output).parent_path();
+    if (!parent.empty()) std::filesystem::create_directories(parent);
+
+    const Scene scene(desc);
+    for (const auto& m : scene.media())
+        std::fprintf(stderr, "medium %s: %zu tets, %zu Steiner points, %s in %.2f s\n", m.name.c_str(), m.medium->mesh().tets.size(),
+                     m.steinerPoints, m.stats.fromCache ? "read from the cache" : "tetrahedralized", m.stats.seconds);
+    const auto integrator = makeIntegrator(scene, desc.integrator);
+
+    RenderOptions options;
+    options.spp = desc.integrator.spp;
+    options.seed = desc.integrator.seed;
+    options.threads = o.threads;
+    options.cancel = &interrupted;
+    Progress progress("render");
+    options.progress = [&](double f) { progress.update(f); };
+    RenderResult result;
+    {
+        InterruptGuard guard;
+        result = render(scene, *integrator, options);
+    }
+    progress.finish();
+
+    writeExr(output, result.image);
+    writePng(previewPath(output), result.image, o.exposure);
+    const double pixels = double(desc.camera.width) * desc.camera.height;
+    if (result.cancelled) std::fprintf(stderr, "interrupted: wrote %d complete passes (and the tiles of the next)\n", result.passes);
+    if (result.droppedSamples) std::fprintf(stderr, "warning: %llu samples were NaN or Inf and were dropped\n", (unsigned long long)result.droppedSamples);
+    std::printf("%s and %s: %dx%d, %d spp\n", output.c_str(), previewPath(output).c_str(), desc.camera.width, desc.camera.height, result.passes);
+    std::printf("time: tetrahedralization %.2f s, photon tracing 0.00 s, rendering %.2f s (%.0f samples/s)\n",
+                scene.tetrahedralizeSeconds(), result.seconds, pixels * result.passes / result.seconds);
+    if (result.cancelled) {
+        std::fflush(stdout);
+        std::exit(130);  // the shell's code for "stopped by Ctrl-C", with the image written
+    }
+}
+
+}  // namespace
+
+void addRenderCommand(CLI::App& app) {
+    auto o = std::make_shared<Options>();
+    auto* cmd = app.add_subcommand("render", "Tetrahedralize the scene's media (cached) and render it to OpenEXR and a PNG preview");
+    cmd->add_option("scene", o->scene, "Scene file (JSON, see docs/FORMAT.md)")->required()->check(CLI::ExistingFile);
+    cmd->add_option("-o,--output", o->output, "Output .exr (a .png preview is written beside it)");
+    cmd->add_option("--integrator", o->integrator, "volpath (reference), single (the seed's ray march) or photon")
+        ->check(CLI::IsMember({"volpath", "single", "photon"}));
+    cmd->add_option("--spp", o->spp, "Samples per pixel")->check(CLI::Range(1, 1 << 20));
+    cmd->add_option("--threads", o->threads, "Threads (default: all cores)")->check(CLI::Range(1, 1024));
+    cmd->add_option("--seed", o->seed, "Random seed: the same seed gives the same image at any thread count")->check(CLI::NonNegativeNumber);
+    cmd->add_option("--resolution", o->resolution, "Image size WxH");
+    cmd->add_option("--boundary", o->boundary, "single: where the medium is: tet (exact), parity (the seed's test) or bbox")
+        ->check(CLI::IsMember({"tet", "parity", "bbox"}));
+    cmd->add_option("--step", o->step, "single: ray-march step in world units")->check(kFinite & CLI::PositiveNumber);
+    cmd->add_option("--max-depth", o->maxDepth, "Events per path")->check(CLI::Range(1, 100000));
+    cmd->add_option("--exposure", o->exposure, "PNG preview exposure in stops")->check(kFinite);
+    cmd->callback([o] { run(*o); });
+}
+
+}  // namespace tetglow::cli

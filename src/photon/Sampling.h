@@ -1,0 +1,52 @@
+// Direction and point sampling shared by the light transport code.
+#pragma once
+#include <cmath>
+#include <numbers>
+
+#include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+namespace tetglow {
+
+inline constexpr double kPi = std::numbers::pi;
+inline constexpr double kInv4Pi = 1 / (4 * std::numbers::pi);
+
+// An orthonormal basis around unit n (Duff et al. 2017, branchless).
+struct Frame {
+    glm::dvec3 s, t, n;
+    explicit Frame(const glm::dvec3& normal) : n(normal) {
+        const double sign = std::copysign(1.0, n.z), a = -1 / (sign + n.z), b = n.x * n.y * a;
+        s = {1 + sign * n.x * n.x * a, sign * b, -sign * n.x};
+        t = {b, sign + n.y * n.y * a, -n.y};
+    }
+    glm::dvec3 toWorld(const glm::dvec3& v) const { return v.x * s + v.y * t + v.z * n; }
+    glm::dvec3 toWorld(double cosTheta, double phi) const {
+        const double sinTheta = std::sqrt(std::max(0.0, 1 - cosTheta * cosTheta));
+        return toWorld({sinTheta * std::cos(phi), sinTheta * std::sin(phi), cosTheta});
+    }
+};
+
+inline glm::dvec3 sampleUniformSphere(const glm::dvec2& u) {
+    const double z = 1 - 2 * u.x, r = std::sqrt(std::max(0.0, 1 - z * z)), phi = 2 * kPi * u.y;
+    return {r * std::cos(phi), r * std::sin(phi), z};
+}
+
+// Cosine-weighted about n; pdf = cos / pi.
+inline glm::dvec3 sampleCosineHemisphere(const glm::dvec3& n, const glm::dvec2& u) {
+    return Frame(n).toWorld(std::sqrt(1 - u.x), 2 * kPi * u.y);
+}
+
+// Barycentric weights (b0, b1) of a point uniform on a triangle.
+inline glm::dvec2 sampleUniformTriangle(const glm::dvec2& u) {
+    const double su = std::sqrt(u.x);
+    return {1 - su, u.y * su};
+}
+
+// Veach's power heuristic (beta = 2) for one sample of each strategy.
+inline double powerHeuristic(double pdfA, double pdfB) {
+    const double a = pdfA * pdfA, b = pdfB * pdfB;
+    return a + b > 0 ? a / (a + b) : 0;
+}
+
+}  // namespace tetglow

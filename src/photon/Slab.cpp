@@ -1,0 +1,102 @@
+#include "photon/Slab.h"
+
+#include <chrono>
+#include <cmath>
+#include <vector>
+
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include "photon/PhotonWalk.h"
+#include "tet/Tetrahedralizer.h"
+
+namespace tetglow {
+
+namespace {
+
+// Per-photon fractions of the incident flux, summed over a block of photons.
+struct Sums {
+    double value[4] = {}, square[4] = {};  // reflected, transmitted, absorbed, lost sideways
+    void add(const double (&x)[4]) {
+        for (int k = 0; k < 4; ++k) value[k] += x[k], square[k] += x[k] * x[k];
+    }
+    void add(const Sums& o) {
+        for (int k = 0; k < 4; ++k) value[k] += o.value[k], square[k] += o.square[k];
+    }
+};
+
+Tally tally(double sum, double sumSquares, double n) {
+    const double mean = sum / n;
+    return {mean, std::sqrt(std::max(0.0, sumSquares / n - mean * mean) / (n - 1))};
+}
+
+// A box one unit thick (z from 0 to -1) and `width` wide: wide enough that photons leaving
+// through its sides are a negligible fraction (they are counted apart, as `lost`).
+TriangleMesh slabBox(double width) {
+    TriangleMesh m;
+    const double h = width / 2;
+    for (int i = 0; i < 8; ++i) m.positions.push_back({i & 1 ? h : -h, i & 2 ? h : -h, i & 4 ? 0.0 : -1.0});
+    const uint32_t quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+    for (const auto& q : quads) m.triangles.push_back({q[0], q[1], q[2]}), m.triangles.push_back({q[0], q[2], q[3]});
+    return m;
+}
+
+}  // namespace
+
+SlabResult simulateSlab(const SlabParams& p) {
+    if (!(p.tau > 0) || !std::isfinite(p.tau)) throw InputError("slab: --tau must be a finite number > 0");
+    if (!(p.albedo >= 0 && p.albedo <= 1)) throw InputError("slab: --albedo must be in [0, 1]");
+    if (!(p.g > -1 && p.g < 1)) throw InputError("slab: --g must be in (-1, 1)");
+    if (p.photons < 2) throw InputError("slab: --photons must be at least 2");
+    const auto start = std::chrono::steady_clock::now();
+
+    TetOptions options;
+    options.useCache = false;
+    const double width = 200;
+    const Medium medium({RGB(p.tau * (1 - p.albedo)), RGB(p.tau * p.albedo), p.g, RGB(0)}, tetrahedralize(slabBox(width), options));
+    const TetMesh& mesh = medium.mesh();
+    // The lit face is z = 0; entry triangles are found once by Embree, then each photon's walk
+    // starts there. Entry points are spread over the middle of the face (the slab is
+    // translation invariant), away from its diagonal.
+    const SurfaceBVH& bvh = medium.volume().bvh();
+
+    constexpr uint64_t kBlock = 4096;
+    const uint64_t blocks = (p.photons + kBlock - 1) / kBlock;
+    std::vector<Sums> blockSums(blocks);
+    tbb::task_arena arena(p.threads > 0 ? p.threads : tbb::task_arena::automatic);
+    arena.execute([&] {
+        tbb::parallel_for(uint64_t(0), blocks, [&](uint64_t b) {
+            for (uint64_t i = b * kBlock; i < std::min(p.photons, (b + 1) * kBlock); ++i) {
+                Rng rng(p.seed, i);
+                const double x = (rng.uniform() - 0.5) * 0.1 * width, y = (rng.uniform() - 0.5) * 0.1 * width;
+                const Ray ray{{x, y, 1}, {0, 0, -1}};
+                const auto entry = bvh.intersect(ray, 0, INFINITY, Facing::Entering);
+                double x4[4] = {};
+                if (entry) {
+                    SpectralPath path(0);
+                    const WalkResult r = photonWalk(medium, Ray{ray.at(entry->t), ray.d}, WalkStart::surface(entry->triangle),
+                                                    RGB(1), path, rng, 1 << 20, [](const PhotonEvent&) {});
+                    x4[2] = r.absorbed.x;
+                    if (r.escaped) {
+                        const double nz = glm::normalize(bvh.normal(r.exitTriangle)).z, w = path.weight().x;
+                        x4[nz > 0.5 ? 0 : nz < -0.5 ? 1 : 3] = w;
+                    }
+                }
+                blockSums[b].add(x4);
+            }
+        });
+    });
+    Sums total;
+    for (const auto& s : blockSums) total.add(s);  // in block order: the same sum for any thread count
+    SlabResult result;
+    const double n = double(p.photons);
+    result.reflectance = tally(total.value[0], total.square[0], n);
+    result.transmittance = tally(total.value[1], total.square[1], n);
+    result.absorbed = tally(total.value[2], total.square[2], n);
+    result.lost = tally(total.value[3], total.square[3], n);
+    result.tets = mesh.tets.size();
+    result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return result;
+}
+
+}  // namespace tetglow

@@ -1,0 +1,25 @@
+// Perspective pinhole camera; the field of view spans the shorter image axis (pbrt's convention).
+#pragma once
+#include <glm/geometric.hpp>
+
+#include "scene/SceneDescription.h"
+#include "tet/Ray.h"
+
+namespace tetglow {
+
+class Camera {
+public:
+    explicit Camera(const CameraDesc& desc);
+    int width() const { return width_; }
+    int height() const { return height_; }
+    const glm::dvec3& position() const { return position_; }
+    // The ray through film position (x, y) in pixels from the top-left corner; unit direction.
+    Ray generateRay(double x, double y) const;
+
+private:
+    glm::dvec3 position_, forward_, right_, up_;
+    double halfWidth_, halfHeight_;  // of the image plane at distance 1
+    int width_, height_;
+};
+
+}  // namespace tetglow

@@ -1,0 +1,49 @@
+// Light sources: point and spot (delta), area emitters on triangles (quads, and spot lights
+// with a radius), and a constant environment.
+#pragma once
+#include <memory>
+#include <vector>
+
+#include <glm/vec2.hpp>
+
+#include "photon/Spectrum.h"
+#include "scene/SceneDescription.h"
+
+namespace tetglow {
+
+struct LightSample {
+    RGB L{0};          // radiance arriving along -wi (delta lights: intensity / distance^2)
+    glm::dvec3 wi{0};  // unit, from the receiving point towards the light
+    double distance = 0;  // to the sampled point on the light (infinite for the environment)
+    double pdf = 0;       // solid angle; 1 for delta lights
+    bool delta = false;
+};
+
+class Light {
+public:
+    virtual ~Light() = default;
+    // A direction towards the light as seen from p.
+    virtual LightSample sample(const glm::dvec3& p, const glm::dvec2& u) const = 0;
+    // The solid-angle pdf of sample() for a ray from p that reached the light (area lights: at
+    // `point` on `triangle`; the environment: escaped along wi). 0 for delta lights.
+    virtual double pdf(const glm::dvec3& p, const glm::dvec3& wi, const glm::dvec3& point, uint32_t triangle) const = 0;
+    // Radiance leaving the light towards -wi, for a ray along wi that reached it.
+    virtual RGB emitted(const glm::dvec3& wi, uint32_t triangle) const = 0;
+    virtual bool isDelta() const { return false; }
+    virtual bool isEnvironment() const { return false; }
+    // Emitting triangles, placed in the scene so that rays can hit them (empty for the others).
+    virtual const TriangleMesh* shape() const { return nullptr; }
+};
+
+// pbrt-v3's spot profile: 1 inside the inner cone, 0 outside the outer, ((cos - cosTotal) /
+// (cosStart - cosTotal))^4 between.
+struct SpotProfile {
+    glm::dvec3 axis;  // unit
+    double cosTotal, cosStart;
+    SpotProfile(const glm::dvec3& axis, double coneAngleDeg, double coneDeltaDeg);
+    double falloff(const glm::dvec3& w) const;  // w: unit direction leaving the light
+};
+
+std::unique_ptr<Light> makeLight(const LightDesc& desc);
+
+}  // namespace tetglow

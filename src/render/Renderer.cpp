@@ -1,0 +1,48 @@
+#include "render/Renderer.h"
+
+#include <chrono>
+#include <mutex>
+
+#include <tbb/blocked_range2d.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+namespace tetglow {
+
+RenderResult render(const Scene& scene, const Integrator& integrator, const RenderOptions& options) {
+    const auto start = std::chrono::steady_clock::now();
+    const Camera& camera = scene.camera();
+    Film film(camera.width(), camera.height());
+    RenderResult result;
+    std::mutex progressMutex;
+    std::atomic<uint64_t> pixelsDone{0};
+    const double totalPixels = double(options.spp) * camera.height() * camera.width();
+    auto cancelled = [&] { return options.cancel && options.cancel->load(std::memory_order_relaxed); };
+
+    tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
+    for (int pass = 0; pass < options.spp && !cancelled(); ++pass) {
+        arena.execute([&] {
+            tbb::parallel_for(tbb::blocked_range2d<int>(0, camera.height(), 16, 0, camera.width(), 16), [&](const auto& tile) {
+                if (cancelled()) return;
+                for (int y = tile.rows().begin(); y < tile.rows().end(); ++y)
+                    for (int x = tile.cols().begin(); x < tile.cols().end(); ++x) {
+                        Rng rng(options.seed, uint64_t(y) * camera.width() + x, uint64_t(pass));
+                        const double jx = rng.uniform(), jy = rng.uniform();
+                        film.add(x, y, integrator.radiance(camera.generateRay(x + jx, y + jy), rng));
+                    }
+                if (!options.progress) return;
+                const uint64_t done = pixelsDone += uint64_t(tile.rows().size()) * tile.cols().size();
+                std::unique_lock lock(progressMutex, std::try_to_lock);
+                if (lock) options.progress(double(done) / totalPixels);
+            });
+        });
+        if (!cancelled()) result.passes = pass + 1;
+    }
+    result.cancelled = cancelled();
+    result.image = film.image();
+    result.droppedSamples = film.droppedSamples();
+    result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return result;
+}
+
+}  // namespace tetglow

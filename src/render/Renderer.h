@@ -1,0 +1,31 @@
+// Runs an integrator over the image: passes of one sample per pixel, tiles in parallel.
+#pragma once
+#include <atomic>
+#include <functional>
+
+#include "render/Film.h"
+#include "render/Integrator.h"
+
+namespace tetglow {
+
+struct RenderOptions {
+    int spp = 16;
+    uint64_t seed = 0;
+    int threads = 0;  // 0: all cores
+    const std::atomic<bool>* cancel = nullptr;    // checked between tiles
+    std::function<void(double fraction)> progress;  // called from one thread at a time
+};
+
+struct RenderResult {
+    Image image;
+    int passes = 0;          // complete passes (samples per pixel)
+    bool cancelled = false;
+    uint64_t droppedSamples = 0;  // NaN or Inf radiance, discarded
+    double seconds = 0;
+};
+
+// Pixel (x, y) in pass s uses Rng(seed, pixel index, s) only, so the image is the same for any
+// thread count and any tile schedule.
+RenderResult render(const Scene& scene, const Integrator& integrator, const RenderOptions& options);
+
+}  // namespace tetglow

@@ -1,0 +1,91 @@
+// The scene ready to render: camera, lights, surfaces and tetrahedralized media, with one
+// Embree scene over every surface, every medium boundary and every area light.
+#pragma once
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <embree3/rtcore.h>
+
+#include "photon/Medium.h"
+#include "render/Camera.h"
+#include "render/Light.h"
+#include "scene/SceneDescription.h"
+
+namespace tetglow {
+
+enum class HitKind { Surface, MediumBoundary, Light };
+
+struct Intersection {
+    double t = 0;
+    glm::dvec3 p{0}, n{0};  // n: unit geometric normal, outward for a medium boundary
+    uint32_t triangle = 0;
+    HitKind kind = HitKind::Surface;
+    uint32_t index = 0;     // which surface, medium or light
+};
+
+// The medium a path is in, and where its next walk through that medium's tets begins.
+struct MediumState {
+    int medium = -1;  // -1: outside every medium
+    WalkStart start;
+    bool inside() const { return medium >= 0; }
+};
+
+struct SceneMedium {
+    std::string name;
+    std::unique_ptr<Medium> medium;
+    MaterialDesc boundary;  // Dielectric or Interface
+    TetStats stats;
+    size_t steinerPoints = 0;
+};
+
+class Scene {
+public:
+    explicit Scene(const SceneDesc& desc);
+    ~Scene();
+    Scene(const Scene&) = delete;
+    Scene& operator=(const Scene&) = delete;
+
+    const SceneDesc& desc() const { return desc_; }
+    const Camera& camera() const { return camera_; }
+    const std::vector<std::unique_ptr<Light>>& lights() const { return lights_; }
+    const std::vector<SceneMedium>& media() const { return media_; }
+    const Light* environment() const { return environment_; }
+    double tetrahedralizeSeconds() const { return tetSeconds_; }
+    // Rays leave a surface this far beyond it, so they do not hit it again.
+    double rayEpsilon() const { return epsilon_; }
+
+    // Closest hit with t in (rayEpsilon, tMax); the ray's direction is unit length.
+    std::optional<Intersection> intersect(const Ray& ray, double tMax = INFINITY) const;
+    // The material at a hit (surfaces and medium boundaries; lights are black diffuse).
+    const MaterialDesc& material(const Intersection& hit) const;
+    // The medium state after the path leaves `hit` in direction `d`, having been in `before`.
+    MediumState afterHit(const Intersection& hit, const glm::dvec3& d, const MediumState& before) const;
+    // The medium that holds point p (the camera), for starting paths.
+    MediumState mediumAt(const glm::dvec3& p) const;
+    // Transmittance along ray (unit direction) up to tMax, starting in `state`: index-matched
+    // boundaries and media pass light; anything else blocks it.
+    RGB transmittance(Ray ray, double tMax, MediumState state) const;
+    // The closest hit that is not an index-matched boundary (those pass light unchanged).
+    std::optional<Intersection> intersectOpaque(const Ray& ray, double tMax = INFINITY) const;
+    // No surface but index-matched boundaries between ray.o and ray.at(tMax) (media ignored).
+    bool unoccluded(const Ray& ray, double tMax) const { return !intersectOpaque(ray, tMax); }
+
+private:
+    struct Geometry {
+        HitKind kind;
+        uint32_t index;
+    };
+    SceneDesc desc_;
+    Camera camera_;
+    std::vector<std::unique_ptr<Light>> lights_;
+    const Light* environment_ = nullptr;
+    std::vector<SceneMedium> media_;
+    std::vector<Geometry> geometries_;  // by Embree geometry id
+    std::vector<std::vector<glm::dvec3>> normals_;  // per geometry, per triangle (unit)
+    RTCScene scene_ = nullptr;
+    double epsilon_ = 1e-6, tetSeconds_ = 0;
+};
+
+}  // namespace tetglow

@@ -1,0 +1,109 @@
+#include "render/VolPathIntegrator.h"
+
+#include "photon/SpectralPath.h"
+#include "render/DirectLighting.h"
+#include "render/Material.h"
+
+namespace tetglow {
+
+VolPathIntegrator::VolPathIntegrator(const Scene& scene, int maxDepth)
+    : scene_(scene), maxDepth_(maxDepth), cameraMedium_(scene.mediumAt(scene.camera().position())) {}
+
+RGB VolPathIntegrator::radiance(const Ray& cameraRay, Rng& rng) const {
+    RGB L(0);
+    SpectralPath path = SpectralPath::pick(rng.uniform());
+    Ray ray = cameraRay;
+    MediumState state = cameraMedium_;
+    // How the current direction was chosen, for the MIS weight of an emitter it reaches:
+    // from the camera or a specular event (weight 1), else with lastPdf at lastPoint.
+    bool specular = true;
+    double lastPdf = 0;
+    glm::dvec3 lastPoint = ray.o;
+    auto emitterWeight = [&](const Light& light, const glm::dvec3& point, uint32_t triangle) {
+        return specular ? 1.0 : powerHeuristic(lastPdf, lightPdf(scene_, light, lastPoint, ray.d, point, triangle));
+    };
+    auto visibility = [&](const MediumState& from) {
+        return [this, from](const Ray& r, double tMax) { return scene_.transmittance(r, tMax, from); };
+    };
+    int depth = 0;
+    // Russian roulette after a few events, on the largest channel of the path's weight.
+    auto survives = [&] {
+        if (!path.alive()) return false;
+        if (depth <= 3) return true;
+        const double q = std::max(0.05, 1 - maxComponent(path.weight()));
+        if (rng.uniform() < q) return false;
+        path.beta /= 1 - q;
+        return true;
+    };
+    // Index-matched boundaries do not count as events; the cap only guards against rays that
+    // graze a boundary forever.
+    for (int crossings = 0; crossings < 100000; ++crossings) {
+        const auto hit = scene_.intersect(ray);
+        if (state.inside()) {
+            const Medium& medium = *scene_.media()[state.medium].medium;
+            const double tMax = hit ? hit->t : INFINITY;
+            if (isBlack(medium.params().sigmaS) && !medium.emissive()) {
+                // Nothing scatters or glows: attenuate exactly instead of sampling where light dies.
+                path.beta *= medium.transmittance(ray, state.start, tMax);
+                if (!path.alive()) break;
+            } else {
+                const FreeFlight flight = medium.sampleFlight(ray, state.start, tMax, path.hero, rng.uniform());
+                if (!flight.scattered) {
+                    path.pass(flight.transmittance);
+                } else {
+                    path.interact(flight.transmittance, medium.sigmaT() * flight.density);
+                    if (medium.emissive()) L += path.weight() * flight.density * medium.params().emission;
+                    path.beta *= flight.density * medium.params().sigmaS;
+                    if (++depth >= maxDepth_) break;
+                    const glm::dvec3 p = ray.at(flight.t);
+                    const MediumState here{state.medium, WalkStart::inside(flight.tet)};
+                    const HenyeyGreenstein& phase = medium.phase();
+                    L += path.weight() * sampleDirect(scene_, p, rng, true, [&](const glm::dvec3& wi) {
+                        const double f = phase.eval(glm::dot(ray.d, wi));
+                        return Scattering{RGB(f), f};
+                    }, visibility(here));
+                    const double u0 = rng.uniform(), u1 = rng.uniform();
+                    const glm::dvec3 wi = phase.sample(ray.d, {u0, u1});
+                    specular = false, lastPdf = phase.eval(glm::dot(ray.d, wi)), lastPoint = p;
+                    ray = {p, wi};
+                    state = here;
+                    if (!survives()) break;
+                    continue;
+                }
+            }
+        }
+        if (!hit) {
+            if (const Light* env = scene_.environment())
+                L += path.weight() * env->emitted(ray.d, 0) * emitterWeight(*env, ray.o + ray.d, 0);
+            break;
+        }
+        if (hit->kind == HitKind::Light) {
+            const Light& light = *scene_.lights()[hit->index];
+            L += path.weight() * light.emitted(ray.d, hit->triangle) * emitterWeight(light, hit->p, hit->triangle);
+            break;  // emitters absorb
+        }
+        const MaterialDesc& material = scene_.material(*hit);
+        if (material.type == MaterialType::Interface) {
+            state = scene_.afterHit(*hit, ray.d, state);
+            ray.o = hit->p;
+            continue;
+        }
+        if (++depth >= maxDepth_) break;
+        if (!isSpecular(material)) {
+            const MediumState here = scene_.afterHit(*hit, ray.d, state);
+            L += path.weight() * sampleDirect(scene_, hit->p, rng, true, [&](const glm::dvec3& wi) {
+                return Scattering{evaluateMaterial(material, ray.d, hit->n, wi), materialPdf(material, ray.d, hit->n, wi)};
+            }, visibility(here));
+        }
+        const double u0 = rng.uniform(), u1 = rng.uniform();
+        const BsdfSample bs = sampleMaterial(material, ray.d, hit->n, {u0, u1});
+        path.beta *= bs.weight;
+        specular = bs.specular, lastPdf = bs.pdf, lastPoint = hit->p;
+        state = scene_.afterHit(*hit, bs.direction, state);
+        ray = {hit->p, bs.direction};
+        if (!survives()) break;
+    }
+    return L;
+}
+
+}  // namespace tetglow

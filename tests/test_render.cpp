@@ -1,0 +1,188 @@
+// The renderer against closed forms: absorption along exact chords, the white furnace, the
+// ray march's boundary modes, determinism across thread counts.
+#include <cmath>
+#include <cstring>
+
+#include <gtest/gtest.h>
+
+#include "TestMeshes.h"
+#include "render/Integrator.h"
+#include "render/Renderer.h"
+
+namespace tetglow::test {
+namespace {
+
+MediumDesc sphereMedium(const RGB& sigmaA, const RGB& sigmaS, double g = 0, int subdivisions = 3) {
+    MediumDesc m;
+    m.name = "sphere";
+    m.boundary = icosphere(subdivisions, 1.0);
+    for (auto& p : m.boundary.positions) p = {roundToFloat(p.x), roundToFloat(p.y), roundToFloat(p.z)};
+    m.sigmaA = sigmaA, m.sigmaS = sigmaS, m.g = g;
+    return m;
+}
+
+SceneDesc sceneWith(const MediumDesc& medium, int resolution) {
+    SceneDesc s;
+    s.camera.position = {0.3, 0.2, 4};
+    s.camera.lookAt = {0, 0, 0};
+    s.camera.fov = 35;
+    s.camera.width = s.camera.height = resolution;
+    s.media.push_back(medium);
+    return s;
+}
+
+LightDesc environment(double radiance) {
+    LightDesc l;
+    l.type = LightType::Environment;
+    l.radiance = RGB(radiance);
+    return l;
+}
+
+// (a) A purely absorbing sphere in front of a white environment: every pixel is exactly the
+// transmittance along its chord, the chord taken from Embree's hits on the boundary.
+TEST(Render, AbsorbingSphereMatchesChords) {
+    const RGB sigmaA(0.4, 1.1, 2.3);
+    SceneDesc desc = sceneWith(sphereMedium(sigmaA, RGB(0)), 48);
+    desc.lights.push_back(environment(1));
+    const Scene scene(desc);
+    const SurfaceBVH& bvh = scene.media()[0].medium->volume().bvh();
+    for (IntegratorType type : {IntegratorType::VolPath, IntegratorType::Single}) {
+        IntegratorDesc integ;
+        integ.type = type;
+        const auto integrator = makeIntegrator(scene, integ);
+        int chords = 0;
+        for (int y = 0; y < 48; ++y)
+            for (int x = 0; x < 48; ++x) {
+                const Ray ray = scene.camera().generateRay(x + 0.5, y + 0.5);
+                const auto hits = bvh.allHits(ray);
+                double chord = 0;
+                for (size_t i = 0; i + 1 < hits.size(); i += 2) chord += hits[i + 1].t - hits[i].t;
+                chords += chord > 0;
+                Rng rng(1, uint64_t(y) * 48 + x);
+                const RGB L = integrator->radiance(ray, rng);
+                for (int c = 0; c < 3; ++c)
+                    ASSERT_NEAR(L[c], std::exp(-sigmaA[c] * chord), 1e-4 * std::exp(-sigmaA[c] * chord))
+                        << "pixel " << x << "," << y << " channel " << c << " integrator " << int(type);
+            }
+        EXPECT_GT(chords, 48 * 48 / 4);  // the sphere fills a good part of the image
+    }
+}
+
+// Mean and standard error of n samples of one pixel.
+struct Estimate {
+    RGB mean{0}, stdError{0};
+};
+Estimate samplePixel(const Integrator& integrator, const Ray& ray, uint64_t key, int n) {
+    RGB sum(0), sum2(0);
+    for (int i = 0; i < n; ++i) {
+        Rng rng(7, key, uint64_t(i));
+        const RGB L = integrator.radiance(ray, rng);
+        sum += L, sum2 += L * L;
+    }
+    const RGB mean = sum / double(n);
+    return {mean, glm::sqrt(glm::max(RGB(0), sum2 / double(n) - mean * mean) / double(n - 1))};
+}
+
+// (b) White furnace: a medium that absorbs nothing, inside an environment of radiance 1, is
+// invisible: every pixel is 1 within its statistical error, for any g, chromatic sigma_s and
+// a density that varies per vertex.
+void expectFurnace(const MediumDesc& medium) {
+    SceneDesc desc = sceneWith(medium, 12);
+    desc.lights.push_back(environment(1));
+    const Scene scene(desc);
+    ASSERT_EQ(scene.media()[0].medium->homogeneous(), medium.density.isConstant());
+    if (!medium.density.isConstant()) {
+        ASSERT_GT(scene.media()[0].steinerPoints, 50u);  // the density varies inside
+    }
+    IntegratorDesc integ;
+    integ.maxDepth = 1 << 20;  // a furnace is only white without truncation
+    const auto integrator = makeIntegrator(scene, integ);
+    RGB total(0), totalVar(0);
+    int pixels = 0;
+    for (int y = 0; y < 12; ++y)
+        for (int x = 0; x < 12; ++x) {
+            const Estimate e = samplePixel(*integrator, scene.camera().generateRay(x + 0.5, y + 0.5), uint64_t(y) * 12 + x, 256);
+            for (int c = 0; c < 3; ++c) EXPECT_NEAR(e.mean[c], 1.0, 5 * e.stdError[c] + 1e-12) << "pixel " << x << "," << y;
+            total += e.mean, totalVar += e.stdError * e.stdError, ++pixels;
+        }
+    const RGB mean = total / double(pixels), se = glm::sqrt(totalVar) / double(pixels);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(mean[c], 1.0, 3 * se[c]) << "channel " << c;
+}
+
+TEST(Render, WhiteFurnaceHomogeneous) { expectFurnace(sphereMedium(RGB(0), RGB(0.5, 2, 6), 0.7)); }
+
+TEST(Render, WhiteFurnacePerVertexDensity) {
+    MediumDesc m = sphereMedium(RGB(0), RGB(1, 3, 5), -0.4);
+    m.density.type = DensityDesc::Type::Noise;
+    m.density.offset = 1, m.density.amplitude = 0.9, m.density.frequency = 3;
+    m.tetOptions.maxVolume = 0.01;  // interior vertices, so the density varies inside
+    expectFurnace(m);
+}
+
+RGB meanAbsDiff(const Image& a, const Image& b) {
+    RGB sum(0);
+    for (size_t i = 0; i < a.pixels.size(); ++i) sum += glm::abs(RGB(a.pixels[i]) - RGB(b.pixels[i]));
+    return sum / double(a.pixels.size());
+}
+
+// (c) The seed's ray march: the parity test agrees with the exact tet segments to within the
+// step-size error; filling the bounding box does not.
+TEST(Render, SingleScatteringBoundaryModes) {
+    SceneDesc desc = sceneWith(sphereMedium(RGB(0.3), RGB(1.5)), 24);
+    LightDesc light;
+    light.type = LightType::Point;
+    light.position = {2, 3, 2};
+    light.intensity = RGB(20);
+    desc.lights.push_back(light);
+    const Scene scene(desc);
+    auto renderWith = [&](BoundaryMode mode, double step) {
+        IntegratorDesc integ;
+        integ.type = IntegratorType::Single;
+        integ.boundary = mode;
+        integ.stepSize = step;
+        RenderOptions options;
+        options.spp = 8;
+        return render(scene, *makeIntegrator(scene, integ), options).image;
+    };
+    const Image tet = renderWith(BoundaryMode::Tet, 0.01);
+    double brightness = 0;
+    for (const auto& p : tet.pixels) brightness += p.x;
+    brightness /= double(tet.pixels.size());
+    const double parityFine = average(meanAbsDiff(renderWith(BoundaryMode::Parity, 0.01), tet));
+    const double parityCoarse = average(meanAbsDiff(renderWith(BoundaryMode::Parity, 0.1), tet));
+    const double bbox = average(meanAbsDiff(renderWith(BoundaryMode::Bbox, 0.01), tet));
+    std::printf("mean |difference| to tet: parity 0.01: %.5f, parity 0.1: %.5f, bbox: %.5f (brightness %.4f)\n", parityFine,
+                parityCoarse, bbox, brightness);
+    EXPECT_LT(parityFine, 0.05 * brightness);
+    EXPECT_LT(parityFine, parityCoarse);  // the difference is the step-size error: it shrinks with the step
+    EXPECT_GT(bbox, 5 * parityFine);
+}
+
+// (d) The same seed gives the same image, bit for bit, with one thread and with two.
+TEST(Render, SameSeedSameImageAnyThreadCount) {
+    MediumDesc m = sphereMedium(RGB(0.2, 0.5, 0.1), RGB(0.8, 0.6, 1.2), 0.5);
+    m.emission = RGB(0.1, 0.2, 0.9);
+    SceneDesc desc = sceneWith(m, 32);
+    desc.lights.push_back(environment(0.3));
+    LightDesc quad;
+    quad.type = LightType::Quad;
+    quad.corner = {-1, 3, -1}, quad.edge0 = {0, 0, 2}, quad.edge1 = {2, 0, 0}, quad.radiance = RGB(5);
+    desc.lights.push_back(quad);
+    const Scene scene(desc);
+    const auto integrator = makeIntegrator(scene, IntegratorDesc{});
+    RenderOptions options;
+    options.spp = 4;
+    options.seed = 42;
+    options.threads = 1;
+    const Image one = render(scene, *integrator, options).image;
+    options.threads = 2;
+    const Image two = render(scene, *integrator, options).image;
+    ASSERT_EQ(one.pixels.size(), two.pixels.size());
+    EXPECT_EQ(0, std::memcmp(one.pixels.data(), two.pixels.data(), one.pixels.size() * sizeof(one.pixels[0])));
+    options.seed = 43;
+    const Image other = render(scene, *integrator, options).image;
+    EXPECT_NE(0, std::memcmp(one.pixels.data(), other.pixels.data(), one.pixels.size() * sizeof(one.pixels[0])));
+}
+
+}  // namespace
+}  // namespace tetglow::test
