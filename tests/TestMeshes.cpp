@@ -1,8 +1,10 @@
 #include "TestMeshes.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <numbers>
 #include <fstream>
 #include <sstream>
 #include <sys/wait.h>
@@ -12,6 +14,17 @@
 #include <gtest/gtest.h>
 
 namespace tetglow::test {
+
+double minAngleDegrees(const TriangleMesh& m) {
+    double smallest = 180;
+    for (uint32_t t = 0; t < m.triangles.size(); ++t)
+        for (int k = 0; k < 3; ++k) {
+            const glm::dvec3 a = glm::normalize(m.corner(t, (k + 1) % 3) - m.corner(t, k));
+            const glm::dvec3 b = glm::normalize(m.corner(t, (k + 2) % 3) - m.corner(t, k));
+            smallest = std::min(smallest, std::acos(std::clamp(glm::dot(a, b), -1.0, 1.0)) * 180 / std::numbers::pi);
+        }
+    return smallest;
+}
 
 std::string sharedMesh(const std::string& name) {
     const auto path = std::filesystem::path(TETGLOW_SOURCE_DIR) / ".." / "shared" / "meshes" / (name + ".obj");

@@ -10,6 +10,9 @@
 namespace tetglow::test {
 
 
+// The smallest corner angle of any triangle, in degrees.
+double minAngleDegrees(const TriangleMesh& m);
+
 // The demo fish and blub, spot, bob from ../shared/meshes (path "" when that folder is absent:
 // tests skip those with a message).
 struct NamedMesh {

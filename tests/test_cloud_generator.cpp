@@ -21,17 +21,6 @@ CloudParams withSeed(uint32_t seed) {
     return p;
 }
 
-double minAngleDegrees(const TriangleMesh& m) {
-    double smallest = 180;
-    for (uint32_t t = 0; t < m.triangles.size(); ++t)
-        for (int k = 0; k < 3; ++k) {
-            const glm::dvec3 a = glm::normalize(m.corner(t, (k + 1) % 3) - m.corner(t, k));
-            const glm::dvec3 b = glm::normalize(m.corner(t, (k + 2) % 3) - m.corner(t, k));
-            smallest = std::min(smallest, std::acos(std::clamp(glm::dot(a, b), -1.0, 1.0)) * 180 / std::numbers::pi);
-        }
-    return smallest;
-}
-
 // Why it cannot self-intersect: star-shaped about the origin, every triangle faces away from it
 // (positive orientation seen from the origin), so the triangles' cones tile space without overlap.
 void expectStarShaped(const TriangleMesh& m) {
@@ -40,7 +29,7 @@ void expectStarShaped(const TriangleMesh& m) {
         facingIn += glm::dot(m.corner(t, 0), glm::cross(m.corner(t, 1), m.corner(t, 2))) <= 0;
     EXPECT_EQ(facingIn, 0u) << "triangles not facing away from the origin";
     // Bounded slope of the radius keeps the triangles well shaped.
-    EXPECT_GT(minAngleDegrees(m), 10.0) << "sliver triangles";
+    EXPECT_GT(test::minAngleDegrees(m), 10.0) << "sliver triangles";
 }
 
 // Closed, manifold, outward, no self-intersection, rounded to float: nothing to repair.

@@ -11,6 +11,7 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include "TestMeshes.h"
 #include "scene/FishGenerator.h"
 #include "tet/SelfIntersection.h"
 
@@ -40,17 +41,6 @@ void expectClosedAndConsistent(const TriangleMesh& m) {
     }
 }
 
-double minAngleDegrees(const TriangleMesh& m) {
-    double smallest = 180;
-    for (uint32_t t = 0; t < m.triangles.size(); ++t)
-        for (int k = 0; k < 3; ++k) {
-            const glm::dvec3 a = glm::normalize(m.corner(t, (k + 1) % 3) - m.corner(t, k));
-            const glm::dvec3 b = glm::normalize(m.corner(t, (k + 2) % 3) - m.corner(t, k));
-            smallest = std::min(smallest, std::acos(std::clamp(glm::dot(a, b), -1.0, 1.0)) * 180 / std::numbers::pi);
-        }
-    return smallest;
-}
-
 // Connected shells (by shared vertices), as a shell index per vertex.
 std::vector<uint32_t> shells(const TriangleMesh& m, uint32_t& count) {
     std::vector<uint32_t> parent(m.positions.size());
@@ -70,7 +60,7 @@ std::vector<uint32_t> shells(const TriangleMesh& m, uint32_t& count) {
 void expectValidMedium(const TriangleMesh& m) {
     expectClosedAndConsistent(m);
     EXPECT_GT(signedVolume(m), 0) << "inward winding";
-    EXPECT_GT(minAngleDegrees(m), 1.0) << "sliver triangles";
+    EXPECT_GT(test::minAngleDegrees(m), 1.0) << "sliver triangles";
 
     std::set<std::tuple<double, double, double>> distinct;
     for (const auto& p : m.positions) {

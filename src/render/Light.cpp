@@ -22,26 +22,14 @@ LightSample towards(const glm::dvec3& p, const glm::dvec3& q, const RGB& intensi
     return {intensity / d2, v / d, d, 1, true};
 }
 
+// A point, or with a profile pbrt-v3's spot light.
 class PointLight : public Light {
 public:
-    PointLight(const glm::dvec3& position, const RGB& intensity) : position_(position), intensity_(intensity) {}
-    LightSample sample(const glm::dvec3& p, const glm::dvec2&) const override { return towards(p, position_, intensity_); }
-    double pdf(const glm::dvec3&, const glm::dvec3&, const glm::dvec3&, uint32_t) const override { return 0; }
-    RGB emitted(const glm::dvec3&, uint32_t) const override { return RGB(0); }
-    bool isDelta() const override { return true; }
-
-private:
-    glm::dvec3 position_;
-    RGB intensity_;
-};
-
-class SpotLight : public Light {
-public:
-    SpotLight(const glm::dvec3& position, const RGB& intensity, const SpotProfile& profile)
-        : position_(position), intensity_(intensity), profile_(profile) {}
+    PointLight(const glm::dvec3& position, const RGB& intensity, std::optional<SpotProfile> spot = std::nullopt)
+        : position_(position), intensity_(intensity), spot_(spot) {}
     LightSample sample(const glm::dvec3& p, const glm::dvec2&) const override {
         LightSample s = towards(p, position_, intensity_);
-        s.L *= profile_.falloff(-s.wi);
+        if (spot_) s.L *= spot_->falloff(-s.wi);
         return s;
     }
     double pdf(const glm::dvec3&, const glm::dvec3&, const glm::dvec3&, uint32_t) const override { return 0; }
@@ -51,7 +39,7 @@ public:
 private:
     glm::dvec3 position_;
     RGB intensity_;
-    SpotProfile profile_;
+    std::optional<SpotProfile> spot_;
 };
 
 // Triangles emitting radiance, uniform over area; or, with a spot profile, radiance
@@ -139,7 +127,7 @@ std::unique_ptr<Light> makeLight(const LightDesc& desc) {
             return std::make_unique<PointLight>(desc.position, desc.intensity);
         case LightType::Spot: {
             const SpotProfile profile(desc.lookAt - desc.position, desc.coneAngle, desc.coneDelta);
-            if (desc.radius == 0) return std::make_unique<SpotLight>(desc.position, desc.intensity, profile);
+            if (desc.radius == 0) return std::make_unique<PointLight>(desc.position, desc.intensity, profile);
             auto light = std::make_unique<AreaLight>(disk(desc.position, profile.axis, desc.radius), RGB(0), false);
             light->setSpot(profile, desc.intensity);
             return light;
