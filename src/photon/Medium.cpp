@@ -90,13 +90,7 @@ FreeFlight Medium::sampleFlight(const Ray& ray, WalkStart start, double tMax, in
 }
 
 RGB Medium::transmittance(const Ray& ray, WalkStart start, double tMax) const {
-    double column = 0;
-    TetWalk walk = beginWalk(ray, start);
-    for (WalkSegment s; walk.next(s) && s.tIn < tMax;) {
-        const double tIn = std::max(s.tIn, 0.0), tOut = std::min(s.tOut, tMax);
-        if (tOut > tIn) column += densityIntegral(s.tet, ray, tIn, tOut);
-    }
-    return exp(-sigmaT_ * column);
+    return sampleFlight(ray, start, tMax, 0, 1.0).transmittance;  // u = 1: an infinite target, no interaction
 }
 
 }  // namespace tetglow
