@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "scene/Shapes.h"
+#include "tet/Shapes.h"
 #include "tet/TriangleMesh.h"
 
 namespace tetglow::test {

@@ -8,6 +8,7 @@
 #include <tbb/task_arena.h>
 
 #include "photon/PhotonWalk.h"
+#include "tet/Shapes.h"
 #include "tet/Tetrahedralizer.h"
 
 namespace tetglow {
@@ -30,17 +31,6 @@ Tally tally(double sum, double sumSquares, double n) {
     return {mean, std::sqrt(std::max(0.0, sumSquares / n - mean * mean) / (n - 1))};
 }
 
-// A box one unit thick (z from 0 to -1) and `width` wide: wide enough that photons leaving
-// through its sides are a negligible fraction (they are counted apart, as `lost`).
-TriangleMesh slabBox(double width) {
-    TriangleMesh m;
-    const double h = width / 2;
-    for (int i = 0; i < 8; ++i) m.positions.push_back({i & 1 ? h : -h, i & 2 ? h : -h, i & 4 ? 0.0 : -1.0});
-    const uint32_t quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
-    for (const auto& q : quads) m.triangles.push_back({q[0], q[1], q[2]}), m.triangles.push_back({q[0], q[2], q[3]});
-    return m;
-}
-
 }  // namespace
 
 SlabResult simulateSlab(const SlabParams& p) {
@@ -52,8 +42,11 @@ SlabResult simulateSlab(const SlabParams& p) {
 
     TetOptions options;
     options.useCache = false;
+    // One unit thick (z from -1 to 0) and wide enough that photons leaving through the sides
+    // are a negligible fraction (they are counted apart, as `lost`).
     const double width = 200;
-    const Medium medium({RGB(p.tau * (1 - p.albedo)), RGB(p.tau * p.albedo), p.g, RGB(0)}, tetrahedralize(slabBox(width), options));
+    const TriangleMesh slab = box({-width / 2, -width / 2, -1}, {width / 2, width / 2, 0});
+    const Medium medium({RGB(p.tau * (1 - p.albedo)), RGB(p.tau * p.albedo), p.g, RGB(0)}, tetrahedralize(slab, options));
     const TetMesh& mesh = medium.mesh();
     // The lit face is z = 0; entry triangles are found once by Embree, then each photon's walk
     // starts there. Entry points are spread over the middle of the face (the slab is

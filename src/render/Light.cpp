@@ -8,7 +8,7 @@
 #include <glm/geometric.hpp>
 
 #include "photon/Sampling.h"
-#include "scene/Shapes.h"
+#include "tet/Shapes.h"
 
 namespace tetglow {
 

@@ -8,7 +8,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "scene/Shapes.h"
+#include "tet/Shapes.h"
 
 namespace tetglow {
 namespace {

@@ -10,7 +10,7 @@
 #include <glm/matrix.hpp>
 #include <glm/vector_relational.hpp>
 
-#include "scene/Shapes.h"
+#include "tet/Shapes.h"
 
 namespace tetglow {
 namespace {

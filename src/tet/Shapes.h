@@ -1,4 +1,4 @@
-// Simple shapes the scenes and tests build from parameters.
+// Simple shapes built from parameters: scene primitives, validation geometry, test meshes.
 #pragma once
 #include "tet/TriangleMesh.h"
 

@@ -1,4 +1,4 @@
-#include "scene/Shapes.h"
+#include "tet/Shapes.h"
 
 #include <algorithm>
 #include <cmath>
