@@ -37,6 +37,15 @@ inline glm::dvec3 sampleCosineHemisphere(const glm::dvec3& n, const glm::dvec2& 
     return Frame(n).toWorld(std::sqrt(1 - u.x), 2 * kPi * u.y);
 }
 
+// A point uniform on the unit disk (concentric mapping, Shirley and Chiu 1997).
+inline glm::dvec2 sampleUniformDisk(const glm::dvec2& u) {
+    const double a = 2 * u.x - 1, b = 2 * u.y - 1;
+    if (a == 0 && b == 0) return {0, 0};
+    const double r = std::abs(a) > std::abs(b) ? a : b;
+    const double phi = std::abs(a) > std::abs(b) ? kPi / 4 * (b / a) : kPi / 2 - kPi / 4 * (a / b);
+    return {r * std::cos(phi), r * std::sin(phi)};
+}
+
 // Barycentric weights (b0, b1) of a point uniform on a triangle.
 inline glm::dvec2 sampleUniformTriangle(const glm::dvec2& u) {
     const double su = std::sqrt(u.x);

@@ -34,12 +34,44 @@ public:
     }
     double pdf(const glm::dvec3&, const glm::dvec3&, const glm::dvec3&, uint32_t) const override { return 0; }
     RGB emitted(const glm::dvec3&, uint32_t) const override { return RGB(0); }
+    PhotonEmission emitPhoton(const glm::dvec2&, const glm::dvec2& u) const override {
+        if (!spot_) return {{position_, sampleUniformSphere(u)}, intensity_ * (4 * kPi)};
+        const glm::dvec3 w = spot_->sampleCone(u);
+        return {{position_, w}, intensity_ * (spot_->falloff(w) / spot_->conePdf())};
+    }
+    RGB power() const override { return intensity_ * (spot_ ? spot_->solidAngle() : 4 * kPi); }
     bool isDelta() const override { return true; }
 
 private:
     glm::dvec3 position_;
     RGB intensity_;
     std::optional<SpotProfile> spot_;
+};
+
+// Parallel light from direction -direction_ with irradiance E on a surface facing it.
+class DistantLight : public Light {
+public:
+    DistantLight(const glm::dvec3& direction, const RGB& irradiance, const Bounds3& sceneBounds)
+        : direction_(glm::normalize(direction)), irradiance_(irradiance), frame_(direction_) {
+        centre_ = 0.5 * (sceneBounds.lo + sceneBounds.hi);
+        radius_ = std::max(0.5 * sceneBounds.diagonal(), 1e-6);
+    }
+    LightSample sample(const glm::dvec3&, const glm::dvec2&) const override { return {irradiance_, -direction_, INFINITY, 1, true}; }
+    double pdf(const glm::dvec3&, const glm::dvec3&, const glm::dvec3&, uint32_t) const override { return 0; }
+    RGB emitted(const glm::dvec3&, uint32_t) const override { return RGB(0); }
+    PhotonEmission emitPhoton(const glm::dvec2& u, const glm::dvec2&) const override {
+        const glm::dvec2 q = sampleUniformDisk(u) * radius_;
+        return {{centre_ - radius_ * direction_ + q.x * frame_.s + q.y * frame_.t, direction_}, power()};
+    }
+    RGB power() const override { return irradiance_ * (kPi * radius_ * radius_); }
+    bool isDelta() const override { return true; }
+
+private:
+    glm::dvec3 direction_;  // of travel
+    RGB irradiance_;
+    Frame frame_;
+    glm::dvec3 centre_;
+    double radius_;
 };
 
 // Triangles emitting radiance, uniform over area; or, with a spot profile, radiance
@@ -60,11 +92,7 @@ public:
     void setSpot(const SpotProfile& profile, const RGB& intensity) { spot_ = profile, radiance_ = intensity / area_; }
 
     LightSample sample(const glm::dvec3& p, const glm::dvec2& u) const override {
-        // Pick a triangle by area with u.x, then reuse what is left of u.x for the point.
-        const double target = u.x * area_;
-        const auto tri = uint32_t(std::min<size_t>(std::upper_bound(cdf_.begin(), cdf_.end(), target) - cdf_.begin(), cdf_.size() - 1));
-        const double lo = tri ? cdf_[tri - 1] : 0, ux = std::clamp((target - lo) / (cdf_[tri] - lo), 0.0, 1.0 - 1e-16);
-        const glm::dvec2 b = sampleUniformTriangle({ux, u.y});
+        const auto [tri, b] = samplePoint(u);
         const glm::dvec3 q = b.x * mesh_.corner(tri, 0) + b.y * mesh_.corner(tri, 1) + (1 - b.x - b.y) * mesh_.corner(tri, 2);
         LightSample s = towards(p, q, RGB(0));
         s.delta = false;
@@ -82,9 +110,40 @@ public:
         if (!(cosLight > 0 || (twoSided_ && cosLight < 0))) return RGB(0);
         return spot_ ? radiance_ * spot_->falloff(-wi) / std::abs(cosLight) : radiance_;
     }
+    PhotonEmission emitPhoton(const glm::dvec2& uPos, const glm::dvec2& uDir) const override {
+        const auto [tri, b] = samplePoint(uPos);
+        const glm::dvec3 p = b.x * mesh_.corner(tri, 0) + b.y * mesh_.corner(tri, 1) + (1 - b.x - b.y) * mesh_.corner(tri, 2);
+        if (spot_) {
+            // Directions uniform in the cone: flux = L cos / (pdfArea pdfDir) = I falloff / pdfDir.
+            const glm::dvec3 w = spot_->sampleCone(uDir);
+            return {{p, w}, radiance_ * area_ * (spot_->falloff(w) / spot_->conePdf())};
+        }
+        glm::dvec3 n = normals_[tri];
+        glm::dvec2 u = uDir;
+        if (twoSided_) {
+            // Half of u.x picks the side, the rest is reused for the direction.
+            const bool back = u.x < 0.5;
+            u.x = back ? 2 * u.x : 2 * u.x - 1;
+            if (back) n = -n;
+        }
+        return {{p, sampleCosineHemisphere(n, u)}, power()};
+    }
+    RGB power() const override {
+        if (spot_) return radiance_ * area_ * spot_->solidAngle();
+        return radiance_ * (kPi * area_ * (twoSided_ ? 2 : 1));
+    }
     const TriangleMesh* shape() const override { return &mesh_; }
 
 private:
+    // A triangle chosen by area with u.x, then a uniform point on it (what is left of u.x is
+    // reused), as barycentric weights of corners 0 and 1.
+    std::pair<uint32_t, glm::dvec2> samplePoint(const glm::dvec2& u) const {
+        const double target = u.x * area_;
+        const auto tri = uint32_t(std::min<size_t>(std::upper_bound(cdf_.begin(), cdf_.end(), target) - cdf_.begin(), cdf_.size() - 1));
+        const double lo = tri ? cdf_[tri - 1] : 0, ux = std::clamp((target - lo) / (cdf_[tri] - lo), 0.0, 1.0 - 1e-16);
+        return {tri, sampleUniformTriangle({ux, u.y})};
+    }
+
     TriangleMesh mesh_;
     std::vector<glm::dvec3> normals_;
     std::vector<double> cdf_;
@@ -96,22 +155,43 @@ private:
 
 class EnvironmentLight : public Light {
 public:
-    explicit EnvironmentLight(const RGB& radiance) : radiance_(radiance) {}
+    EnvironmentLight(const RGB& radiance, const Bounds3& sceneBounds) : radiance_(radiance) {
+        centre_ = 0.5 * (sceneBounds.lo + sceneBounds.hi);
+        radius_ = std::max(0.5 * sceneBounds.diagonal(), 1e-6);
+    }
     LightSample sample(const glm::dvec3&, const glm::dvec2& u) const override {
         return {radiance_, sampleUniformSphere(u), INFINITY, kInv4Pi, false};
     }
     double pdf(const glm::dvec3&, const glm::dvec3&, const glm::dvec3&, uint32_t) const override { return kInv4Pi; }
     RGB emitted(const glm::dvec3&, uint32_t) const override { return radiance_; }
+    // pbrt's infinite light: a direction uniform on the sphere, then a point on the disk facing
+    // it that covers the scene, so flux = L / (pdfDir pdfArea) = L 4 pi pi r^2.
+    PhotonEmission emitPhoton(const glm::dvec2& uPos, const glm::dvec2& uDir) const override {
+        const glm::dvec3 d = sampleUniformSphere(uDir);
+        const Frame frame(d);
+        const glm::dvec2 q = sampleUniformDisk(uPos) * radius_;
+        return {{centre_ - radius_ * d + q.x * frame.s + q.y * frame.t, d}, power()};
+    }
+    RGB power() const override { return radiance_ * (4 * kPi * kPi * radius_ * radius_); }
     bool isEnvironment() const override { return true; }
 
 private:
     RGB radiance_;
+    glm::dvec3 centre_;
+    double radius_;
 };
 
 }  // namespace
 
 SpotProfile::SpotProfile(const glm::dvec3& axis, double coneAngleDeg, double coneDeltaDeg)
     : axis(glm::normalize(axis)), cosTotal(std::cos(radians(coneAngleDeg))), cosStart(std::cos(radians(coneAngleDeg - coneDeltaDeg))) {}
+
+glm::dvec3 SpotProfile::sampleCone(const glm::dvec2& u) const { return Frame(axis).toWorld(1 - u.x * (1 - cosTotal), 2 * kPi * u.y); }
+
+double SpotProfile::conePdf() const { return 1 / (2 * kPi * (1 - cosTotal)); }
+
+// Full strength out to cosStart, then the integral of delta^4 over the band: (cosStart - cosTotal) / 5.
+double SpotProfile::solidAngle() const { return 2 * kPi * ((1 - cosStart) + (cosStart - cosTotal) / 5); }
 
 double SpotProfile::falloff(const glm::dvec3& w) const {
     const double c = glm::dot(w, axis);
@@ -121,7 +201,7 @@ double SpotProfile::falloff(const glm::dvec3& w) const {
     return (delta * delta) * (delta * delta);
 }
 
-std::unique_ptr<Light> makeLight(const LightDesc& desc) {
+std::unique_ptr<Light> makeLight(const LightDesc& desc, const Bounds3& sceneBounds) {
     switch (desc.type) {
         case LightType::Point:
             return std::make_unique<PointLight>(desc.position, desc.intensity);
@@ -134,8 +214,10 @@ std::unique_ptr<Light> makeLight(const LightDesc& desc) {
         }
         case LightType::Quad:
             return std::make_unique<AreaLight>(quad(desc.corner, desc.edge0, desc.edge1), desc.radiance, desc.twoSided);
+        case LightType::Distant:
+            return std::make_unique<DistantLight>(desc.direction, desc.irradiance, sceneBounds);
         case LightType::Environment:
-            return std::make_unique<EnvironmentLight>(desc.radiance);
+            return std::make_unique<EnvironmentLight>(desc.radiance, sceneBounds);
     }
     return nullptr;
 }

@@ -1,5 +1,5 @@
-// Light sources: point and spot (delta), area emitters on triangles (quads, and spot lights
-// with a radius), and a constant environment.
+// Light sources: point, spot and distant (delta), area emitters on triangles (quads, and spot
+// lights with a radius), and a constant environment. Each can also emit photons.
 #pragma once
 #include <memory>
 #include <vector>
@@ -8,6 +8,7 @@
 
 #include "photon/Spectrum.h"
 #include "scene/SceneDescription.h"
+#include "tet/Ray.h"
 
 namespace tetglow {
 
@@ -17,6 +18,12 @@ struct LightSample {
     double distance = 0;  // to the sampled point on the light (infinite for the environment)
     double pdf = 0;       // solid angle; 1 for delta lights
     bool delta = false;
+};
+
+// A photon leaving a light: where, which way, and the flux it carries (Le |cos| / pdf).
+struct PhotonEmission {
+    Ray ray;  // unit direction
+    RGB flux{0};
 };
 
 class Light {
@@ -29,6 +36,11 @@ public:
     virtual double pdf(const glm::dvec3& p, const glm::dvec3& wi, const glm::dvec3& point, uint32_t triangle) const = 0;
     // Radiance leaving the light towards -wi, for a ray along wi that reached it.
     virtual RGB emitted(const glm::dvec3& wi, uint32_t triangle) const = 0;
+    // A photon drawn from the light's emission (position from uPos, direction from uDir); the
+    // mean of flux over draws is power().
+    virtual PhotonEmission emitPhoton(const glm::dvec2& uPos, const glm::dvec2& uDir) const = 0;
+    // Total emitted power, per channel.
+    virtual RGB power() const = 0;
     virtual bool isDelta() const { return false; }
     virtual bool isEnvironment() const { return false; }
     // Emitting triangles, placed in the scene so that rays can hit them (empty for the others).
@@ -42,8 +54,15 @@ struct SpotProfile {
     double cosTotal, cosStart;
     SpotProfile(const glm::dvec3& axis, double coneAngleDeg, double coneDeltaDeg);
     double falloff(const glm::dvec3& w) const;  // w: unit direction leaving the light
+    // A direction uniform within the outer cone, its pdf, and the integral of falloff over
+    // the sphere.
+    glm::dvec3 sampleCone(const glm::dvec2& u) const;
+    double conePdf() const;
+    double solidAngle() const;
 };
 
-std::unique_ptr<Light> makeLight(const LightDesc& desc);
+// Lights at infinity (distant, environment) emit photons over a disk that covers the sphere
+// bounding the scene's geometry, `sceneBounds`.
+std::unique_ptr<Light> makeLight(const LightDesc& desc, const Bounds3& sceneBounds);
 
 }  // namespace tetglow

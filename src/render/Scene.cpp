@@ -59,8 +59,12 @@ Scene::Scene(const SceneDesc& desc) : desc_(desc), camera_(desc.camera) {
     const auto start = std::chrono::steady_clock::now();
     for (const auto& m : desc.media) media_.push_back(buildMedium(m));
     tetSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    Bounds3 geometry;
+    for (const auto& surface : desc.surfaces) geometry.extend(bounds(surface.mesh));
+    for (const auto& m : media_) geometry.extend(bounds(m.medium->mesh().surfaceMesh()));
+    if (geometry.empty()) geometry.extend(desc.camera.position);  // nothing but lights
     for (const auto& l : desc.lights) {
-        lights_.push_back(makeLight(l));
+        lights_.push_back(makeLight(l, geometry));
         if (lights_.back()->isEnvironment()) environment_ = lights_.back().get();
     }
 

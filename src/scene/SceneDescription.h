@@ -20,7 +20,7 @@ struct CameraDesc {
     int width = 400, height = 400;
 };
 
-enum class LightType { Point, Spot, Quad, Environment };
+enum class LightType { Point, Spot, Distant, Quad, Environment };
 
 struct LightDesc {
     LightType type = LightType::Point;
@@ -33,6 +33,8 @@ struct LightDesc {
     // Spot: 0 is a point; > 0 makes it a disk of this radius facing the axis, with the same
     // intensity profile, so paths through specular surfaces can reach it.
     double radius = 0;
+    glm::dvec3 direction{0, -1, 0};  // distant: the direction the light travels
+    RGB irradiance{0};               // distant: on a surface facing the light
     glm::dvec3 corner{0}, edge0{1, 0, 0}, edge1{0, 0, 1};  // quad: emits along cross(edge0, edge1)
     bool twoSided = false;                                // quad
 };

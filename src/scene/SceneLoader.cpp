@@ -104,6 +104,7 @@ LightDesc readLight(JsonObject& o) {
     LightDesc l;
     l.type = o["type"].choice<LightType>({{"point", LightType::Point},
                                            {"spot", LightType::Spot},
+                                           {"distant", LightType::Distant},
                                            {"quad", LightType::Quad},
                                            {"environment", LightType::Environment}});
     const double scale = scaleOf(o);
@@ -112,6 +113,12 @@ LightDesc readLight(JsonObject& o) {
         l.intensity = scale * rgb(o["intensity"]);
     }
     if (l.type == LightType::Spot) readSpotCone(o, l);
+    if (l.type == LightType::Distant) {
+        const JsonValue direction = o["direction"];
+        l.direction = direction.vec3();
+        if (l.direction == glm::dvec3(0)) direction.fail("a non-zero vector");
+        l.irradiance = scale * rgb(o["irradiance"]);
+    }
     if (l.type == LightType::Quad) {
         const Parallelogram p = readParallelogram(o);
         l.corner = p.corner;
@@ -205,7 +212,7 @@ MediumDesc readMedium(JsonObject& o, const fs::path& dir) {
 
 bool emits(const SceneDesc& s) {
     for (const LightDesc& l : s.lights)
-        if (l.intensity != RGB(0) || l.radiance != RGB(0)) return true;
+        if (l.intensity != RGB(0) || l.radiance != RGB(0) || l.irradiance != RGB(0)) return true;
     for (const MediumDesc& m : s.media)
         if (m.emission != RGB(0)) return true;
     return false;
@@ -224,7 +231,7 @@ SceneDesc readScene(JsonObject& o, const std::string& path) {
     for (const JsonValue& v : optionalArray(o["media"]))
         s.media.push_back(v.readObject([&](JsonObject& x) { return readMedium(x, dir); }));
     if (!emits(s))
-        o["lights"].error("nothing emits light: add a light with non-zero intensity or radiance, or give a medium an \"emission\"");
+        o["lights"].error("nothing emits light: add a light with non-zero intensity, irradiance or radiance, or give a medium an \"emission\"");
     return s;
 }
 

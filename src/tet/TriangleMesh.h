@@ -32,6 +32,10 @@ struct TriangleMesh {
 struct Bounds3 {
     glm::dvec3 lo{1e300}, hi{-1e300};
     void extend(const glm::dvec3& p);
+    void extend(const Bounds3& b) {
+        if (!b.empty()) extend(b.lo), extend(b.hi);
+    }
+    bool empty() const { return lo.x > hi.x; }
     double diagonal() const;
 };
 
