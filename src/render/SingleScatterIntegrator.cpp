@@ -7,21 +7,6 @@
 
 namespace tetglow {
 
-namespace {
-
-// The part [t0, t1] of the ray inside the box (slab test); false when it misses.
-bool clip(const Bounds3& box, const Ray& ray, double& t0, double& t1) {
-    for (int k = 0; k < 3; ++k) {
-        const double inv = 1 / ray.d[k];
-        double a = (box.lo[k] - ray.o[k]) * inv, b = (box.hi[k] - ray.o[k]) * inv;
-        if (a > b) std::swap(a, b);
-        t0 = std::max(t0, a), t1 = std::min(t1, b);  // NaN (0 * inf) leaves the bound as it was
-    }
-    return t0 < t1;
-}
-
-}  // namespace
-
 SingleScatterIntegrator::SingleScatterIntegrator(const Scene& scene, const IntegratorDesc& desc)
     : scene_(scene), mode_(desc.boundary), step_(desc.stepSize), parityRays_(desc.parityRays), maxDepth_(desc.maxDepth) {
     for (const auto& m : scene.media()) {

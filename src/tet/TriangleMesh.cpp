@@ -17,6 +17,16 @@ void Bounds3::extend(const glm::dvec3& p) {
 
 double Bounds3::diagonal() const { return glm::length(hi - lo); }
 
+bool clip(const Bounds3& box, const Ray& ray, double& t0, double& t1) {
+    for (int k = 0; k < 3; ++k) {
+        const double inv = 1 / ray.d[k];
+        double a = (box.lo[k] - ray.o[k]) * inv, b = (box.hi[k] - ray.o[k]) * inv;
+        if (a > b) std::swap(a, b);
+        t0 = std::max(t0, a), t1 = std::min(t1, b);  // NaN (0 * inf) leaves the bound as it was
+    }
+    return t0 < t1;
+}
+
 Bounds3 bounds(const TriangleMesh& mesh) {
     Bounds3 b;
     for (const auto& p : mesh.positions) b.extend(p);

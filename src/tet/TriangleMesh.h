@@ -8,6 +8,8 @@
 
 #include <glm/vec3.hpp>
 
+#include "tet/Ray.h"
+
 namespace tetglow {
 
 // Input that cannot be used: broken meshes, bad files. The message is one line naming the problem.
@@ -38,6 +40,9 @@ struct Bounds3 {
     bool empty() const { return lo.x > hi.x; }
     double diagonal() const;
 };
+
+// Narrows [t0, t1] to the part of the ray inside the box (slab test); false when nothing is left.
+bool clip(const Bounds3& box, const Ray& ray, double& t0, double& t1);
 
 Bounds3 bounds(const TriangleMesh& mesh);
 // Signed volume by the divergence theorem (positive for outward winding).
