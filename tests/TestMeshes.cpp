@@ -13,6 +13,8 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include "tet/Predicates.h"
+
 namespace tetglow::test {
 
 double minAngleDegrees(const TriangleMesh& m) {
@@ -24,6 +26,23 @@ double minAngleDegrees(const TriangleMesh& m) {
             smallest = std::min(smallest, std::acos(std::clamp(glm::dot(a, b), -1.0, 1.0)) * 180 / std::numbers::pi);
         }
     return smallest;
+}
+
+bool insideConvex(const TriangleMesh& convex, const glm::dvec3& p) {
+    for (uint32_t t = 0; t < convex.triangles.size(); ++t)
+        if (orient3d(convex.corner(t, 0), convex.corner(t, 1), convex.corner(t, 2), p) < 0) return false;  // above: outside
+    return true;
+}
+
+bool clipConvex(const TriangleMesh& convex, const Ray& ray, double& t0, double& t1) {
+    for (uint32_t t = 0; t < convex.triangles.size(); ++t) {
+        const glm::dvec3 a = convex.corner(t, 0), n = glm::cross(convex.corner(t, 1) - a, convex.corner(t, 2) - a);
+        const double facing = glm::dot(n, ray.d), tPlane = glm::dot(n, a - ray.o) / facing;
+        if (facing > 0) t1 = std::min(t1, tPlane);
+        else if (facing < 0) t0 = std::max(t0, tPlane);
+        else if (glm::dot(n, a - ray.o) < 0) return false;  // parallel, beyond the face
+    }
+    return t0 < t1;
 }
 
 std::string sharedMesh(const std::string& name) {
