@@ -56,19 +56,20 @@ RGB SingleScatterIntegrator::inScattered(size_t m, const glm::dvec3& p, const gl
 RGB SingleScatterIntegrator::marchTets(size_t m, const Ray& ray, double tMax, const RGB& beta, Rng& rng, RGB& L) const {
     const Medium& medium = *scene_.media()[m].medium;
     const MediumParams& params = medium.params();
-    const double u = rng.uniform();
+    // One sample every step_ of the medium's own length along the ray (random offset), across
+    // tet faces: as many samples as the parity march takes inside, each with the exact
+    // transmittance up to it. Each sample stands for step_, an unbiased estimate of the integral.
+    double next = rng.uniform() * step_, walked = 0;  // medium length: of the next sample, before this segment
     RGB tr(1);
-    // Each exact segment is split into equal steps no longer than step_: no boundary error.
     medium.volume().traverse(ray, 0, tMax, [&](const WalkSegment& s) {
-        const int n = std::max(1, int(std::ceil((s.tOut - s.tIn) / step_)));
-        const double h = (s.tOut - s.tIn) / n;
-        for (int i = 0; i < n; ++i) {
-            const double t = s.tIn + (i + u) * h;
+        const double length = s.tOut - s.tIn;
+        for (; next < walked + length; next += step_) {
+            const double t = s.tIn + (next - walked);
             const glm::dvec3 p = ray.at(t);
-            const double density = medium.density(s.tet, p);
             const RGB trHere = tr * exp(-medium.sigmaT() * medium.densityIntegral(s.tet, ray, s.tIn, t));
-            L += beta * trHere * (h * density) * (params.sigmaS * inScattered(m, p, ray.d, s.tet, rng) + params.emission);
+            L += beta * trHere * (step_ * medium.density(s.tet, p)) * (params.sigmaS * inScattered(m, p, ray.d, s.tet, rng) + params.emission);
         }
+        walked += length;
         tr *= exp(-medium.sigmaT() * medium.densityIntegral(s.tet, ray, s.tIn, s.tOut));
         return true;
     });

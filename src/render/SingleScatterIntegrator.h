@@ -1,8 +1,8 @@
 // The seed's baseline: single scattering by ray marching with a fixed step. Where the medium
-// is comes from the boundary mode: `tet` marches the exact segments of the tet walk (and shadow
-// rays get the exact transmittance), `parity` asks the parity test at every step (shadow rays
-// march too), `bbox` fills the mesh's bounding box with the medium. Surfaces: specular chains
-// are followed, diffuse surfaces get direct light only.
+// is comes from the boundary mode: `tet` samples every step of the tet walk's exact segments
+// (shadow rays get the exact transmittance), `parity` asks the parity test at every step
+// (shadow rays march too), `bbox` fills the mesh's bounding box with the medium. Surfaces:
+// specular chains are followed, diffuse surfaces get direct light only.
 #pragma once
 #include <vector>
 
