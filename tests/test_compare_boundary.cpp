@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "StabilityCases.h"
 #include "TestMeshes.h"
 #include "render/BoundaryComparison.h"
 #include "render/BoundaryPicture.h"
@@ -44,10 +45,7 @@ std::vector<ClassificationRow> expectTetsExact(const TetVolume& tets, const Insi
 }
 
 TEST(CompareBoundary, TetsExactOnAConvexPolyhedron) {
-    // A tilted, stretched icosahedron (subdivided once: 80 faces), not aligned with its box.
-    TriangleMesh poly = icosphere(1, 0.8, {0.1, -0.2, 0.3});
-    for (auto& p : poly.positions) p = {p.x + 0.4 * p.y, 1.6 * p.y - 0.3 * p.z, p.z + 0.2 * p.x};
-    const TetVolume tets = tetsOf(poly);
+    const TetVolume tets = tetsOf(tiltedPolyhedron());
     const TriangleMesh snapped = tets.mesh().surfaceMesh();  // the very vertices the tets have
     const auto rows = expectTetsExact(tets, [&](const glm::dvec3& p) { return std::optional(insideConvex(snapped, p)); }, "convex polyhedron");
     for (const auto& row : rows) EXPECT_EQ(row.scored, 20000u);  // the plane tests score every point
