@@ -34,15 +34,16 @@ bool insideConvex(const TriangleMesh& convex, const glm::dvec3& p) {
     return true;
 }
 
-bool clipConvex(const TriangleMesh& convex, const Ray& ray, double& t0, double& t1) {
+double convexChord(const TriangleMesh& convex, const Ray& ray) {
+    double t0 = 0, t1 = INFINITY;
     for (uint32_t t = 0; t < convex.triangles.size(); ++t) {
         const glm::dvec3 a = convex.corner(t, 0), n = glm::cross(convex.corner(t, 1) - a, convex.corner(t, 2) - a);
         const double facing = glm::dot(n, ray.d), tPlane = glm::dot(n, a - ray.o) / facing;
         if (facing > 0) t1 = std::min(t1, tPlane);
         else if (facing < 0) t0 = std::max(t0, tPlane);
-        else if (glm::dot(n, a - ray.o) < 0) return false;  // parallel, beyond the face
+        else if (glm::dot(n, a - ray.o) < 0) return 0;  // parallel, beyond the face
     }
-    return t0 < t1;
+    return std::max(0.0, t1 - t0);
 }
 
 std::string sharedMesh(const std::string& name) {

@@ -14,8 +14,8 @@ double minAngleDegrees(const TriangleMesh& m);
 
 // Analytic truth for a convex mesh (outward wound): p inside or on it, by exact plane tests.
 bool insideConvex(const TriangleMesh& convex, const glm::dvec3& p);
-// Narrows [t0, t1] to the ray's part inside the convex mesh; false when nothing is left.
-bool clipConvex(const TriangleMesh& convex, const Ray& ray, double& t0, double& t1);
+// The length of the ray (t >= 0, in units of d) inside the convex mesh, by exact-enough plane tests.
+double convexChord(const TriangleMesh& convex, const Ray& ray);
 
 // The demo fish and blub, spot, bob from ../shared/meshes (path "" when that folder is absent:
 // tests skip those with a message).

@@ -25,11 +25,6 @@ TetVolume tetsOf(const TriangleMesh& mesh) {
     return TetVolume(tetrahedralize(mesh, o));
 }
 
-double convexChord(const TriangleMesh& convex, const Ray& ray) {
-    double t0 = 0, t1 = INFINITY;
-    return clipConvex(convex, ray, t0, t1) ? t1 - t0 : 0.0;
-}
-
 std::string percent(size_t errors, size_t n) {
     char text[32];
     std::snprintf(text, sizeof text, "%.3f%%", 100.0 * double(errors) / double(n));
