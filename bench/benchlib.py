@@ -1,0 +1,91 @@
+"""What the bench scripts share: running tetglow and timing it, the machine's description, and
+log-log charts drawn by gnuplot (PNG and SVG)."""
+import json
+import os
+import platform
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+
+
+def fail(message):
+    sys.exit(f"{os.path.basename(sys.argv[0])}: error: {message}")
+
+
+def tetglow(binary, *args):
+    """Runs tetglow; its stdout, or a one-line failure with its stderr."""
+    r = subprocess.run([binary, *map(str, args)], capture_output=True, text=True)
+    if r.returncode != 0:
+        fail(f"tetglow {' '.join(map(str, args))}: exit {r.returncode}: {r.stderr.strip()}")
+    return r.stdout
+
+
+def render(binary, scene, output, *args):
+    """Renders; returns (rendering seconds as tetglow reports them, peak resident MiB of the whole
+    command). The seconds leave out tetrahedralization (cached, the same for every method)."""
+    command = [binary, "render", scene, "-o", output, *map(str, args)]
+    with tempfile.TemporaryFile("w+") as out, tempfile.TemporaryFile("w+") as err:
+        proc = subprocess.Popen(command, stdout=out, stderr=err)
+        _, status, usage = os.wait4(proc.pid, 0)  # this child's own peak memory
+        proc.returncode = os.waitstatus_to_exitcode(status)
+        out.seek(0), err.seek(0)
+        stdout, stderr = out.read(), err.read()
+    if proc.returncode != 0:
+        fail(f"{' '.join(command)}: exit {proc.returncode}: {stderr.strip()}")
+    # tetglow prints the seconds to 0.01; samples over samples per second keeps the digits.
+    size = re.search(r": (\d+)x(\d+), (\d+) spp", stdout)
+    rate = re.search(r"rendering [0-9.]+ s \((\d+) samples/s\)", stdout)
+    if not size or not rate or int(rate.group(1)) == 0:
+        fail(f"no rendering time in tetglow's output: {stdout!r}")
+    samples = int(size.group(1)) * int(size.group(2)) * int(size.group(3))
+    return samples / int(rate.group(1)), usage.ru_maxrss / 1024
+
+
+def diff(binary, test, reference):
+    return json.loads(tetglow(binary, "diff", test, reference, "--json"))
+
+
+def machine():
+    """One line: CPU model, cores, memory, OS, load at the time of the call."""
+    model = "unknown CPU"
+    try:
+        with open("/proc/cpuinfo") as f:
+            model = next(l.split(":", 1)[1].strip() for l in f if l.startswith("model name"))
+    except (OSError, StopIteration):
+        pass
+    memory = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES") / 2**30
+    load = ", ".join(f"{x:.1f}" for x in os.getloadavg())
+    return f"{os.cpu_count()} x {model}, {memory:.0f} GiB, {platform.system()} {platform.release()}, load average {load}"
+
+
+def loglog_chart(stem, title, xlabel, ylabel, series, y2label=None):
+    """Writes stem.png and stem.svg: one line per (label, [(x, y), ...], axis) in `series`, axis
+    "y1" or "y2" (the right axis, labelled y2label), both axes logarithmic."""
+    gnuplot = shutil.which("gnuplot")
+    if not gnuplot:
+        fail("gnuplot not found: install gnuplot-nox (./setup.sh does)")
+    blocks = []
+    for i, (label, points, _) in enumerate(series):
+        rows = "\n".join(f"{x!r} {y!r}" for x, y in points if x > 0 and y > 0)
+        blocks.append(f"$s{i} << EOD\n{rows}\nEOD")
+    plots = ", ".join(f"$s{i} using 1:2 axes x1{axis} with linespoints lw 2 pt {7 + i % 6} title {json.dumps(label)}"
+                      for i, (label, _, axis) in enumerate(series))
+    common = "\n".join(blocks) + f"""
+set title {json.dumps(title)}
+set xlabel {json.dumps(xlabel)}
+set ylabel {json.dumps(ylabel)}
+set logscale xy
+set grid xtics ytics mxtics mytics lc rgb '#dddddd'
+set key inside top right box opaque
+set format x '%g'
+set format y '%g'
+"""
+    if y2label:
+        common += f"set y2label {json.dumps(y2label)}\nset logscale y2\nset y2tics\nset format y2 '%g'\n"
+    for terminal, ext in (("pngcairo size 1000,640 font 'sans,11'", "png"), ("svg size 1000,640 font 'sans,11'", "svg")):
+        script = f"set terminal {terminal}\nset output {json.dumps(f'{stem}.{ext}')}\n{common}plot {plots}\n"
+        r = subprocess.run([gnuplot], input=script, capture_output=True, text=True)
+        if r.returncode != 0:
+            fail(f"gnuplot failed on {stem}.{ext}: {r.stderr.strip()}")
