@@ -103,20 +103,12 @@ RGB PhotonIntegrator::radiance(const Ray& cameraRay, Rng& rng) const {
             beta *= tr;
             if (isBlack(beta)) break;
         }
-        if (!hit) {
-            if (const Light* env = scene_.environment()) L += beta * env->emitted(ray.d, 0);
+        if (!hit || hit->kind == HitKind::Light) {
+            L += beta * scene_.emitted(ray, hit ? &*hit : nullptr);
             break;
         }
-        if (hit->kind == HitKind::Light) {
-            L += beta * scene_.lights()[hit->index]->emitted(ray.d, hit->triangle);
-            break;
-        }
+        if (scene_.crossInterface(*hit, ray, state)) continue;
         const MaterialDesc& material = scene_.material(*hit);
-        if (material.type == MaterialType::Interface) {
-            state = scene_.afterHit(*hit, ray.d, state);
-            ray.o = hit->p;
-            continue;
-        }
         if (!isSpecular(material)) {
             const MediumState here = scene_.afterHit(*hit, ray.d, state);
             L += beta * sampleDirect(scene_, hit->p, rng, false, [&](const glm::dvec3& wi) {

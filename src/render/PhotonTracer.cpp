@@ -78,12 +78,8 @@ public:
                 energy.absorbedOnSurfaces += flux();
                 break;
             }
+            if (scene_.crossInterface(*hit, ray, state)) continue;
             const MaterialDesc& material = scene_.material(*hit);
-            if (material.type == MaterialType::Interface) {
-                state = scene_.afterHit(*hit, ray.d, state);
-                ray.o = hit->p;
-                continue;
-            }
             if (++depth >= options_.maxDepth) {
                 energy.cut += flux();
                 break;
