@@ -38,5 +38,5 @@ demo_wall=$wall
 row "volpath, same time as the demo" --integrator volpath --time "$(awk "BEGIN{print $demo_wall/1000}")"
 row "volpath, 64 spp" --integrator volpath --spp 64
 row "photon, beam, no boundary correction" --boundary-correction off
-row "photon, knn-march (the seed's estimate), 16 passes" --estimate knn-march --passes 16
+row "photon, knn-march (the seed's estimate), 4 passes" --estimate knn-march --passes 4
 row "photon, beam, 16 passes" --passes 16
