@@ -1,5 +1,5 @@
-"""What the bench scripts share: running tetglow and timing it, the machine's description, and
-log-log charts drawn by gnuplot (PNG and SVG)."""
+"""What the bench scripts share: running tetglow and timing it, the machine's description,
+log-log charts drawn by gnuplot (PNG and SVG), and rewriting their sections of docs/RESULTS.md."""
 import json
 import os
 import platform
@@ -8,6 +8,8 @@ import shutil
 import subprocess
 import sys
 import tempfile
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 
 def fail(message):
@@ -41,6 +43,20 @@ def render(binary, scene, output, *args):
         fail(f"no rendering time in tetglow's output: {stdout!r}")
     samples = int(size.group(1)) * int(size.group(2)) * int(size.group(3))
     return samples / int(rate.group(1)), usage.ru_maxrss / 1024
+
+
+def fish_variant(work, name, edit):
+    """Writes work/name.json: scenes/fish.json after edit(scene) (a function that changes the
+    parsed JSON in place), its mesh path made absolute so that it loads from there."""
+    with open(os.path.join(ROOT, "scenes", "fish.json")) as f:
+        scene = json.load(f)
+    shape = scene["media"][0]["shape"]
+    shape["file"] = os.path.join(ROOT, "scenes", shape["file"])
+    edit(scene)
+    path = os.path.join(work, name + ".json")
+    with open(path, "w") as f:
+        json.dump(scene, f)
+    return path
 
 
 def diff(binary, test, reference):
@@ -89,3 +105,19 @@ set format y '%g'
         r = subprocess.run([gnuplot], input=script, capture_output=True, text=True)
         if r.returncode != 0:
             fail(f"gnuplot failed on {stem}.{ext}: {r.stderr.strip()}")
+
+
+RESULTS = os.path.join(ROOT, "docs", "RESULTS.md")
+
+
+def replace_section(name, text):
+    """Puts `text` between <!-- name:begin --> and <!-- name:end --> in docs/RESULTS.md, leaving
+    the rest (written by hand or by other scripts) as it is. The markers must already be there."""
+    begin, end = f"<!-- {name}:begin -->", f"<!-- {name}:end -->"
+    with open(RESULTS) as f:
+        doc = f.read()
+    if doc.count(begin) != 1 or doc.count(end) != 1 or doc.index(begin) > doc.index(end):
+        fail(f"{RESULTS}: needs exactly one {begin} followed by one {end}")
+    head, rest = doc.split(begin)
+    with open(RESULTS, "w") as f:
+        f.write(f"{head}{begin}\n{text}\n{end}{rest.split(end, 1)[1]}")
