@@ -1,0 +1,64 @@
+#!/usr/bin/env python3
+"""Where each method breaks, regenerated for docs/RESULTS.md: the figures the stability tests
+print (each test asserts its own bounds; here they are only collected) and the per-query cost
+of the boundary methods from `tetglow compare-boundary` on the fish and blub.
+
+  bench/stability.py [--build DIR]   rewrites the stability section of docs/RESULTS.md
+"""
+import argparse
+import os
+import subprocess
+
+from benchlib import ROOT, fail, machine, replace_section, tetglow
+
+# (test, what it breaks): the order of the section.
+TESTS = [
+    ("StabilityRender.RaysThroughVerticesEdgesAndGrazingEveryIntegrator",
+     "Camera rays exactly through vertices and edges and grazing faces of an absorbing polyhedron, every renderer"),
+    ("Stability.DegenerateLinesThroughAConvexPolyhedron", "The same lines, boundary methods alone"),
+    ("Stability.SliverTets", "Sliver tets of a boundary-only tetrahedralization"),
+    ("Stability.SelfIntersectionHidesTheOverlapFromParity", "A self-intersecting mesh"),
+    ("Stability.FishWithAHole", "The fish with a hole"),
+    ("CompareBoundary.ParityIsWrongOnAMeshWithAHole", "A sphere without its cap"),
+    ("StabilityRender.BrokenMediaAreRefused", "Broken media in a scene: what the renderer says"),
+    ("Stability.ThinPlates", "Very thin features"),
+    ("StabilityRender.PhotonCountsAndRadiiAtTheirExtremes", "Photon counts and radii at their extremes"),
+    ("StabilityRender.ExtremeCoefficientsStayFiniteAndBounded",
+     "Extreme coefficients in a white furnace (radiance 1 everywhere: no mean may exceed 1)"),
+]
+MESHES = ["scenes/meshes/fish.obj", "../shared/meshes/blub.obj"]  # from the repository root
+
+
+def printed(tests_binary, test):
+    """What the test printed, gtest's own lines left out; fails if the test does."""
+    r = subprocess.run([tests_binary, f"--gtest_filter={test}"], capture_output=True, text=True)
+    if r.returncode != 0 or "[  PASSED  ] 1 test" not in r.stdout:
+        fail(f"{test} did not pass:\n{r.stdout[-2000:]}{r.stderr[-2000:]}")
+    return "\n".join(l for l in r.stdout.splitlines() if l.strip() and not l.startswith(("[", "Running main", "Note:")))
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--build", default=os.path.join(ROOT, "build"), help="build folder holding tetglow and tetglow_tests")
+    a = parser.parse_args()
+    binary, tests_binary = os.path.abspath(os.path.join(a.build, "tetglow")), os.path.abspath(os.path.join(a.build, "tetglow_tests"))
+    os.chdir(ROOT)
+    for b in (binary, tests_binary):
+        if not os.access(b, os.X_OK):
+            fail(f"{b}: not found; build first (with tests) or give --build")
+    lines = [f"Command: `bench/stability.py` (runs each test below as `tetglow_tests --gtest_filter=TEST` and collects"
+             f" what it prints; the bounds are asserted by the tests). Machine: {machine()}.", ""]
+    for test, title in TESTS:
+        lines += [f"**{title}** (`{test}`):", "", "```", printed(tests_binary, test), "```", ""]
+    lines += ["**Cost per query of the boundary methods** (`tetglow compare-boundary MESH`, one thread: inside/outside"
+              " of points near the surface, and optical depth along lines, tets exact against the parity march):", ""]
+    for mesh in MESHES:
+        if not os.path.isfile(mesh):
+            fail(f"{mesh}: missing")
+        lines += ["```", tetglow(binary, "compare-boundary", mesh).strip(), "```", ""]
+    replace_section("stability", "\n".join(lines).rstrip())
+    print("rewrote the stability section of docs/RESULTS.md")
+
+
+if __name__ == "__main__":
+    main()
