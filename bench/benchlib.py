@@ -76,9 +76,10 @@ def machine():
     return f"{os.cpu_count()} x {model}, {memory:.0f} GiB, {platform.system()} {platform.release()}, load average {load}"
 
 
-def loglog_chart(stem, title, xlabel, ylabel, series, y2label=None):
+def loglog_chart(stem, title, xlabel, ylabel, series, y2label=None, key="top right"):
     """Writes stem.png and stem.svg: one line per (label, [(x, y), ...], axis) in `series`, axis
-    "y1" or "y2" (the right axis, labelled y2label), both axes logarithmic."""
+    "y1" or "y2" (the right axis, labelled y2label), both axes logarithmic; `key` places the legend
+    where the data leave room."""
     gnuplot = shutil.which("gnuplot")
     if not gnuplot:
         fail("gnuplot not found: install gnuplot-nox (./setup.sh does)")
@@ -94,7 +95,7 @@ set xlabel {json.dumps(xlabel)}
 set ylabel {json.dumps(ylabel)}
 set logscale xy
 set grid xtics ytics mxtics mytics lc rgb '#dddddd'
-set key inside top right box opaque
+set key inside {key} box opaque
 set format x '%g'
 set format y '%g'
 """

@@ -57,14 +57,15 @@ def measure(binary, work, name, mesh, quality=0, max_volume=0, integrators=INTEG
 
 def charts(by_triangles, by_tets, docs):
     def series(rows, key, integrators):
+        rows = sorted(rows, key=lambda r: r[key])  # the refinements are listed by switch, not size
         s = [(f"{label}: seconds", [(r[key], r["renders"][label]["seconds"]) for r in rows], "y1") for label, _ in integrators]
         s.append(("volpath: peak MiB (right axis)", [(r[key], r["renders"]["volpath"]["peak_mib"]) for r in rows], "y2"))
         s.append(("tet mesh MiB (right axis)", [(r[key], r["tet_mib"]) for r in rows], "y2"))
         return s
     loglog_chart(os.path.join(docs, "scaling-triangles"), f"fish at {RESOLUTION}: cost against triangles (no Steiner points)",
-                 "boundary triangles", "rendering time (s)", series(by_triangles, "triangles", INTEGRATORS), "MiB")
+                 "boundary triangles", "rendering time (s)", series(by_triangles, "triangles", INTEGRATORS), "MiB", "bottom right")
     loglog_chart(os.path.join(docs, "scaling-tets"), f"demo fish at {RESOLUTION}: cost against tets (TetGen -q / -a)",
-                 "tetrahedra", "rendering time (s)", series(by_tets, "tets", TET_INTEGRATORS), "MiB")
+                 "tetrahedra", "rendering time (s)", series(by_tets, "tets", TET_INTEGRATORS), "MiB", "bottom right")
 
 
 def tables(by_triangles, by_tets, machine_line):
@@ -88,7 +89,7 @@ def tables(by_triangles, by_tets, machine_line):
     out += header("TetGen switches", tet_labels)
     out += [line(r["name"], r, tet_labels) for r in by_tets]
     # What boundary-only tetrahedralization saves against TetGen's usual quality mesh (-q1.4).
-    plain, quality = by_tets[0], next(r for r in by_tets if r["name"].strip() == "-q1.4")
+    plain, quality = by_tets[0], next(r for r in by_tets if r["name"] == "-q1.4")
     out += ["", f"Boundary-only against `-q1.4`: {plain['tets']} tets instead of {quality['tets']} "
             f"({quality['tets'] / plain['tets']:.2f}x), {plain['tet_mib']:.2f} MiB instead of {quality['tet_mib']:.2f}, TetGen "
             f"{plain['tetgen_seconds']:.2f} s instead of {quality['tetgen_seconds']:.2f} s; rendering " +
@@ -113,7 +114,7 @@ def main():
             tetglow(binary, "generate", "fish", "--rings", rings, "--segments", segments, "-o", mesh)
             by_triangles.append(measure(binary, work, f"{rings} x {segments}", mesh))
         demo = os.path.join(ROOT, "scenes", "meshes", "fish.obj")
-        by_tets = [measure(binary, work, (f"-q{q} " if q else "") + (f"-a{v:g}" if v else "") or "none (-pY)", demo, q, v,
+        by_tets = [measure(binary, work, " ".join(f for f in (f"-q{q}" if q else "", f"-a{v:g}" if v else "") if f) or "none (-pY)", demo, q, v,
                            TET_INTEGRATORS) for q, v in REFINEMENTS]
     charts(by_triangles, by_tets, docs)
     with open(os.path.join(docs, "scaling-fish.json"), "w") as f:
