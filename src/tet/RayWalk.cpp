@@ -87,9 +87,10 @@ std::array<TetWalk::Vertex, 3> TetWalk::projectSurface(uint32_t s) const {
     return {project(tv[face[0]]), project(tv[face[1]]), project(tv[face[2]])};
 }
 
-bool TetWalk::tryEnter(uint32_t s) {
+bool TetWalk::tryEnter(uint32_t s, bool* exits) {
     const auto [a, b, c] = projectSurface(s);
     const double ab = orient(a, b), bc = orient(b, c), ca = orient(c, a);
+    if (exits) *exits = ab < 0 && bc < 0 && ca < 0;
     if (!(ab > 0 && bc > 0 && ca > 0)) return false;
     const uint32_t f = mesh_->surfaceFace[s];
     setFace(f >> 2, int(f & 3), a, b, c, ab, bc, ca);
@@ -111,7 +112,9 @@ TetWalk TetWalk::enter(const TetMesh& mesh, const Ray& ray, uint32_t s) {
 
 void TetWalk::entriesNear(const TetMesh& mesh, const Ray& ray, uint32_t s, std::vector<TetWalk>& entries) {
     TetWalk w(mesh, ray);
-    if (w.tryEnter(s)) return entries.push_back(w);
+    bool exits = false;
+    if (w.tryEnter(s, &exits)) return entries.push_back(w);
+    if (exits) return;  // through s's interior the other way: no entry can be near
     anyAround(mesh, s, [&](uint32_t t) {
         if (w.tryEnter(t)) entries.push_back(w);
         return false;

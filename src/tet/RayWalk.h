@@ -92,8 +92,9 @@ private:
     static double orient(const Vertex& a, const Vertex& b) { return side(a.id, a.uv, b.id, b.uv); }
     int localIndex(uint32_t id) const;
     std::array<Vertex, 3> projectSurface(uint32_t s) const;  // s's face in its tet, wound inward
-    // Enters through s if the exact tests put the ray inside it.
-    bool tryEnter(uint32_t s);
+    // Enters through s if the exact tests put the ray inside it; *exits tells whether they put
+    // it inside s the other way round, leaving the medium there.
+    bool tryEnter(uint32_t s, bool* exits = nullptr);
     bool cross(int opposite, const Vertex& e, const Vertex& x, const Vertex& y, double sEX, double sXY, double sYE,
                WalkSegment& segment);
     void setFace(uint32_t tet, int apex, Vertex a, Vertex b, Vertex c, double ab, double bc, double ca);  // by value: callers pass face_ itself
