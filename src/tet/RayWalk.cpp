@@ -37,12 +37,8 @@ bool anyAround(const TetMesh& mesh, uint32_t s, Visit&& visit) {
 
 }  // namespace
 
-double side(uint32_t ia, const glm::dvec2& a, uint32_t ib, const glm::dvec2& b) {
-    if (ia > ib) return -side(ib, b, ia, a);  // canonical order: the same numbers from every tet
-    const double l = a.x * b.y, r = a.y * b.x, det = l - r;
-    constexpr double kErrBound = 3.3306690738754716e-16;  // Shewchuk's ccwerrboundA
-    const double bound = kErrBound * (std::abs(l) + std::abs(r));
-    if (det > bound || -det > bound) return det;
+double sideExact(uint32_t ia, const glm::dvec2& a, uint32_t ib, const glm::dvec2& b) {
+    if (ia > ib) return -sideExact(ib, b, ia, a);  // canonical order: the same answer from every tet
     const double exact = orient2d(a, b, {0, 0});
     if (exact != 0) return exact;
     // Simulation of simplicity: orient2d(a, b, (eps, eps^2)) = a x b + eps (a.y - b.y) + eps^2 (b.x - a.x).
@@ -61,19 +57,14 @@ RayProjection::RayProjection(const Ray& ray) : o(ray.o), d(ray.d), invDD(1.0 / g
 
 TetWalk::TetWalk(const TetMesh& mesh, const Ray& ray) : mesh_(&mesh), projection_(ray), maxSteps_(mesh.tets.size() + 8) {}
 
-TetWalk::Vertex TetWalk::project(uint32_t id) const {
-    const auto [uv, t] = projection_(mesh_->vertices[id]);
-    return {id, uv, t};
-}
-
-double TetWalk::faceT(const Vertex& e, const Vertex& x, const Vertex& y, double sEX, double sXY, double sYE) const {
+inline double TetWalk::faceT(const Vertex& e, const Vertex& x, const Vertex& y, double sEX, double sXY, double sYE) const {
     // Barycentric coordinates of the origin in the projected face are the three sides.
     const double we = std::max(sXY, 0.0), wx = std::max(sYE, 0.0), wy = std::max(sEX, 0.0), sum = we + wx + wy;
     if (!(sum > 0)) return (e.t + x.t + y.t) / 3.0;
     return (we * e.t + wx * x.t + wy * y.t) / sum;
 }
 
-void TetWalk::setFace(uint32_t tet, int apex, Vertex a, Vertex b, Vertex c, double ab, double bc, double ca) {
+inline void TetWalk::setFace(uint32_t tet, int apex, Vertex a, Vertex b, Vertex c, double ab, double bc, double ca) {
     tet_ = tet;
     apex_ = apex;
     face_[0] = a, face_[1] = b, face_[2] = c;
@@ -173,12 +164,12 @@ bool TetWalk::next(WalkSegment& segment) {
     return cross(localIndex(a.id), e, b, c, sb, side_[1], -sc, segment);
 }
 
-int TetWalk::localIndex(uint32_t id) const {
+inline int TetWalk::localIndex(uint32_t id) const {
     const auto& tv = mesh_->tets[tet_];
-    return tv[0] == id ? 0 : tv[1] == id ? 1 : tv[2] == id ? 2 : 3;
+    return int(tv[1] == id) + 2 * int(tv[2] == id) + 3 * int(tv[3] == id);  // no branches
 }
 
-bool TetWalk::cross(int opposite, const Vertex& e, const Vertex& x, const Vertex& y, double sEX, double sXY, double sYE,
+inline bool TetWalk::cross(int opposite, const Vertex& e, const Vertex& x, const Vertex& y, double sEX, double sXY, double sYE,
                     WalkSegment& segment) {
     const double tOut = std::max(tIn_, faceT(e, x, y, sEX, sXY, sYE));
     segment = {tet_, tIn_, tOut};

@@ -8,6 +8,7 @@
 // edges) are broken by simulation of simplicity, as if the ray were moved by (eps, eps^2).
 #pragma once
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -41,9 +42,22 @@ struct RayProjection {
     double invDD;
 };
 
+// side() where the float sign is uncertain: exact (orient2d), zeros broken by simulation of
+// simplicity with the lower vertex id first.
+double sideExact(uint32_t ia, const glm::dvec2& a, uint32_t ib, const glm::dvec2& b);
+
 // The side of the origin relative to the directed line a -> b: > 0 when a, b, origin are
-// counter-clockwise. Never 0 (simulation of simplicity); antisymmetric in (a, b) exactly.
-double side(uint32_t ia, const glm::dvec2& a, uint32_t ib, const glm::dvec2& b);
+// counter-clockwise. Never 0 (simulation of simplicity); antisymmetric in (a, b) exactly: the
+// products commute and l - r = -(r - l) in IEEE arithmetic (the build forbids FMA contraction,
+// which would break this), so the fast path needs no ordering of a and b. Inline: the walk's
+// hot loop is mostly this.
+inline double side(uint32_t ia, const glm::dvec2& a, uint32_t ib, const glm::dvec2& b) {
+    const double l = a.x * b.y, r = a.y * b.x, det = l - r;
+    constexpr double kErrBound = 3.3306690738754716e-16;  // Shewchuk's ccwerrboundA
+    const double bound = kErrBound * (std::abs(l) + std::abs(r));
+    if (det > bound || -det > bound) return det;
+    return sideExact(ia, a, ib, b);
+}
 
 class TetWalk {
 public:
@@ -88,7 +102,10 @@ private:
     };
 
     TetWalk(const TetMesh& mesh, const Ray& ray);
-    Vertex project(uint32_t id) const;
+    Vertex project(uint32_t id) const {
+        const auto [uv, t] = projection_(mesh_->vertices[id]);
+        return {id, uv, t};
+    }
     static double orient(const Vertex& a, const Vertex& b) { return side(a.id, a.uv, b.id, b.uv); }
     int localIndex(uint32_t id) const;
     std::array<Vertex, 3> projectSurface(uint32_t s) const;  // s's face in its tet, wound inward
