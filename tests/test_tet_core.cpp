@@ -200,8 +200,9 @@ TEST_P(TetCore, RandomRayChordsMatchEmbree) {
 // Each triangle is crossed or not by exact orientation tests in the plane across the ray, with
 // the walk's tie-break (simulation of simplicity: the ray moved by an infinitesimal that is the
 // same for every triangle, so the crossings are those of one line, alternately in and out); the
-// chord is the sum of the exits' t less the sum of the entries' t. Tets and Embree play no part.
-// Also the clearance: how far the ray passes from the nearest surface edge or vertex.
+// chord is the sum of the exits' t less the sum of the entries' t (the rays start outside the
+// bounds, so every crossing has t > 0). Tets and Embree play no part; only side() is shared
+// with the walk. Also the clearance: how far the ray passes from the nearest surface edge or vertex.
 struct ExactChord {
     double chord = 0, clearance = INFINITY;
 };
@@ -291,9 +292,7 @@ TEST_P(TetCore, DegenerateRayChordsMatchEmbreeOrExactChord) {
                 "more steps than tets %d, chord off by > 1e-6 diagonals %d\n",
                 GetParam().name.c_str(), rays, ambiguous, lost, longWalks, off);
     EXPECT_GT(rays, 3000);
-    EXPECT_EQ(lost, 0);
-    EXPECT_EQ(longWalks, 0);
-    EXPECT_EQ(off, 0);
+    EXPECT_EQ(lost + longWalks + off, 0);  // each counted on the line above
 }
 
 TEST_P(TetCore, WalkFromInsideMatchesWalkFromOutside) {
