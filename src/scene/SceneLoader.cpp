@@ -66,6 +66,7 @@ CameraDesc readCamera(JsonObject& o) {
         c.width = int(size[0].integer(1, kMaxResolution));
         c.height = int(size[1].integer(1, kMaxResolution));
     }
+    if (auto f = o["handedness"]) c.handedness = f.choice<Handedness>({{"right", Handedness::Right}, {"left", Handedness::Left}});
     return c;
 }
 
@@ -100,12 +101,13 @@ void readSpotCone(JsonObject& o, LightDesc& l) {
     if (auto f = o["radius"]) l.radius = f.number(kNonNegative);
 }
 
-LightDesc readLight(JsonObject& o) {
+LightDesc readLight(JsonObject& o, const fs::path& dir) {
     LightDesc l;
     l.type = o["type"].choice<LightType>({{"point", LightType::Point},
                                            {"spot", LightType::Spot},
                                            {"distant", LightType::Distant},
                                            {"quad", LightType::Quad},
+                                           {"mesh", LightType::Mesh},
                                            {"environment", LightType::Environment}});
     const double scale = scaleOf(o);
     if (l.type == LightType::Point || l.type == LightType::Spot) {
@@ -124,9 +126,12 @@ LightDesc readLight(JsonObject& o) {
         l.corner = p.corner;
         l.edge0 = p.edge0;
         l.edge1 = p.edge1;
-        if (auto f = o["two_sided"]) l.twoSided = f.boolean();
     }
-    if (l.type == LightType::Quad || l.type == LightType::Environment) l.radiance = scale * rgb(o["radiance"]);
+    if (l.type == LightType::Mesh) l.mesh = o["shape"].readObject([&](JsonObject& s) { return readShape(s, dir, false); }).mesh;
+    if (l.type == LightType::Quad || l.type == LightType::Mesh)
+        if (auto f = o["two_sided"]) l.twoSided = f.boolean();
+    if (l.type == LightType::Quad || l.type == LightType::Mesh || l.type == LightType::Environment)
+        l.radiance = scale * rgb(o["radiance"]);
     return l;
 }
 
@@ -225,7 +230,8 @@ SceneDesc readScene(JsonObject& o, const std::string& path) {
     s.camera = o["camera"].readObject(readCamera);
     if (auto f = o["integrator"]) s.integrator = f.readObject(readIntegrator);
     if (auto f = o["output"]) s.output = (dir / f.string()).string();
-    for (const JsonValue& v : optionalArray(o["lights"])) s.lights.push_back(v.readObject(readLight));
+    for (const JsonValue& v : optionalArray(o["lights"]))
+        s.lights.push_back(v.readObject([&](JsonObject& x) { return readLight(x, dir); }));
     for (const JsonValue& v : optionalArray(o["surfaces"]))
         s.surfaces.push_back(v.readObject([&](JsonObject& x) { return readSurface(x, dir); }));
     for (const JsonValue& v : optionalArray(o["media"]))
