@@ -2,14 +2,14 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
 #include <limits>
-#include <sstream>
 
 #include <glm/geometric.hpp>
 
 #include "scene/JsonReader.h"
+#include "scene/PbrtParser.h"
 #include "scene/SceneShapes.h"
+#include "scene/TextFile.h"
 
 namespace tetglow {
 namespace {
@@ -19,17 +19,6 @@ namespace fs = std::filesystem;
 constexpr int kMaxResolution = 16384;
 constexpr int kMaxParityRays = 15;
 constexpr Range kUnitInterval{.lo = 0, .hi = 1};
-
-std::string readText(const std::string& path) {
-    std::error_code ec;
-    if (!fs::exists(path, ec)) throw InputError(path + ": no such file");
-    if (fs::is_directory(path, ec)) throw InputError(path + ": is a directory, not a scene file");
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(path + ": cannot open");
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
-}
 
 RGB rgb(const JsonValue& v) { return v.vec3OrScalar(kNonNegative); }
 
@@ -215,14 +204,6 @@ MediumDesc readMedium(JsonObject& o, const fs::path& dir) {
     return m;
 }
 
-bool emits(const SceneDesc& s) {
-    for (const LightDesc& l : s.lights)
-        if (l.intensity != RGB(0) || l.radiance != RGB(0) || l.irradiance != RGB(0)) return true;
-    for (const MediumDesc& m : s.media)
-        if (m.emission != RGB(0)) return true;
-    return false;
-}
-
 SceneDesc readScene(JsonObject& o, const std::string& path) {
     const fs::path dir = fs::path(path).parent_path();
     SceneDesc s;
@@ -236,15 +217,25 @@ SceneDesc readScene(JsonObject& o, const std::string& path) {
         s.surfaces.push_back(v.readObject([&](JsonObject& x) { return readSurface(x, dir); }));
     for (const JsonValue& v : optionalArray(o["media"]))
         s.media.push_back(v.readObject([&](JsonObject& x) { return readMedium(x, dir); }));
-    if (!emits(s))
+    if (!emitsLight(s))
         o["lights"].error("nothing emits light: add a light with non-zero intensity, irradiance or radiance, or give a medium an \"emission\"");
     return s;
 }
 
 }  // namespace
 
+bool emitsLight(const SceneDesc& s) {
+    for (const LightDesc& l : s.lights)
+        if (l.intensity != RGB(0) || l.radiance != RGB(0) || l.irradiance != RGB(0)) return true;
+    for (const MediumDesc& m : s.media)
+        if (m.emission != RGB(0)) return true;
+    return false;
+}
+
 SceneDesc loadScene(const std::string& path) {
-    const nlohmann::json doc = parseJson(readText(path), path);
+    const std::string text = readTextFile(path);
+    if (fs::path(path).extension() == ".pbrt" || looksLikePbrt(text)) return loadPbrtScene(path);
+    const nlohmann::json doc = parseJson(text, path);
     return JsonValue(&doc, nlohmann::json::json_pointer(), path).readObject([&](JsonObject& o) { return readScene(o, path); });
 }
 
