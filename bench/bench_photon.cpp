@@ -1,5 +1,6 @@
 // Photon map queries: k-NN and fixed-radius lookups, and beam queries over photon discs, on
-// photons uniform in the unit cube. main() is in bench_tet.cpp.
+// photons uniform in the unit cube; and photon paths traced through the demo fish scene.
+// main() is in bench_tet.cpp.
 #include <cmath>
 #include <map>
 #include <memory>
@@ -10,6 +11,8 @@
 
 #include "photon/PhotonBeams.h"
 #include "photon/PhotonMap.h"
+#include "render/PhotonTracer.h"
+#include "scene/SceneLoader.h"
 
 namespace tetglow {
 namespace {
@@ -98,6 +101,22 @@ void BM_PhotonBeams(benchmark::State& state) {
     state.counters["discs/ray"] = double(discs) / double(state.iterations());
 }
 BENCHMARK(BM_PhotonBeams);
+
+// Photon paths from every emitter of scenes/fish.json (spot disk, environment, the glowing
+// medium) through the glass skin, the medium and off the floor, on all cores.
+void BM_TracePhotons(benchmark::State& state) {
+    static const Scene scene(loadScene(TETGLOW_SOURCE_DIR "/scenes/fish.json"));
+    static const PhotonSource source(scene);
+    const uint64_t paths = 100000;
+    uint64_t pass = 0, stored = 0;
+    for (auto _ : state) {
+        const TracedPhotons traced = tracePhotons(scene, source, {paths, 64, 1, pass++});
+        stored += traced.volume[0].size() + traced.surface.size();
+    }
+    state.SetItemsProcessed(int64_t(state.iterations() * paths));
+    state.counters["stored_per_path"] = double(stored) / double(state.iterations() * paths);
+}
+BENCHMARK(BM_TracePhotons)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 }  // namespace tetglow

@@ -6,37 +6,12 @@
 #include <gtest/gtest.h>
 
 #include "TestMeshes.h"
+#include "TestScenes.h"
 #include "render/Integrator.h"
 #include "render/Renderer.h"
 
 namespace tetglow::test {
 namespace {
-
-MediumDesc sphereMedium(const RGB& sigmaA, const RGB& sigmaS, double g = 0, int subdivisions = 3) {
-    MediumDesc m;
-    m.name = "sphere";
-    m.boundary = icosphere(subdivisions, 1.0);
-    for (auto& p : m.boundary.positions) p = {roundToFloat(p.x), roundToFloat(p.y), roundToFloat(p.z)};
-    m.sigmaA = sigmaA, m.sigmaS = sigmaS, m.g = g;
-    return m;
-}
-
-SceneDesc sceneWith(const MediumDesc& medium, int resolution) {
-    SceneDesc s;
-    s.camera.position = {0.3, 0.2, 4};
-    s.camera.lookAt = {0, 0, 0};
-    s.camera.fov = 35;
-    s.camera.width = s.camera.height = resolution;
-    s.media.push_back(medium);
-    return s;
-}
-
-LightDesc environment(double radiance) {
-    LightDesc l;
-    l.type = LightType::Environment;
-    l.radiance = RGB(radiance);
-    return l;
-}
 
 // (a) A purely absorbing sphere in front of a white environment: every pixel is exactly the
 // transmittance along its chord, the chord taken from Embree's hits on the boundary.
@@ -169,19 +144,26 @@ TEST(Render, SameSeedSameImageAnyThreadCount) {
     quad.corner = {-1, 3, -1}, quad.edge0 = {0, 0, 2}, quad.edge1 = {2, 0, 0}, quad.radiance = RGB(5);
     desc.lights.push_back(quad);
     const Scene scene(desc);
-    const auto integrator = makeIntegrator(scene, IntegratorDesc{});
-    RenderOptions options;
-    options.spp = 4;
-    options.seed = 42;
-    options.threads = 1;
-    const Image one = render(scene, *integrator, options).image;
-    options.threads = 2;
-    const Image two = render(scene, *integrator, options).image;
-    ASSERT_EQ(one.pixels.size(), two.pixels.size());
-    EXPECT_EQ(0, std::memcmp(one.pixels.data(), two.pixels.data(), one.pixels.size() * sizeof(one.pixels[0])));
-    options.seed = 43;
-    const Image other = render(scene, *integrator, options).image;
-    EXPECT_NE(0, std::memcmp(one.pixels.data(), other.pixels.data(), one.pixels.size() * sizeof(one.pixels[0])));
+    for (const PhotonEstimate estimate : {PhotonEstimate::Beam, PhotonEstimate::KnnMarch})
+        for (const IntegratorType type : {IntegratorType::VolPath, IntegratorType::Photon}) {
+            if (type == IntegratorType::VolPath && estimate == PhotonEstimate::KnnMarch) continue;
+            SCOPED_TRACE(type == IntegratorType::VolPath ? "volpath" : estimate == PhotonEstimate::Beam ? "photon, beam" : "photon, knn-march");
+            IntegratorDesc integ;
+            integ.type = type, integ.estimate = estimate, integ.photons = 20000, integ.seed = 42;
+            const auto integrator = makeIntegrator(scene, integ);
+            RenderOptions options;
+            options.spp = 4;
+            options.seed = 42;
+            options.threads = 1;
+            const Image one = render(scene, *integrator, options).image;
+            options.threads = 2;
+            const Image two = render(scene, *integrator, options).image;
+            ASSERT_EQ(one.pixels.size(), two.pixels.size());
+            EXPECT_EQ(0, std::memcmp(one.pixels.data(), two.pixels.data(), one.pixels.size() * sizeof(one.pixels[0])));
+            options.seed = 43;
+            const Image other = render(scene, *integrator, options).image;
+            EXPECT_NE(0, std::memcmp(one.pixels.data(), other.pixels.data(), one.pixels.size() * sizeof(one.pixels[0])));
+        }
 }
 
 }  // namespace

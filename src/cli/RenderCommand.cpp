@@ -9,6 +9,7 @@
 #include "cli/Commands.h"
 #include "cli/Progress.h"
 #include "render/ImageIO.h"
+#include "render/PhotonIntegrator.h"
 #include "render/Renderer.h"
 #include "scene/SceneLoader.h"
 
@@ -16,10 +17,10 @@ namespace tetglow::cli {
 namespace {
 
 struct Options {
-    std::string scene, output, integrator, boundary, resolution;
-    int spp = 0, threads = 0, maxDepth = 0;
-    double step = 0, exposure = 0;
-    int64_t seed = -1;
+    std::string scene, output, integrator, boundary, resolution, estimate, boundaryCorrection;
+    int spp = 0, threads = 0, maxDepth = 0, k = 0;
+    double step = 0, exposure = 0, radius = 0, time = 0;
+    int64_t seed = -1, photons = 0;
 };
 
 std::atomic<bool> interrupted{false};
@@ -56,6 +57,13 @@ void applyOverrides(const Options& o, SceneDesc& scene) {
     if (o.maxDepth) integ.maxDepth = o.maxDepth;
     if (o.step > 0) integ.stepSize = o.step;
     if (o.seed >= 0) integ.seed = uint64_t(o.seed);
+    if (o.photons) integ.photons = uint64_t(o.photons);
+    if (o.k) integ.k = o.k, integ.radius = 0;
+    if (o.radius > 0) integ.radius = o.radius;
+    if (o.estimate == "beam") integ.estimate = PhotonEstimate::Beam;
+    if (o.estimate == "knn-march") integ.estimate = PhotonEstimate::KnnMarch;
+    if (!o.boundaryCorrection.empty()) integ.boundaryCorrection = o.boundaryCorrection == "on";
+    if (o.time > 0) integ.timeLimit = o.time, integ.spp = o.spp ? o.spp : 1 << 20;
     if (!o.resolution.empty()) {
         int w = 0, h = 0;
         char end = 0;
@@ -87,6 +95,7 @@ void run(const Options& o) {
 
     RenderOptions options;
     options.spp = desc.integrator.spp;
+    options.timeLimit = desc.integrator.timeLimit;
     options.seed = desc.integrator.seed;
     options.threads = o.threads;
     options.cancel = &interrupted;
@@ -105,8 +114,15 @@ void run(const Options& o) {
     if (result.cancelled) std::fprintf(stderr, "interrupted: wrote %d complete passes (and the tiles of the next)\n", result.passes);
     if (result.droppedSamples) std::fprintf(stderr, "warning: %llu samples were NaN or Inf and were dropped\n", (unsigned long long)result.droppedSamples);
     std::printf("%s and %s: %dx%d, %d spp\n", output.c_str(), previewPath(output).c_str(), desc.camera.width, desc.camera.height, result.passes);
-    std::printf("time: tetrahedralization %.2f s, photon tracing 0.00 s, rendering %.2f s (%.0f samples/s)\n",
-                scene.tetrahedralizeSeconds(), result.seconds, pixels * result.passes / result.seconds);
+    double tracing = 0;
+    if (const auto* photon = dynamic_cast<const PhotonIntegrator*>(integrator.get())) {
+        const PhotonStats& s = photon->stats();
+        tracing = s.tracingSeconds;
+        std::printf("photons: %llu paths traced, %llu stored in media, %llu on surfaces, %.1f MB of maps per pass\n",
+                    (unsigned long long)s.paths, (unsigned long long)s.volumePhotons, (unsigned long long)s.surfacePhotons, s.bytes / 1e6);
+    }
+    std::printf("time: tetrahedralization %.2f s, photon tracing %.2f s, rendering %.2f s (%.0f samples/s)\n",
+                scene.tetrahedralizeSeconds(), tracing, result.seconds - tracing, pixels * result.passes / result.seconds);
     if (result.cancelled) {
         std::fflush(stdout);
         std::exit(130);  // the shell's code for "stopped by Ctrl-C", with the image written
@@ -130,6 +146,21 @@ void addRenderCommand(CLI::App& app) {
         ->check(CLI::IsMember({"tet", "parity", "bbox"}));
     cmd->add_option("--step", o->step, "single: ray-march step in world units")->check(kFinite & CLI::PositiveNumber);
     cmd->add_option("--max-depth", o->maxDepth, "Events per path")->check(CLI::Range(1, 100000));
+    cmd->add_option("--photons", o->photons, "photon: photon paths per pass")->check(CLI::Range(int64_t(1), int64_t(1) << 40));
+    auto* k = cmd->add_option("--k", o->k, "photon: neighbours that set the radius of each lookup (k-NN) or disc (beam)")
+                  ->check(CLI::Range(1, 100000));
+    cmd->add_option("--radius", o->radius, "photon: a fixed radius (world units) instead of --k")
+        ->check(kFinite & CLI::PositiveNumber)
+        ->excludes(k);
+    cmd->add_option("--estimate", o->estimate, "photon: knn-march (the seed's march with a k-NN lookup per step) or beam")
+        ->check(CLI::IsMember({"knn-march", "beam"}));
+    cmd->add_option("--boundary-correction", o->boundaryCorrection, "photon, knn-march: divide by the part of the ball inside the medium (on|off)")
+        ->check(CLI::IsMember({"on", "off"}));
+    auto* passes = cmd->add_option("--passes", o->spp, "photon: passes, each with fresh photons and one sample per pixel (the same as --spp)")
+                       ->check(CLI::Range(1, 1 << 20));
+    cmd->add_option("--time", o->time, "Render passes until this many seconds have passed (photon: progressive)")
+        ->check(kFinite & CLI::PositiveNumber)
+        ->excludes(passes);
     cmd->add_option("--exposure", o->exposure, "PNG preview exposure in stops")->check(kFinite);
     cmd->callback([o] { run(*o); });
 }

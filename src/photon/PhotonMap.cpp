@@ -102,7 +102,7 @@ void PhotonMap::withinRadius(const glm::vec3& p, float radius, std::vector<Neigh
     });
 }
 
-void PhotonMap::assignRadii(int k, float maxRadius) {
+void PhotonMap::assignRadii(int k, float maxRadius, float scale) {
     if (k < 1) throw std::invalid_argument("PhotonMap::assignRadii: k must be at least 1");
     std::vector<Photon>& photons = index_->photons;
     tbb::parallel_for(tbb::blocked_range<size_t>(0, photons.size()), [&](const tbb::blocked_range<size_t>& range) {
@@ -110,9 +110,13 @@ void PhotonMap::assignRadii(int k, float maxRadius) {
         for (size_t i = range.begin(); i != range.end(); ++i) {
             // The photon finds itself at distance 0, so its k-th other photon is entry k.
             knn(photons[i].position, k + 1, near, maxRadius * maxRadius);
-            photons[i].radius = near.size() > size_t(k) ? std::sqrt(near[size_t(k)].distance2) : maxRadius;
+            photons[i].radius = scale * (near.size() > size_t(k) ? std::sqrt(near[size_t(k)].distance2) : maxRadius);
         }
     });
+}
+
+void PhotonMap::setRadii(float radius) {
+    for (Photon& p : index_->photons) p.radius = radius;
 }
 
 }  // namespace tetglow

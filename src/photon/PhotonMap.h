@@ -31,10 +31,11 @@ public:
     // Every photon with distance < radius, nearest first; equal distances by index.
     void withinRadius(const glm::vec3& p, float radius, std::vector<Neighbour>& out) const;
 
-    // Sets each photon's radius to the distance of its k-th nearest other photon, or to
-    // maxRadius when that is farther (or when there are not k others). In parallel; each
-    // radius depends only on the photon set. Not to be run alongside queries.
-    void assignRadii(int k, float maxRadius);
+    // Sets each photon's radius to `scale` times the distance of its k-th nearest other photon,
+    // or times maxRadius when that is farther (or when there are not k others). In parallel;
+    // each radius depends only on the photon set. Not to be run alongside queries.
+    void assignRadii(int k, float maxRadius, float scale = 1);
+    void setRadii(float radius);  // the same radius for every photon
 
     const std::vector<Photon>& photons() const;
     size_t size() const { return photons().size(); }

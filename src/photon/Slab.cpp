@@ -68,9 +68,10 @@ SlabResult simulateSlab(const SlabParams& p) {
                 if (entry) {
                     SpectralPath path(0);
                     const WalkResult r = photonWalk(medium, Ray{ray.at(entry->t), ray.d}, WalkStart::surface(entry->triangle),
-                                                    RGB(1), path, rng, 1 << 20, [](const PhotonEvent&) {});
-                    x4[2] = r.absorbed.x;
-                    if (r.escaped) {
+                                                    RGB(1), path, rng, 1 << 20, [](const Ray&) { return INFINITY; },
+                                                    [](const PhotonEvent&) {});
+                    x4[2] = r.absorbedFlux.x;
+                    if (r.left) {
                         const double nz = glm::normalize(bvh.normal(r.exitTriangle)).z, w = path.weight().x;
                         x4[nz > 0.5 ? 0 : nz < -0.5 ? 1 : 3] = w;
                     }

@@ -1,5 +1,6 @@
 #include "render/Integrator.h"
 
+#include "render/PhotonIntegrator.h"
 #include "render/SingleScatterIntegrator.h"
 #include "render/VolPathIntegrator.h"
 
@@ -12,9 +13,9 @@ std::unique_ptr<Integrator> makeIntegrator(const Scene& scene, const IntegratorD
         case IntegratorType::Single:
             return std::make_unique<SingleScatterIntegrator>(scene, desc);
         case IntegratorType::Photon:
-            break;
+            return std::make_unique<PhotonIntegrator>(scene, desc);
     }
-    throw InputError("the photon integrator is not available in this build yet (issue 4); use volpath or single");
+    return nullptr;
 }
 
 }  // namespace tetglow

@@ -9,7 +9,7 @@
 
 namespace tetglow {
 
-RenderResult render(const Scene& scene, const Integrator& integrator, const RenderOptions& options) {
+RenderResult render(const Scene& scene, Integrator& integrator, const RenderOptions& options) {
     const auto start = std::chrono::steady_clock::now();
     const Camera& camera = scene.camera();
     Film film(camera.width(), camera.height());
@@ -20,8 +20,11 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
     auto cancelled = [&] { return options.cancel && options.cancel->load(std::memory_order_relaxed); };
 
     tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
+    auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
     for (int pass = 0; pass < options.spp && !cancelled(); ++pass) {
+        if (pass > 0 && options.timeLimit > 0 && elapsed() >= options.timeLimit) break;
         arena.execute([&] {
+            integrator.beginPass(uint64_t(pass));
             tbb::parallel_for(tbb::blocked_range2d<int>(0, camera.height(), 16, 0, camera.width(), 16), [&](const auto& tile) {
                 if (cancelled()) return;
                 for (int y = tile.rows().begin(); y < tile.rows().end(); ++y)
@@ -33,7 +36,7 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
                 if (!options.progress) return;
                 const uint64_t done = pixelsDone += uint64_t(tile.rows().size()) * tile.cols().size();
                 std::unique_lock lock(progressMutex, std::try_to_lock);
-                if (lock) options.progress(double(done) / totalPixels);
+                if (lock) options.progress(options.timeLimit > 0 ? std::min(1.0, elapsed() / options.timeLimit) : double(done) / totalPixels);
             });
         });
         if (!cancelled()) result.passes = pass + 1;
@@ -41,7 +44,7 @@ RenderResult render(const Scene& scene, const Integrator& integrator, const Rend
     result.cancelled = cancelled();
     result.image = film.image();
     result.droppedSamples = film.droppedSamples();
-    result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    result.seconds = elapsed();
     return result;
 }
 

@@ -12,6 +12,7 @@ struct RenderOptions {
     int spp = 16;
     uint64_t seed = 0;
     int threads = 0;  // 0: all cores
+    double timeLimit = 0;  // > 0: no pass starts after this many seconds (at least one runs)
     const std::atomic<bool>* cancel = nullptr;    // checked between tiles
     std::function<void(double fraction)> progress;  // called from one thread at a time
 };
@@ -26,6 +27,6 @@ struct RenderResult {
 
 // Pixel (x, y) in pass s uses Rng(seed, pixel index, s) only, so the image is the same for any
 // thread count and any tile schedule.
-RenderResult render(const Scene& scene, const Integrator& integrator, const RenderOptions& options);
+RenderResult render(const Scene& scene, Integrator& integrator, const RenderOptions& options);
 
 }  // namespace tetglow

@@ -133,6 +133,18 @@ MediumState Scene::afterHit(const Intersection& hit, const glm::dvec3& d, const 
     return tet >= 0 ? MediumState{before.medium, WalkStart::inside(uint32_t(tet))} : MediumState{};
 }
 
+bool Scene::crossInterface(const Intersection& hit, Ray& ray, MediumState& state) const {
+    if (material(hit).type != MaterialType::Interface) return false;
+    state = afterHit(hit, ray.d, state);
+    ray.o = hit.p;
+    return true;
+}
+
+RGB Scene::emitted(const Ray& ray, const Intersection* hit) const {
+    if (!hit) return environment_ ? environment_->emitted(ray.d, 0) : RGB(0);
+    return hit->kind == HitKind::Light ? lights_[hit->index]->emitted(ray.d, hit->triangle) : RGB(0);
+}
+
 MediumState Scene::mediumAt(const glm::dvec3& p) const {
     for (size_t m = 0; m < media_.size(); ++m)
         if (const int64_t tet = media_[m].medium->volume().locate(p); tet >= 0) return {int(m), WalkStart::inside(uint32_t(tet))};

@@ -62,6 +62,12 @@ public:
     const MaterialDesc& material(const Intersection& hit) const;
     // The medium state after the path leaves `hit` in direction `d`, having been in `before`.
     MediumState afterHit(const Intersection& hit, const glm::dvec3& d, const MediumState& before) const;
+    // Passes an index-matched boundary: when `hit` is one, moves the ray's origin to it,
+    // updates `state` and returns true.
+    bool crossInterface(const Intersection& hit, Ray& ray, MediumState& state) const;
+    // Radiance reaching ray.o from an emitter the ray ends at: the environment where it
+    // escapes (hit null), an area light it hit. (A camera path's weight applies.)
+    RGB emitted(const Ray& ray, const Intersection* hit) const;
     // The medium that holds point p (the camera), for starting paths.
     MediumState mediumAt(const glm::dvec3& p) const;
     // Transmittance along ray (unit direction) up to tMax, starting in `state`: index-matched

@@ -119,12 +119,8 @@ RGB SingleScatterIntegrator::radiance(const Ray& cameraRay, Rng& rng) const {
     for (int depth = 0; depth < maxDepth_; ++depth) {
         const auto hit = scene_.intersectOpaque(ray);
         beta *= march(ray, hit ? hit->t : INFINITY, beta, rng, L);
-        if (!hit) {
-            if (const Light* env = scene_.environment()) L += beta * env->emitted(ray.d, 0);
-            break;
-        }
-        if (hit->kind == HitKind::Light) {
-            L += beta * scene_.lights()[hit->index]->emitted(ray.d, hit->triangle);
+        if (!hit || hit->kind == HitKind::Light) {
+            L += beta * scene_.emitted(ray, hit ? &*hit : nullptr);
             break;
         }
         const MaterialDesc& material = scene_.material(*hit);

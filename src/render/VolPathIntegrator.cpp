@@ -82,12 +82,8 @@ RGB VolPathIntegrator::radiance(const Ray& cameraRay, Rng& rng) const {
             L += path.weight() * light.emitted(ray.d, hit->triangle) * emitterWeight(light, hit->p, hit->triangle);
             break;  // emitters absorb
         }
+        if (scene_.crossInterface(*hit, ray, state)) continue;
         const MaterialDesc& material = scene_.material(*hit);
-        if (material.type == MaterialType::Interface) {
-            state = scene_.afterHit(*hit, ray.d, state);
-            ray.o = hit->p;
-            continue;
-        }
         if (++depth >= maxDepth_) break;
         if (!isSpecular(material)) {
             const MediumState here = scene_.afterHit(*hit, ray.d, state);

@@ -86,6 +86,9 @@ struct MediumDesc {
 
 enum class IntegratorType { VolPath, Single, Photon };
 enum class BoundaryMode { Tet, Parity, Bbox };
+// The photon integrator's volume estimate along eye rays: the seed's ray march with a k-NN
+// lookup per step, or the beam radiance estimate (Jarosz, Zwicker, Jensen 2008).
+enum class PhotonEstimate { KnnMarch, Beam };
 
 struct IntegratorDesc {
     IntegratorType type = IntegratorType::VolPath;
@@ -96,6 +99,14 @@ struct IntegratorDesc {
     BoundaryMode boundary = BoundaryMode::Tet;
     double stepSize = 0.02;  // ray-march step, world units
     int parityRays = 1;      // parity boundary: rays per inside test (majority)
+    // photon: `spp` passes, each with fresh photons and one eye sample per pixel
+    uint64_t photons = 100000;  // photon paths per pass
+    int k = 16;                 // neighbours that set the radius (k-NN lookups, beam discs)
+    double radius = 0;          // > 0: this fixed radius instead of k neighbours
+    PhotonEstimate estimate = PhotonEstimate::Beam;
+    double alpha = 0.7;         // progressive radius reduction per pass (Knaus and Zwicker 2011)
+    bool boundaryCorrection = true;  // k-NN: divide by the part of the ball inside the medium
+    double timeLimit = 0;       // > 0: stop starting passes after this many seconds
 };
 
 struct SceneDesc {

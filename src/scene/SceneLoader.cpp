@@ -76,6 +76,13 @@ IntegratorDesc readIntegrator(JsonObject& o) {
         // A majority vote needs an odd count.
         if (d.parityRays % 2 == 0) f.fail("an odd integer in 1.." + std::to_string(kMaxParityRays));
     }
+    if (auto f = o["photons"]) d.photons = uint64_t(f.integer(1, int64_t(1) << 40));
+    if (auto f = o["k"]) d.k = int(f.integer(1, 100000));
+    if (auto f = o["radius"]) d.radius = f.number(kPositive);
+    if (auto f = o["estimate"]) d.estimate = f.choice<PhotonEstimate>({{"beam", PhotonEstimate::Beam}, {"knn-march", PhotonEstimate::KnnMarch}});
+    if (auto f = o["alpha"]) d.alpha = f.number({.lo = 0, .hi = 1, .loOpen = true});
+    if (auto f = o["boundary_correction"]) d.boundaryCorrection = f.boolean();
+    if (auto f = o["time"]) d.timeLimit = f.number(kPositive);
     return d;
 }
 

@@ -1,0 +1,267 @@
+#include "render/PhotonIntegrator.h"
+
+#include <chrono>
+#include <cmath>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "photon/OctahedralDirection.h"
+#include "render/DirectLighting.h"
+#include "render/Material.h"
+
+namespace tetglow {
+
+namespace {
+
+// Photons in a k-NN ball or a disc never reach this far: at worst a sparse map gets a blurry
+// estimate instead of one lookup that spans the whole scene.
+constexpr double kMaxRadiusFraction = 0.2;  // of the medium's (or the scene's) bounding-box diagonal
+
+double diagonalOf(const TriangleMesh& mesh) { return bounds(mesh).diagonal(); }
+
+}  // namespace
+
+PhotonIntegrator::PhotonIntegrator(const Scene& scene, const IntegratorDesc& desc)
+    : scene_(scene), desc_(desc), cameraMedium_(scene.mediumAt(scene.camera().position())), source_(scene) {
+    Bounds3 all;
+    for (const auto& m : scene.media()) {
+        balls_.emplace_back(m.medium->volume().bvh());
+        MediumPhotons photons;
+        const TriangleMesh boundary = m.medium->mesh().surfaceMesh();
+        photons.maxRadius = float(kMaxRadiusFraction * diagonalOf(boundary));
+        media_.push_back(std::move(photons));
+        all.extend(bounds(boundary));
+    }
+    for (const auto& s : scene.desc().surfaces) all.extend(bounds(s.mesh));
+    surfaceMaxRadius_ = float(kMaxRadiusFraction * (all.empty() ? 1.0 : all.diagonal()));
+}
+
+PhotonIntegrator::~PhotonIntegrator() = default;
+
+double PhotonIntegrator::radiusScale(uint64_t pass, double alpha, int dim) {
+    double shrink = 1;
+    for (uint64_t i = 1; i <= pass; ++i) shrink *= (i + alpha) / (i + 1);
+    return std::pow(shrink, 1.0 / dim);
+}
+
+void PhotonIntegrator::beginPass(uint64_t pass) {
+    const auto start = std::chrono::steady_clock::now();
+    TracedPhotons traced = tracePhotons(scene_, source_, {desc_.photons, desc_.maxDepth, desc_.seed, pass});
+    // k-NN balls are three-dimensional kernels, beam discs and surface discs two-dimensional.
+    volumeScale_ = radiusScale(pass, desc_.alpha, desc_.estimate == PhotonEstimate::Beam ? 2 : 3);
+    surfaceScale_ = radiusScale(pass, desc_.alpha, 2);
+    size_t bytes = 0;
+    for (size_t m = 0; m < media_.size(); ++m) {
+        MediumPhotons& mp = media_[m];
+        mp.beams.reset();
+        mp.map.reset();
+        stats_.volumePhotons += traced.volume[m].size();
+        if (traced.volume[m].empty()) continue;
+        mp.map = std::make_unique<PhotonMap>(std::move(traced.volume[m]));
+        if (desc_.estimate == PhotonEstimate::Beam) {
+            if (desc_.radius > 0) mp.map->setRadii(float(desc_.radius * volumeScale_));
+            else mp.map->assignRadii(desc_.k, mp.maxRadius, float(volumeScale_));
+            mp.beams = std::make_unique<PhotonBeams>(mp.map->photons());
+            bytes += mp.beams->bytes();
+            mp.kernelScale.clear();
+            if (desc_.boundaryCorrection) {
+                const auto& photons = mp.map->photons();
+                mp.kernelScale.resize(photons.size());
+                tbb::parallel_for(tbb::blocked_range<size_t>(0, photons.size()), [&](const auto& range) {
+                    for (size_t i = range.begin(); i != range.end(); ++i) {
+                        const double r = photons[i].radius;
+                        mp.kernelScale[i] = float(4 * kPi / 3 * r * r * r / balls_[m].inside(glm::dvec3(photons[i].position), r));
+                    }
+                });
+                bytes += mp.kernelScale.size() * sizeof(float);
+            }
+        }
+        bytes += mp.map->bytes();
+    }
+    stats_.surfacePhotons += traced.surface.size();
+    surface_ = traced.surface.empty() ? nullptr : std::make_unique<PhotonMap>(std::move(traced.surface));
+    if (surface_) bytes += surface_->bytes();
+    stats_.paths += traced.paths;
+    stats_.energy.add(traced.energy);
+    stats_.bytes = std::max(stats_.bytes, bytes);
+    stats_.tracingSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+RGB PhotonIntegrator::radiance(const Ray& cameraRay, Rng& rng) const {
+    RGB L(0), beta(1);
+    Ray ray = cameraRay;
+    MediumState state = cameraMedium_;
+    int depth = 0;
+    // Index-matched boundaries do not count as events; the cap only guards against rays that
+    // graze a boundary forever.
+    for (int crossings = 0; crossings < 100000; ++crossings) {
+        const auto hit = scene_.intersect(ray);
+        if (state.inside()) {
+            RGB tr;
+            L += beta * inMedium(state.medium, ray, state.start, hit ? hit->t : INFINITY, rng, tr);
+            beta *= tr;
+            if (isBlack(beta)) break;
+        }
+        if (!hit || hit->kind == HitKind::Light) {
+            L += beta * scene_.emitted(ray, hit ? &*hit : nullptr);
+            break;
+        }
+        if (scene_.crossInterface(*hit, ray, state)) continue;
+        const MaterialDesc& material = scene_.material(*hit);
+        if (!isSpecular(material)) {
+            const MediumState here = scene_.afterHit(*hit, ray.d, state);
+            L += beta * sampleDirect(scene_, hit->p, rng, false, [&](const glm::dvec3& wi) {
+                return Scattering{evaluateMaterial(material, ray.d, hit->n, wi), 0};
+            }, [&](const Ray& r, double t) { return scene_.transmittance(r, t, here); });
+            L += beta * caustics(*hit, ray.d, material);
+            break;
+        }
+        if (++depth >= desc_.maxDepth) break;
+        const double u0 = rng.uniform(), u1 = rng.uniform();
+        const BsdfSample bs = sampleMaterial(material, ray.d, hit->n, {u0, u1});
+        beta *= bs.weight;
+        state = scene_.afterHit(*hit, bs.direction, state);
+        ray = {hit->p, bs.direction};
+        if (depth > 3) {  // roulette on long specular chains
+            const double q = std::max(0.05, 1 - maxComponent(beta));
+            if (rng.uniform() < q) break;
+            beta /= 1 - q;
+        }
+    }
+    return L;
+}
+
+RGB PhotonIntegrator::inMedium(int m, const Ray& ray, WalkStart start, double tMax, Rng& rng, RGB& tr) const {
+    const Medium& medium = *scene_.media()[m].medium;
+    const MediumParams& params = medium.params();
+    const ColumnProfile column(medium, ray, start, tMax);
+    const RGB sigmaT = medium.sigmaT();
+    tr = exp(-sigmaT * column.total());
+    RGB L(0);
+    // Emission: the integral of emission * density * transmittance is emission (1 - tr) / sigma_t.
+    for (int c = 0; c < 3; ++c) L[c] = params.emission[c] * (sigmaT[c] > 0 ? (1 - tr[c]) / sigmaT[c] : column.total());
+    if (isBlack(params.sigmaS) || column.pieces().empty()) return L;
+    if (desc_.estimate == PhotonEstimate::KnnMarch) return L + marchKnn(m, ray, column, rng);
+    return L + directAlong(m, ray, start, tMax, column, rng) + beamEstimate(m, ray, column);
+}
+
+RGB PhotonIntegrator::directAt(int m, const glm::dvec3& p, const glm::dvec3& d, uint32_t tet, Rng& rng) const {
+    const HenyeyGreenstein& phase = scene_.media()[m].medium->phase();
+    const MediumState here{m, WalkStart::inside(tet)};
+    return sampleDirect(scene_, p, rng, false, [&](const glm::dvec3& wi) {
+        const double f = phase.eval(glm::dot(d, wi));
+        return Scattering{RGB(f), f};
+    }, [&](const Ray& r, double t) { return scene_.transmittance(r, t, here); });
+}
+
+RGB PhotonIntegrator::marchKnn(int m, const Ray& ray, const ColumnProfile& column, Rng& rng) const {
+    const Medium& medium = *scene_.media()[m].medium;
+    const RGB sigmaS = medium.params().sigmaS;
+    const double u = rng.uniform();
+    RGB L(0);
+    // Each exact piece is split into equal steps no longer than the step size, one jittered
+    // sample per step: the seed's march, without its boundary error.
+    for (const ColumnProfile::Piece& piece : column.pieces()) {
+        const int n = std::max(1, int(std::ceil((piece.tOut - piece.tIn) / desc_.stepSize)));
+        const double h = (piece.tOut - piece.tIn) / n;
+        for (int i = 0; i < n; ++i) {
+            const double t = piece.tIn + (i + u) * h;
+            const glm::dvec3 p = ray.at(t);
+            const RGB scattered = sigmaS * medium.density(piece.tet, p) * directAt(m, p, ray.d, piece.tet, rng) + knnEstimate(m, p, ray.d);
+            L += column.transmittance(t) * h * scattered;
+        }
+    }
+    return L;
+}
+
+RGB PhotonIntegrator::knnEstimate(int m, const glm::dvec3& p, const glm::dvec3& d) const {
+    const MediumPhotons& mp = media_[m];
+    if (!mp.map) return RGB(0);
+    thread_local std::vector<Neighbour> near;
+    double r;
+    if (desc_.radius > 0) {
+        r = desc_.radius * volumeScale_;
+        mp.map->withinRadius(glm::vec3(p), float(r), near);
+    } else {
+        mp.map->knn(glm::vec3(p), desc_.k, near, mp.maxRadius * mp.maxRadius);
+        // Fewer than k within reach: the ball is the largest allowed.
+        r = volumeScale_ * (near.size() == size_t(desc_.k) ? std::sqrt(double(near.back().distance2)) : double(mp.maxRadius));
+    }
+    const HenyeyGreenstein& phase = scene_.media()[m].medium->phase();
+    const auto& photons = mp.map->photons();
+    RGB sum(0);
+    for (const Neighbour& n : near) {
+        if (n.distance2 > r * r) break;  // nearest first
+        const Photon& photon = photons[n.index];
+        // Light travelled along the photon's direction and leaves towards the eye (-d).
+        sum += RGB(photon.power) * phase.eval(-glm::dot(glm::dvec3(unpackDirection(photon.direction)), d));
+    }
+    if (isBlack(sum)) return sum;
+    const double volume = desc_.boundaryCorrection ? balls_[m].inside(p, r) : 4 * kPi / 3 * r * r * r;
+    return sum / volume;
+}
+
+RGB PhotonIntegrator::beamEstimate(int m, const Ray& ray, const ColumnProfile& column) const {
+    const MediumPhotons& mp = media_[m];
+    if (!mp.beams) return RGB(0);
+    const HenyeyGreenstein& phase = scene_.media()[m].medium->phase();
+    const auto& photons = mp.map->photons();
+    RGB L(0);
+    // Every disc the ray crosses inside this stretch, with a uniform kernel 1 / (pi r^2).
+    mp.beams->query(ray.o, ray.d, column.begin(), column.end(), [&](uint32_t i, double t, double) {
+        const Photon& photon = photons[i];
+        double f = phase.eval(-glm::dot(glm::dvec3(unpackDirection(photon.direction)), ray.d));
+        if (!mp.kernelScale.empty()) f *= mp.kernelScale[i];
+        L += column.transmittance(t) * RGB(photon.power) * (f / (kPi * double(photon.radius) * photon.radius));
+    });
+    return L;
+}
+
+RGB PhotonIntegrator::directAlong(int m, const Ray& ray, WalkStart start, double tMax, const ColumnProfile& column, Rng& rng) const {
+    if (scene_.lights().empty()) return RGB(0);
+    const Medium& medium = *scene_.media()[m].medium;
+    const RGB sigmaT = medium.sigmaT();
+    // The distance follows one channel's transmittance, truncated to the stretch; the channels
+    // with extinction share the sample by one-sample MIS, so no channel's weight blows up.
+    int channels[3], count = 0;
+    for (int c = 0; c < 3; ++c)
+        if (sigmaT[c] > 0) channels[count++] = c;
+    const RGB trEnd = exp(-sigmaT * column.total());
+    const int hero = channels[std::min(count - 1, int(rng.uniform() * count))];
+    const FreeFlight flight = medium.sampleFlight(ray, start, tMax, hero, rng.uniform() * (1 - trEnd[hero]));
+    if (!flight.scattered) return RGB(0);
+    double pdf = 0;  // mean over the channels of sigma_t tr / (1 - tr(end)), per unit column
+    for (int i = 0; i < count; ++i) {
+        const int c = channels[i];
+        pdf += sigmaT[c] * flight.transmittance[c] / (1 - trEnd[c]) / count;
+    }
+    const RGB weight = flight.transmittance * medium.params().sigmaS / pdf;
+    return weight * directAt(m, ray.at(flight.t), ray.d, flight.tet, rng);
+}
+
+RGB PhotonIntegrator::caustics(const Intersection& hit, const glm::dvec3& d, const MaterialDesc& material) const {
+    if (!surface_) return RGB(0);
+    thread_local std::vector<Neighbour> near;
+    double r;
+    if (desc_.radius > 0) {
+        r = desc_.radius * surfaceScale_;
+        surface_->withinRadius(glm::vec3(hit.p), float(r), near);
+    } else {
+        surface_->knn(glm::vec3(hit.p), desc_.k, near, surfaceMaxRadius_ * surfaceMaxRadius_);
+        r = surfaceScale_ * (near.size() == size_t(desc_.k) ? std::sqrt(double(near.back().distance2)) : double(surfaceMaxRadius_));
+    }
+    const double side = glm::dot(d, hit.n);
+    RGB sum(0);
+    for (const Neighbour& n : near) {
+        if (n.distance2 > r * r) break;
+        const Photon& photon = surface_->photons()[n.index];
+        // Only photons that arrived on the side the eye sees.
+        if (glm::dot(glm::dvec3(unpackDirection(photon.direction)), hit.n) * side <= 0) continue;
+        // Cone filter (Jensen 1996): weight 1 - dist / r, normalised by pi r^2 / 3.
+        sum += RGB(photon.power) * (1 - std::sqrt(double(n.distance2)) / r);
+    }
+    return material.reflectance / kPi * sum * (3 / (kPi * r * r));
+}
+
+}  // namespace tetglow

@@ -1,0 +1,81 @@
+// Volumetric photon mapping (Jensen and Christensen 1998), progressive (Knaus and Zwicker 2011).
+// Each pass traces a fresh photon set (PhotonTracer) and takes one eye sample per pixel; the
+// image is the mean of the passes while the radii shrink, so the error keeps falling with time.
+//
+// Eye rays follow specular chains and never scatter in a medium. Along each stretch of medium
+// the integrator adds, against the exact transmittance of the tet walk:
+//   - emission, integrated in closed form;
+//   - single scattering by next-event estimation;
+//   - multiple scattering (and light that reached the medium through glass) from the volume
+//     photons, by the seed's ray march with a k-NN lookup per step (`knn-march`, optionally
+//     dividing by the part of the ball inside the medium) or by the beam radiance estimate
+//     (`beam`: every photon disc the ray crosses, exact along the ray, no step).
+// A diffuse surface gets direct light by next-event estimation and caustics from the surface
+// photons with a cone filter.
+#pragma once
+#include <memory>
+#include <vector>
+
+#include "photon/BallVolume.h"
+#include "photon/ColumnProfile.h"
+#include "photon/PhotonBeams.h"
+#include "photon/PhotonMap.h"
+#include "render/Integrator.h"
+#include "render/PhotonTracer.h"
+
+namespace tetglow {
+
+struct PhotonStats {
+    double tracingSeconds = 0;  // photon tracing and map building, all passes
+    uint64_t paths = 0, volumePhotons = 0, surfacePhotons = 0;  // all passes
+    size_t bytes = 0;           // the largest pass's maps
+    EnergyBalance energy;       // all passes
+};
+
+class PhotonIntegrator : public Integrator {
+public:
+    PhotonIntegrator(const Scene& scene, const IntegratorDesc& desc);
+    ~PhotonIntegrator() override;
+    void beginPass(uint64_t pass) override;
+    RGB radiance(const Ray& ray, Rng& rng) const override;
+    const PhotonStats& stats() const { return stats_; }
+
+    // Radius factor of pass `pass` (from 0) for a kernel of dimension `dim`: the radius^dim
+    // shrinks by (i + alpha) / (i + 1) from pass i to i + 1.
+    static double radiusScale(uint64_t pass, double alpha, int dim);
+
+private:
+    struct MediumPhotons {
+        std::unique_ptr<PhotonMap> map;      // null when the pass stored none
+        std::unique_ptr<PhotonBeams> beams;  // beam estimate only
+        // Beam estimate with boundary correction: 1 / the inside fraction of each photon's ball,
+        // so that a photon near the surface keeps its whole power inside the medium.
+        std::vector<float> kernelScale;
+        float maxRadius = 0;
+    };
+
+    // Light scattered and emitted towards ray.o by medium m along [0, tMax] from `start`; `tr`
+    // receives the transmittance of that stretch.
+    RGB inMedium(int m, const Ray& ray, WalkStart start, double tMax, Rng& rng, RGB& tr) const;
+    RGB marchKnn(int m, const Ray& ray, const ColumnProfile& column, Rng& rng) const;
+    RGB beamEstimate(int m, const Ray& ray, const ColumnProfile& column) const;
+    // Single scattering at a distance drawn along the stretch (one-sample spectral MIS).
+    RGB directAlong(int m, const Ray& ray, WalkStart start, double tMax, const ColumnProfile& column, Rng& rng) const;
+    RGB directAt(int m, const glm::dvec3& p, const glm::dvec3& d, uint32_t tet, Rng& rng) const;
+    // sigma_s times in-scattered radiance from the volume photons at p, seen along d.
+    RGB knnEstimate(int m, const glm::dvec3& p, const glm::dvec3& d) const;
+    RGB caustics(const Intersection& hit, const glm::dvec3& d, const MaterialDesc& material) const;
+
+    const Scene& scene_;
+    IntegratorDesc desc_;
+    MediumState cameraMedium_;
+    PhotonSource source_;
+    std::vector<BallVolume> balls_;  // per medium
+    std::vector<MediumPhotons> media_;
+    std::unique_ptr<PhotonMap> surface_;
+    float surfaceMaxRadius_ = 0;
+    double volumeScale_ = 1, surfaceScale_ = 1;  // this pass's radius factors
+    PhotonStats stats_;
+};
+
+}  // namespace tetglow

@@ -1,0 +1,193 @@
+#include "render/PhotonTracer.h"
+
+#include <algorithm>
+
+#include <tbb/parallel_for.h>
+
+#include "photon/OctahedralDirection.h"
+#include "photon/PhotonWalk.h"
+#include "photon/Sampling.h"
+#include "render/Material.h"
+
+namespace tetglow {
+
+namespace {
+
+// Photon streams sit far above the pixel streams (one per pass), so the two never share one.
+constexpr uint64_t kPhotonStream = uint64_t(1) << 62;
+constexpr uint64_t kBlock = 1024;  // paths per parallel task
+
+size_t pick(const std::vector<double>& cdf, double u) {
+    const auto i = size_t(std::upper_bound(cdf.begin(), cdf.end(), u * cdf.back()) - cdf.begin());
+    return std::min(i, cdf.size() - 1);
+}
+
+double probability(const std::vector<double>& cdf, size_t i) { return (cdf[i] - (i ? cdf[i - 1] : 0)) / cdf.back(); }
+
+Photon makePhoton(const glm::dvec3& p, const RGB& power, const glm::dvec3& direction) {
+    return {glm::vec3(p), glm::vec3(power), packDirection(glm::vec3(direction)), 0};
+}
+
+// One photon path, from emission to absorption, escape or the event cap.
+class PathTracer {
+public:
+    PathTracer(const Scene& scene, const PhotonTracingOptions& options, TracedPhotons& out)
+        : scene_(scene), options_(options), out_(out) {}
+
+    void trace(const PhotonSource::Emission& e, Rng& rng) {
+        EnergyBalance energy;
+        energy.emitted = e.flux;
+        SpectralPath path = SpectralPath::pick(rng.uniform());
+        Ray ray = e.ray;
+        MediumState state = e.medium;
+        // Next-event estimation follows light that has crossed only index-matched boundaries;
+        // what else arrives is stored.
+        bool direct = !e.fromMedium;
+        int depth = 0;
+        auto flux = [&] { return path.weight() * e.flux; };
+        for (int crossings = 0; crossings < 100000; ++crossings) {
+            std::optional<Intersection> hit;
+            if (state.inside()) {
+                const Medium& medium = *scene_.media()[state.medium].medium;
+                auto& store = out_.volume[state.medium];
+                const WalkResult walk = photonWalk(
+                    medium, ray, state.start, e.flux, path, rng, options_.maxDepth - depth,
+                    [&](const Ray& r) {
+                        hit = scene_.intersect(r);
+                        return hit ? hit->t : INFINITY;
+                    },
+                    [&](const PhotonEvent& event) {
+                        if (!direct) store.push_back(makePhoton(event.position, event.power, event.direction));
+                        direct = false;
+                    });
+                energy.absorbedInMedia += walk.absorbedFlux;
+                depth += walk.events;
+                if (walk.absorbed) {
+                    if (depth >= options_.maxDepth) energy.cut += flux();
+                    break;
+                }
+                ray = walk.ray;
+            } else {
+                hit = scene_.intersect(ray);
+            }
+            if (!hit) {
+                energy.escaped += flux();
+                break;
+            }
+            if (hit->kind == HitKind::Light) {  // emitters are black
+                energy.absorbedOnSurfaces += flux();
+                break;
+            }
+            if (scene_.crossInterface(*hit, ray, state)) continue;
+            const MaterialDesc& material = scene_.material(*hit);
+            if (++depth >= options_.maxDepth) {
+                energy.cut += flux();
+                break;
+            }
+            const RGB arriving = flux();
+            if (material.type == MaterialType::Diffuse && !direct) out_.surface.push_back(makePhoton(hit->p, arriving, ray.d));
+            const double u0 = rng.uniform(), u1 = rng.uniform();
+            const BsdfSample bs = sampleMaterial(material, ray.d, hit->n, {u0, u1}, TransportMode::Importance);
+            energy.absorbedOnSurfaces += arriving * (RGB(1) - bs.weight);
+            path.beta *= bs.weight;
+            direct = false;
+            state = scene_.afterHit(*hit, bs.direction, state);
+            ray = {hit->p, bs.direction};
+            // Roulette on the flux that goes on, relative to what was emitted.
+            const double keep = std::min(1.0, maxComponent(path.weight()));
+            if (!(keep > 0) || rng.uniform() >= keep) break;
+            path.beta /= keep;
+        }
+        const RGB deficit = energy.emitted - energy.absorbedInMedia - energy.absorbedOnSurfaces - energy.escaped - energy.cut;
+        energy.deficitSquares = deficit * deficit;
+        out_.energy.add(energy);
+    }
+
+private:
+    const Scene& scene_;
+    const PhotonTracingOptions& options_;
+    TracedPhotons& out_;
+};
+
+}  // namespace
+
+void EnergyBalance::add(const EnergyBalance& o) {
+    emitted += o.emitted, absorbedInMedia += o.absorbedInMedia, absorbedOnSurfaces += o.absorbedOnSurfaces;
+    escaped += o.escaped, cut += o.cut, deficitSquares += o.deficitSquares;
+}
+
+PhotonSource::PhotonSource(const Scene& scene) {
+    for (int i = 0; i < int(scene.lights().size()); ++i) emitters_.push_back({i, -1, scene.lights()[i]->power(), {}});
+    for (int m = 0; m < int(scene.media().size()); ++m) {
+        const Medium& medium = *scene.media()[m].medium;
+        if (!medium.emissive()) continue;
+        Emitter e{-1, m, RGB(0), {}};
+        const TetMesh& mesh = medium.mesh();
+        double total = 0;
+        // Density is linear in a tet: its value at the centroid is its mean.
+        for (uint32_t t = 0; t < mesh.tets.size(); ++t) e.tetCdf.push_back(total += mesh.tetVolume(t) * medium.density(t, mesh.centroid(t)));
+        // Isotropic emission of radiance `emission` per unit length: 4 pi emission per unit volume.
+        e.power = medium.params().emission * (4 * kPi * total);
+        if (total > 0) emitters_.push_back(std::move(e));
+    }
+    double total = 0;
+    for (const Emitter& e : emitters_) cdf_.push_back(total += average(e.power)), total_ += e.power;
+    if (!(total > 0)) throw InputError("photon tracing: nothing in the scene emits power");
+}
+
+PhotonSource::Emission PhotonSource::sample(const Scene& scene, Rng& rng) const {
+    const size_t i = pick(cdf_, rng.uniform());
+    const double chosen = probability(cdf_, i);
+    const Emitter& e = emitters_[i];
+    Emission out;
+    if (e.light >= 0) {
+        const double u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform(), u3 = rng.uniform();
+        const PhotonEmission p = scene.lights()[e.light]->emitPhoton({u0, u1}, {u2, u3});
+        out.ray = p.ray, out.flux = p.flux / chosen;
+        out.medium = scene.mediumAt(p.ray.o);
+        return out;
+    }
+    const Medium& medium = *scene.media()[e.medium].medium;
+    const TetMesh& mesh = medium.mesh();
+    const auto tet = uint32_t(pick(e.tetCdf, rng.uniform()));
+    const auto& v = mesh.tets[tet];
+    const glm::dvec3 p0 = mesh.vertices[v[0]];
+    const double u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
+    const glm::dvec3 w = sampleUniformTetrahedron({u0, u1, u2});
+    const glm::dvec3 p = p0 + w.x * (mesh.vertices[v[1]] - p0) + w.y * (mesh.vertices[v[2]] - p0) + w.z * (mesh.vertices[v[3]] - p0);
+    const double u3 = rng.uniform(), u4 = rng.uniform();
+    out.ray = {p, sampleUniformSphere({u3, u4})};
+    // The point is uniform in the tet; its density relative to the tet's mean corrects for that.
+    out.flux = e.power * (medium.density(tet, p) / medium.density(tet, mesh.centroid(tet)) / chosen);
+    out.medium = {e.medium, WalkStart::inside(tet)};
+    out.fromMedium = true;
+    return out;
+}
+
+TracedPhotons tracePhotons(const Scene& scene, const PhotonSource& source, const PhotonTracingOptions& options) {
+    const uint64_t blocks = (options.paths + kBlock - 1) / kBlock;
+    std::vector<TracedPhotons> parts(blocks);
+    tbb::parallel_for(uint64_t(0), blocks, [&](uint64_t b) {
+        TracedPhotons& part = parts[b];
+        part.volume.resize(scene.media().size());
+        PathTracer tracer(scene, options, part);
+        for (uint64_t i = b * kBlock; i < std::min(options.paths, (b + 1) * kBlock); ++i) {
+            Rng rng(options.seed, i, kPhotonStream + options.pass);
+            PhotonSource::Emission e = source.sample(scene, rng);
+            e.flux /= double(options.paths);
+            tracer.trace(e, rng);
+        }
+    });
+    // Concatenated in block order: the same photons in the same order for any thread count.
+    TracedPhotons all;
+    all.volume.resize(scene.media().size());
+    all.paths = options.paths;
+    for (const TracedPhotons& part : parts) {
+        for (size_t m = 0; m < all.volume.size(); ++m) all.volume[m].insert(all.volume[m].end(), part.volume[m].begin(), part.volume[m].end());
+        all.surface.insert(all.surface.end(), part.surface.begin(), part.surface.end());
+        all.energy.add(part.energy);
+    }
+    return all;
+}
+
+}  // namespace tetglow

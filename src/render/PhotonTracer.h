@@ -1,0 +1,70 @@
+// Photon tracing (Jensen 2001): photons leave the lights and the emissive media, cross
+// index-matched boundaries, reflect and refract at dielectrics, bounce off diffuse surfaces and
+// scatter in media with exact free flights through the tets. The photon integrator computes
+// direct light by next-event estimation, so a photon is stored only where its path is one that
+// next-event estimation cannot take: after a scattering event, a specular or diffuse bounce, or
+// when it was emitted by a medium. Volume photons are stored at scattering events, surface
+// photons on diffuse surfaces (the caustics under the fish).
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "photon/Photon.h"
+#include "photon/Rng.h"
+#include "photon/Spectrum.h"
+#include "render/Scene.h"
+
+namespace tetglow {
+
+struct PhotonTracingOptions {
+    uint64_t paths = 100000;  // photon paths emitted
+    int maxDepth = 64;        // scattering and surface events per path
+    uint64_t seed = 0;
+    uint64_t pass = 0;        // independent photons for every pass
+};
+
+// Where the emitted power went, summed over the paths: emitted = absorbed + escaped + cut in
+// expectation. deficitSquares sums, per path, (emitted - absorbed - escaped - cut)^2, for the
+// standard error of that balance.
+struct EnergyBalance {
+    RGB emitted{0}, absorbedInMedia{0}, absorbedOnSurfaces{0}, escaped{0}, cut{0}, deficitSquares{0};
+    void add(const EnergyBalance& o);
+};
+
+struct TracedPhotons {
+    std::vector<std::vector<Photon>> volume;  // per medium
+    std::vector<Photon> surface;              // on diffuse surfaces
+    EnergyBalance energy;
+    uint64_t paths = 0;
+};
+
+// Chooses emitters in proportion to their power: every light and every emissive medium (a
+// point by tet, in proportion to its integrated density).
+class PhotonSource {
+public:
+    explicit PhotonSource(const Scene& scene);
+    RGB totalPower() const { return total_; }
+    struct Emission {
+        Ray ray;
+        RGB flux{0};
+        MediumState medium;     // the medium the photon starts in
+        bool fromMedium = false;
+    };
+    Emission sample(const Scene& scene, Rng& rng) const;
+
+private:
+    struct Emitter {
+        int light = -1, medium = -1;
+        RGB power{0};
+        std::vector<double> tetCdf;  // media: integrated density per tet, cumulative
+    };
+    std::vector<Emitter> emitters_;
+    std::vector<double> cdf_;  // over emitters, by mean power
+    RGB total_{0};
+};
+
+// Traces options.paths photon paths in parallel. Path i uses Rng(seed, i, stream of pass) only
+// and photons are kept in path order, so the result is the same for any thread count.
+TracedPhotons tracePhotons(const Scene& scene, const PhotonSource& source, const PhotonTracingOptions& options);
+
+}  // namespace tetglow

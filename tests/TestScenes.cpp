@@ -1,0 +1,33 @@
+#include "TestScenes.h"
+
+#include "tet/Shapes.h"
+
+namespace tetglow::test {
+
+MediumDesc sphereMedium(const RGB& sigmaA, const RGB& sigmaS, double g, int subdivisions) {
+    MediumDesc m;
+    m.name = "sphere";
+    m.boundary = icosphere(subdivisions, 1.0);
+    for (auto& p : m.boundary.positions) p = {roundToFloat(p.x), roundToFloat(p.y), roundToFloat(p.z)};
+    m.sigmaA = sigmaA, m.sigmaS = sigmaS, m.g = g;
+    return m;
+}
+
+SceneDesc sceneWith(const MediumDesc& medium, int resolution) {
+    SceneDesc s;
+    s.camera.position = {0.3, 0.2, 4};
+    s.camera.lookAt = {0, 0, 0};
+    s.camera.fov = 35;
+    s.camera.width = s.camera.height = resolution;
+    s.media.push_back(medium);
+    return s;
+}
+
+LightDesc environment(double radiance) {
+    LightDesc l;
+    l.type = LightType::Environment;
+    l.radiance = RGB(radiance);
+    return l;
+}
+
+}  // namespace tetglow::test

@@ -1,0 +1,13 @@
+// Small scenes the render tests build: a sphere of medium in front of the camera.
+#pragma once
+#include "scene/SceneDescription.h"
+
+namespace tetglow::test {
+
+// A unit icosphere medium at the origin (vertices rounded to float, as the loader does).
+MediumDesc sphereMedium(const RGB& sigmaA, const RGB& sigmaS, double g = 0, int subdivisions = 3);
+// The camera looks at the origin from z = 4 over a square image.
+SceneDesc sceneWith(const MediumDesc& medium, int resolution);
+LightDesc environment(double radiance);
+
+}  // namespace tetglow::test

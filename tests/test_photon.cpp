@@ -1,0 +1,138 @@
+// Photon mapping: where the traced power goes, and the volume estimates against each other and
+// against the volpath reference.
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "TestScenes.h"
+#include "render/Integrator.h"
+#include "render/PhotonIntegrator.h"
+#include "render/PhotonTracer.h"
+#include "render/Renderer.h"
+#include "tet/Shapes.h"
+
+namespace tetglow::test {
+namespace {
+
+// Every kind of emitter and surface: a glowing, scattering sphere in a glass skin above a
+// diffuse floor, lit by a point light, a spot disk and the environment.
+SceneDesc closedWorld() {
+    MediumDesc m = sphereMedium(RGB(0.3, 0.6, 0.1), RGB(1.5, 0.9, 2.5), 0.5, 2);
+    m.emission = RGB(0.2, 0.4, 1.0);
+    m.boundaryMaterial = {MaterialType::Dielectric, RGB(0), 1.4};
+    SceneDesc s = sceneWith(m, 16);
+    s.surfaces.push_back({"floor", quad({-3, -1.2, -3}, {0, 0, 6}, {6, 0, 0}), {MaterialType::Diffuse, RGB(0.6, 0.5, 0.4)}});
+    LightDesc point;
+    point.type = LightType::Point, point.position = {1.5, 2, 1}, point.intensity = RGB(4, 3, 2);
+    s.lights.push_back(point);
+    LightDesc spot = point;
+    spot.type = LightType::Spot, spot.position = {-0.5, 3, 0}, spot.lookAt = {0, 0, 0}, spot.radius = 0.2;
+    s.lights.push_back(spot);
+    s.lights.push_back(environment(0.1));
+    return s;
+}
+
+// Emitted power = absorbed + escaped, per channel, within three standard errors; nothing is
+// cut when paths may be as long as they like.
+TEST(Photon, EnergyBalance) {
+    const Scene scene(closedWorld());
+    const PhotonSource source(scene);
+    const TracedPhotons traced = tracePhotons(scene, source, {200000, 1 << 20, 3, 0});
+    const EnergyBalance& e = traced.energy;
+    for (int c = 0; c < 3; ++c) {
+        const double accounted = e.absorbedInMedia[c] + e.absorbedOnSurfaces[c] + e.escaped[c];
+        std::printf("channel %d: emitted %.5f, absorbed in media %.5f, on surfaces %.5f, escaped %.5f, +- %.5f\n", c, e.emitted[c],
+                    e.absorbedInMedia[c], e.absorbedOnSurfaces[c], e.escaped[c], std::sqrt(e.deficitSquares[c]));
+        EXPECT_NEAR(accounted, e.emitted[c], 3 * std::sqrt(e.deficitSquares[c]));
+        EXPECT_EQ(e.cut[c], 0);
+        EXPECT_GT(e.absorbedInMedia[c], 0.05 * e.emitted[c]);
+        EXPECT_GT(e.absorbedOnSurfaces[c], 0.05 * e.emitted[c]);
+        EXPECT_NEAR(e.emitted[c], source.totalPower()[c], 0.02 * source.totalPower()[c]);
+    }
+    EXPECT_GT(traced.volume[0].size(), 10000u);
+    EXPECT_GT(traced.surface.size(), 1000u);  // caustics and light the sphere sends to the floor
+}
+
+// A glowing, scattering sphere with an index-matched boundary: all scattered light comes from
+// photons (emission is never sampled by next-event estimation), so the volume estimates carry
+// the whole difference from volpath.
+SceneDesc glowingSphere() {
+    MediumDesc m = sphereMedium(RGB(0.1), RGB(2.0), 0.3);
+    m.emission = RGB(0.5);
+    return sceneWith(m, 32);
+}
+
+struct Measured {
+    double mean = 0, rim = 0;
+};
+
+// The image mean and the mean over the rim: pixels whose ray passes the sphere's centre at
+// 0.85 to 0.97 of its radius, where a k-NN ball pokes out of the surface.
+Measured measure(const Scene& scene, const Image& image) {
+    Measured m;
+    int rim = 0;
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x) {
+            const double v = average(RGB(image.at(x, y)));
+            m.mean += v;
+            const Ray ray = scene.camera().generateRay(x + 0.5, y + 0.5);
+            const double miss = glm::length(ray.o - glm::dot(ray.o, ray.d) * ray.d);
+            if (miss > 0.85 && miss < 0.97) m.rim += v, ++rim;
+        }
+    m.mean /= double(image.width) * image.height;
+    m.rim /= rim;
+    return m;
+}
+
+Image renderPhoton(const Scene& scene, PhotonEstimate estimate, bool boundaryCorrection, int passes) {
+    IntegratorDesc integ;
+    integ.type = IntegratorType::Photon;
+    integ.estimate = estimate;
+    integ.boundaryCorrection = boundaryCorrection;
+    integ.photons = 20000;
+    integ.k = 32;
+    integ.stepSize = 0.05;
+    auto integrator = makeIntegrator(scene, integ);
+    RenderOptions options;
+    options.spp = passes;
+    return render(scene, *integrator, options).image;
+}
+
+TEST(Photon, EstimatesAgreeWithVolpathAndEachOther) {
+    const Scene scene(glowingSphere());
+    IntegratorDesc volpath;
+    auto reference = makeIntegrator(scene, volpath);
+    RenderOptions options;
+    options.spp = 256;
+    const Measured ref = measure(scene, render(scene, *reference, options).image);
+    const Measured plain = measure(scene, renderPhoton(scene, PhotonEstimate::KnnMarch, false, 16));
+    const Measured corrected = measure(scene, renderPhoton(scene, PhotonEstimate::KnnMarch, true, 16));
+    const Measured beam = measure(scene, renderPhoton(scene, PhotonEstimate::Beam, true, 16));
+    std::printf("image mean: volpath %.4f, knn-march %.4f, corrected %.4f, beam %.4f\n", ref.mean, plain.mean, corrected.mean, beam.mean);
+    std::printf("rim mean:   volpath %.4f, knn-march %.4f, corrected %.4f, beam %.4f\n", ref.rim, plain.rim, corrected.rim, beam.rim);
+    EXPECT_NEAR(beam.mean, ref.mean, 0.03 * ref.mean);
+    EXPECT_NEAR(corrected.mean, ref.mean, 0.03 * ref.mean);
+    EXPECT_NEAR(beam.mean, corrected.mean, 0.03 * ref.mean);
+    // The plain k-NN estimate leaves a dark rim; dividing by the ball's inside part removes it
+    // (what is left is the kernel's blur of the light's fall towards the surface).
+    EXPECT_LT(plain.rim, ref.rim * 0.95);
+    EXPECT_GT(corrected.rim, ref.rim * 0.98);
+    EXPECT_LT(std::abs(corrected.rim - ref.rim), std::abs(plain.rim - ref.rim));
+    // Beam discs scaled by the inside part of each photon's ball keep each photon's power in
+    // the medium.
+    EXPECT_NEAR(beam.rim, ref.rim, 0.03 * ref.rim);
+}
+
+TEST(Photon, RadiusShrinksProgressively) {
+    EXPECT_EQ(PhotonIntegrator::radiusScale(0, 0.7, 3), 1.0);
+    // pass 1: r^3 scales by (1 + 0.7) / 2
+    EXPECT_NEAR(std::pow(PhotonIntegrator::radiusScale(1, 0.7, 3), 3), 0.85, 1e-12);
+    EXPECT_NEAR(std::pow(PhotonIntegrator::radiusScale(2, 0.5, 2), 2), 0.75 * (2.5 / 3), 1e-12);
+    // The product of (i + alpha) / (i + 1) falls like n^(alpha - 1): slowly, but without end.
+    const double r1000 = PhotonIntegrator::radiusScale(1000, 0.7, 2), r2000 = PhotonIntegrator::radiusScale(2000, 0.7, 2);
+    EXPECT_LT(r2000, r1000);
+    EXPECT_NEAR(r2000 / r1000, std::pow(2.0, -0.3 / 2), 1e-3);
+}
+
+}  // namespace
+}  // namespace tetglow::test
