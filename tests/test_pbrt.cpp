@@ -22,7 +22,7 @@ std::string write(const std::string& name, const std::string& text) {
 }
 
 TEST(Pbrt, EveryDirectiveIsRead) {
-    write("parts/lights.pbrt", R"(# included by world.pbrt, named relative to scene.pbrt's folder as pbrt-v3 does
+    write("parts/lights.pbrt", R"(# included by world.pbrt, named relative to scene.pbrt's folder (pbrt-v3's rule, the fallback)
 LightSource "spot" "color I" [5 5 5] "point from" [0 3 0] "point to" [0 0 0] "float coneangle" 40 "float conedeltaangle" 8
 )");
     write("parts/world.pbrt", R"(LightSource "point" "rgb I" [1 2 3]
@@ -189,19 +189,31 @@ TEST(Pbrt, LoadSceneKnowsPbrtByExtensionOrContent) {
 }
 
 // pbrt-v3 (core/parser.cpp) resolves every Include against the first file's folder.
-TEST(Pbrt, IncludesAreRelativeToTheFirstFile) {
+TEST(Pbrt, IncludesAreRelativeToTheIncludingFile) {
     write("parts/a.pbrt", "LightSource \"point\"\nInclude \"b.pbrt\"\n");
     write("parts/b.pbrt", "LightSource \"point\"\n");
     const std::string path = write("scene.pbrt", "WorldBegin\nInclude \"parts/a.pbrt\"\nWorldEnd\n");
-    try {
-        loadPbrtScene(path);
-        FAIL() << "b.pbrt is not beside scene.pbrt";
-    } catch (const InputError& e) {
-        EXPECT_EQ(std::string(e.what()), test::tempDir() + "/parts/a.pbrt:2: Include: " + test::tempDir() + "/b.pbrt: no such file");
-    }
+    std::vector<std::string> warnings;
+    EXPECT_EQ(loadPbrtScene(path, &warnings).lights.size(), 2u);
+    EXPECT_TRUE(warnings.empty());
+    // pbrt-v3's own rule, the first file's folder, is the fallback.
     write("parts/a.pbrt", "LightSource \"point\"\nInclude \"parts/b.pbrt\"\nWorldEnd\n");  // WorldEnd in an included file
     write("scene.pbrt", "WorldBegin\nInclude \"parts/a.pbrt\"\n");
-    EXPECT_EQ(loadPbrtScene(path).lights.size(), 2u);
+    EXPECT_EQ(loadPbrtScene(path, &warnings).lights.size(), 2u);
+    // Where both exist and differ, the including file's folder wins, with a warning.
+    write("b.pbrt", "LightSource \"point\"\nLightSource \"point\"\n");
+    write("parts/a.pbrt", "LightSource \"point\"\nInclude \"b.pbrt\"\nWorldEnd\n");
+    EXPECT_EQ(loadPbrtScene(path, &warnings).lights.size(), 2u);
+    ASSERT_EQ(warnings.size(), 1u);
+    EXPECT_EQ(warnings[0], test::tempDir() + "/parts/a.pbrt:2: warning: Include reads " + test::tempDir() + "/parts/b.pbrt; pbrt-v3 would read " +
+                               test::tempDir() + "/b.pbrt");
+    write("parts/a.pbrt", "Include \"none.pbrt\"\n");
+    try {
+        loadPbrtScene(path);
+        FAIL() << "none.pbrt does not exist";
+    } catch (const InputError& e) {
+        EXPECT_EQ(std::string(e.what()), test::tempDir() + "/parts/a.pbrt:1: Include: " + test::tempDir() + "/parts/none.pbrt: no such file");
+    }
 }
 
 // Each line goes in place of line 4 of a small scene; the error must name that line, the

@@ -352,9 +352,18 @@ void Parser::reverseOrientation(const PbrtToken& d) {
     attributes_.reverseOrientation = !attributes_.reverseOrientation;
 }
 
+// Relative to the including file's folder. pbrt-v3 itself resolves every name against the first
+// file's folder: the same for includes from the first file; otherwise that file is the fallback,
+// and a warning says so where both exist.
 void Parser::include(const PbrtToken& d) {
     const fs::path file = string(d);
-    tokens_.include((file.is_absolute() ? file : searchDir_ / file).string(), d.where);
+    if (file.is_absolute()) return tokens_.include(file.string(), d.where);
+    const fs::path beside = fs::path(d.where.file).parent_path() / file, pbrtV3 = searchDir_ / file;
+    std::error_code ec;
+    const bool besideExists = fs::exists(beside, ec), pbrtV3Exists = fs::exists(pbrtV3, ec);
+    if (besideExists && pbrtV3Exists && !fs::equivalent(beside, pbrtV3, ec))
+        warnings_.push_back(d.where.str() + ": warning: Include reads " + beside.string() + "; pbrt-v3 would read " + pbrtV3.string());
+    tokens_.include((besideExists || !pbrtV3Exists ? beside : pbrtV3).string(), d.where);
 }
 
 void Parser::unsupported(const PbrtToken& d) { pbrtError(d.where, d.text + " is not supported"); }

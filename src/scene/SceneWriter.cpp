@@ -69,10 +69,17 @@ private:
     static Json integrator(const IntegratorDesc& d) {
         const char* types[] = {"volpath", "single", "photon"};
         const char* boundaries[] = {"tet", "parity", "bbox"};
-        return {{"type", types[int(d.type)]},   {"spp", d.spp},
-                {"max_depth", d.maxDepth},      {"seed", d.seed},
-                {"boundary", boundaries[int(d.boundary)]}, {"step", d.stepSize},
-                {"parity_rays", d.parityRays}};
+        const char* estimates[] = {"knn-march", "beam"};
+        Json j = {{"type", types[int(d.type)]},   {"spp", d.spp},
+                  {"max_depth", d.maxDepth},      {"seed", d.seed},
+                  {"boundary", boundaries[int(d.boundary)]}, {"step", d.stepSize},
+                  {"parity_rays", d.parityRays},  {"photons", d.photons},
+                  {"k", d.k},                     {"estimate", estimates[int(d.estimate)]},
+                  {"alpha", d.alpha},             {"boundary_correction", d.boundaryCorrection}};
+        // 0 means "not set" for these two; the loader takes only positive values.
+        if (d.radius > 0) j["radius"] = d.radius;
+        if (d.timeLimit > 0) j["time"] = d.timeLimit;
+        return j;
     }
 
     static Json material(const MaterialDesc& m) {
