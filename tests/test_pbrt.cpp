@@ -153,6 +153,27 @@ TEST(Pbrt, DefaultsArePbrtv3s) {
     EXPECT_EQ(s.surfaces[0].material.reflectance, RGB(0.5));
 }
 
+// Each sampler's samples per pixel, as pbrt-v3 counts them; the camera's halffov.
+TEST(Pbrt, SamplersGiveTheirSampleCounts) {
+    const std::pair<std::string, int> cases[] = {
+        {R"(Sampler "halton" "integer pixelsamples" 12)", 12},
+        {R"(Sampler "random" "integer pixelsamples" 3)", 3},
+        {R"(Sampler "random")", 4},
+        {R"(Sampler "stratified" "integer xsamples" 3 "integer ysamples" 5 "bool jitter" "false")", 15},
+        {R"(Sampler "02sequence" "integer pixelsamples" 5)", 8},
+        {R"(Sampler "maxmindist" "integer pixelsamples" 16)", 16},
+    };
+    for (const auto& [line, spp] : cases) {
+        const std::string path = write("scene.pbrt", line + "\nCamera \"perspective\" \"float halffov\" 20\nWorldBegin\nLightSource \"point\"\nWorldEnd\n");
+        std::vector<std::string> warnings;
+        const SceneDesc s = loadPbrtScene(path, &warnings);
+        EXPECT_EQ(s.integrator.spp, spp) << line;
+        EXPECT_EQ(s.camera.fov, 40) << line;
+        ASSERT_EQ(warnings.size(), 1u) << line;
+        EXPECT_NE(warnings[0].find(path + ":1: note: Sampler"), std::string::npos) << warnings[0];
+    }
+}
+
 // pbrt-v3 renders media only with "volpath": "path" (its default) sees a glass boundary as
 // glass and an index-matched one not at all.
 TEST(Pbrt, ThePathIntegratorIgnoresMediaAsPbrtDoes) {
