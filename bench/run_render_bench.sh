@@ -23,7 +23,7 @@ done
 start=$(date +%s%N)
 log=$("$build/tetglow" render scenes/fish.json -o "$out/demo.exr" 2>/dev/null)
 end=$(date +%s%N)
-echo "| demo: scenes/fish.json as committed (photon, 128 passes), wall time of the whole command $(( (end - start) / 1000000 )) ms | all | $(sed -n 's/.*rendering \([0-9.]*\) s.*/\1/p' <<<"$log") | $(rate "$log") |"
+echo "| demo: scenes/fish.json as committed (photon, 100 passes), wall time of the whole command $(( (end - start) / 1000000 )) ms | all | $(sed -n 's/.*rendering \([0-9.]*\) s.*/\1/p' <<<"$log") | $(rate "$log") |"
 echo
 echo '```'
 "$build/tetglow" validate slab --tau 2 --albedo 0.9 --g 0.75 --photons 10000000
