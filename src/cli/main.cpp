@@ -13,6 +13,7 @@ int main(int argc, char** argv) {
     tetglow::cli::addRenderCommand(app);
     tetglow::cli::addDiffCommand(app);
     tetglow::cli::addValidateCommand(app);
+    tetglow::cli::addConvertCommand(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
