@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """Formats tetglow_bench JSON runs as the docs/RESULTS.md table, with ratios to the baselines
-measured in the same run: Embree alone for ray walks, the parity test for inside tests."""
+measured in the same run: Embree alone for ray walks, the parity test for inside tests. Each
+figure is the best of the run's repetitions."""
 import json
 import sys
 
@@ -10,9 +11,12 @@ def rates(path):
         run = json.load(f)
     out = {}
     for b in run["benchmarks"]:
+        if b.get("run_type") == "aggregate":
+            continue
+        name = b.get("run_name", b["name"])
         for key in ("steps/s", "rays/s", "points/s"):
-            if key in b:
-                out[b["name"]] = b[key]
+            if key in b:  # the best repetition: other jobs on a shared machine only slow runs down
+                out[name] = max(out.get(name, 0), b[key])
         if "bytes/tet" in b:
             out["bytes/tet"] = b["bytes/tet"]
     return out, run["context"]

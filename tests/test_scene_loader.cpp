@@ -247,7 +247,7 @@ TEST(SceneLoader, MeshFileErrorsCarryTheJsonPath) {
 TEST(SceneLoader, ShippedScenesLoad) {
     const bool haveShared = !test::sharedMesh("blub").empty();
     for (const auto& entry : std::filesystem::directory_iterator(std::string(TETGLOW_SOURCE_DIR) + "/scenes")) {
-        if (entry.path().extension() != ".json") continue;
+        if (entry.path().extension() != ".json" && entry.path().extension() != ".pbrt") continue;
         std::stringstream text;
         text << std::ifstream(entry.path()).rdbuf();
         if (!haveShared && text.str().find("shared/meshes") != std::string::npos) continue;

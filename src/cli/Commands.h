@@ -13,6 +13,7 @@ void addRenderCommand(CLI::App& app);
 void addDiffCommand(CLI::App& app);
 void addValidateCommand(CLI::App& app);
 void addCompareBoundaryCommand(CLI::App& app);
+void addConvertCommand(CLI::App& app);
 
 // CLI11's range checks let NaN through (every comparison with NaN is false).
 inline const CLI::Validator kFinite{[](std::string& s) -> std::string {

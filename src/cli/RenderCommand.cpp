@@ -1,4 +1,5 @@
 // tetglow render SCENE: tetrahedralize every medium the scene names (cached), then render.
+// SCENE is a JSON scene or a pbrt-v3 one (docs/FORMAT.md).
 #include <atomic>
 #include <csignal>
 #include <cstdio>
@@ -133,7 +134,7 @@ void run(const Options& o) {
 void addRenderCommand(CLI::App& app) {
     auto o = std::make_shared<Options>();
     auto* cmd = app.add_subcommand("render", "Tetrahedralize the scene's media (cached) and render it to OpenEXR and a PNG preview");
-    cmd->add_option("scene", o->scene, "Scene file (JSON, see docs/FORMAT.md)")->required()->check(CLI::ExistingFile);
+    cmd->add_option("scene", o->scene, "Scene file: JSON, or pbrt-v3 (.pbrt); see docs/FORMAT.md")->required()->check(CLI::ExistingFile);
     cmd->add_option("-o,--output", o->output, "Output .exr (a .png preview is written beside it)");
     cmd->add_option("--integrator", o->integrator, "volpath (reference), single (the seed's ray march) or photon")
         ->check(CLI::IsMember({"volpath", "single", "photon"}));

@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
     tetglow::cli::addDiffCommand(app);
     tetglow::cli::addValidateCommand(app);
     tetglow::cli::addCompareBoundaryCommand(app);
+    tetglow::cli::addConvertCommand(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

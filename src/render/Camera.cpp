@@ -9,6 +9,7 @@ Camera::Camera(const CameraDesc& desc) : position_(desc.position), width_(desc.w
     forward_ = glm::normalize(desc.lookAt - desc.position);
     right_ = glm::normalize(glm::cross(forward_, desc.up));
     up_ = glm::cross(right_, forward_);
+    if (desc.handedness == Handedness::Left) right_ = -right_;  // after up_, which stays the same
     const double half = std::tan(desc.fov * std::numbers::pi / 360), aspect = double(width_) / height_;
     halfWidth_ = aspect >= 1 ? half * aspect : half;
     halfHeight_ = aspect >= 1 ? half : half / aspect;

@@ -214,6 +214,8 @@ std::unique_ptr<Light> makeLight(const LightDesc& desc, const Bounds3& sceneBoun
         }
         case LightType::Quad:
             return std::make_unique<AreaLight>(quad(desc.corner, desc.edge0, desc.edge1), desc.radiance, desc.twoSided);
+        case LightType::Mesh:
+            return std::make_unique<AreaLight>(desc.mesh, desc.radiance, desc.twoSided);
         case LightType::Distant:
             return std::make_unique<DistantLight>(desc.direction, desc.irradiance, sceneBounds);
         case LightType::Environment:

@@ -1,5 +1,5 @@
-// Light sources: point, spot and distant (delta), area emitters on triangles (quads, and spot
-// lights with a radius), and a constant environment. Each can also emit photons.
+// Light sources: point, spot and distant (delta), area emitters on triangles (quads, meshes,
+// and spot lights with a radius), and a constant environment. Each can also emit photons.
 #pragma once
 #include <memory>
 #include <vector>

@@ -14,18 +14,23 @@
 
 namespace tetglow {
 
+// Which way the image's x axis runs: Right: along cross(view, up), the usual right-handed
+// camera; Left: along cross(up, view), as pbrt's LookAt builds it (the mirror image).
+enum class Handedness { Right, Left };
+
 struct CameraDesc {
     glm::dvec3 position{0, 0, 5}, lookAt{0}, up{0, 1, 0};
     double fov = 40;  // degrees across the shorter image axis (pbrt's convention)
     int width = 400, height = 400;
+    Handedness handedness = Handedness::Right;
 };
 
-enum class LightType { Point, Spot, Distant, Quad, Environment };
+enum class LightType { Point, Spot, Distant, Quad, Mesh, Environment };
 
 struct LightDesc {
     LightType type = LightType::Point;
     RGB intensity{0};  // point, spot: radiant intensity (W/sr)
-    RGB radiance{0};   // quad, environment: emitted radiance
+    RGB radiance{0};   // quad, mesh, environment: emitted radiance
     glm::dvec3 position{0}, lookAt{0, -1, 0};  // point, spot (spot axis: lookAt - position)
     // Spot: pbrt-v3's cone. Full intensity within coneAngle - coneDelta of the axis, none
     // beyond coneAngle, smoothstep-like falloff ((cos - cosTotal) / (cosStart - cosTotal))^4 between.
@@ -36,7 +41,8 @@ struct LightDesc {
     glm::dvec3 direction{0, -1, 0};  // distant: the direction the light travels
     RGB irradiance{0};               // distant: on a surface facing the light
     glm::dvec3 corner{0}, edge0{1, 0, 0}, edge1{0, 0, 1};  // quad: emits along cross(edge0, edge1)
-    bool twoSided = false;                                // quad
+    TriangleMesh mesh;     // mesh: world space; each triangle emits along cross(p1 - p0, p2 - p0)
+    bool twoSided = false;  // quad, mesh
 };
 
 enum class MaterialType {

@@ -2,14 +2,14 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
 #include <limits>
-#include <sstream>
 
 #include <glm/geometric.hpp>
 
 #include "scene/JsonReader.h"
+#include "scene/PbrtParser.h"
 #include "scene/SceneShapes.h"
+#include "scene/TextFile.h"
 
 namespace tetglow {
 namespace {
@@ -19,17 +19,6 @@ namespace fs = std::filesystem;
 constexpr int kMaxResolution = 16384;
 constexpr int kMaxParityRays = 15;
 constexpr Range kUnitInterval{.lo = 0, .hi = 1};
-
-std::string readText(const std::string& path) {
-    std::error_code ec;
-    if (!fs::exists(path, ec)) throw InputError(path + ": no such file");
-    if (fs::is_directory(path, ec)) throw InputError(path + ": is a directory, not a scene file");
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(path + ": cannot open");
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
-}
 
 RGB rgb(const JsonValue& v) { return v.vec3OrScalar(kNonNegative); }
 
@@ -66,6 +55,7 @@ CameraDesc readCamera(JsonObject& o) {
         c.width = int(size[0].integer(1, kMaxResolution));
         c.height = int(size[1].integer(1, kMaxResolution));
     }
+    if (auto f = o["handedness"]) c.handedness = f.choice<Handedness>({{"right", Handedness::Right}, {"left", Handedness::Left}});
     return c;
 }
 
@@ -107,12 +97,13 @@ void readSpotCone(JsonObject& o, LightDesc& l) {
     if (auto f = o["radius"]) l.radius = f.number(kNonNegative);
 }
 
-LightDesc readLight(JsonObject& o) {
+LightDesc readLight(JsonObject& o, const fs::path& dir) {
     LightDesc l;
     l.type = o["type"].choice<LightType>({{"point", LightType::Point},
                                            {"spot", LightType::Spot},
                                            {"distant", LightType::Distant},
                                            {"quad", LightType::Quad},
+                                           {"mesh", LightType::Mesh},
                                            {"environment", LightType::Environment}});
     const double scale = scaleOf(o);
     if (l.type == LightType::Point || l.type == LightType::Spot) {
@@ -131,9 +122,12 @@ LightDesc readLight(JsonObject& o) {
         l.corner = p.corner;
         l.edge0 = p.edge0;
         l.edge1 = p.edge1;
-        if (auto f = o["two_sided"]) l.twoSided = f.boolean();
     }
-    if (l.type == LightType::Quad || l.type == LightType::Environment) l.radiance = scale * rgb(o["radiance"]);
+    if (l.type == LightType::Mesh) l.mesh = o["shape"].readObject([&](JsonObject& s) { return readShape(s, dir, false); }).mesh;
+    if (l.type == LightType::Quad || l.type == LightType::Mesh)
+        if (auto f = o["two_sided"]) l.twoSided = f.boolean();
+    if (l.type == LightType::Quad || l.type == LightType::Mesh || l.type == LightType::Environment)
+        l.radiance = scale * rgb(o["radiance"]);
     return l;
 }
 
@@ -217,14 +211,6 @@ MediumDesc readMedium(JsonObject& o, const fs::path& dir) {
     return m;
 }
 
-bool emits(const SceneDesc& s) {
-    for (const LightDesc& l : s.lights)
-        if (l.intensity != RGB(0) || l.radiance != RGB(0) || l.irradiance != RGB(0)) return true;
-    for (const MediumDesc& m : s.media)
-        if (m.emission != RGB(0)) return true;
-    return false;
-}
-
 SceneDesc readScene(JsonObject& o, const std::string& path) {
     const fs::path dir = fs::path(path).parent_path();
     SceneDesc s;
@@ -232,20 +218,31 @@ SceneDesc readScene(JsonObject& o, const std::string& path) {
     s.camera = o["camera"].readObject(readCamera);
     if (auto f = o["integrator"]) s.integrator = f.readObject(readIntegrator);
     if (auto f = o["output"]) s.output = (dir / f.string()).string();
-    for (const JsonValue& v : optionalArray(o["lights"])) s.lights.push_back(v.readObject(readLight));
+    for (const JsonValue& v : optionalArray(o["lights"]))
+        s.lights.push_back(v.readObject([&](JsonObject& x) { return readLight(x, dir); }));
     for (const JsonValue& v : optionalArray(o["surfaces"]))
         s.surfaces.push_back(v.readObject([&](JsonObject& x) { return readSurface(x, dir); }));
     for (const JsonValue& v : optionalArray(o["media"]))
         s.media.push_back(v.readObject([&](JsonObject& x) { return readMedium(x, dir); }));
-    if (!emits(s))
+    if (!emitsLight(s))
         o["lights"].error("nothing emits light: add a light with non-zero intensity, irradiance or radiance, or give a medium an \"emission\"");
     return s;
 }
 
 }  // namespace
 
+bool emitsLight(const SceneDesc& s) {
+    for (const LightDesc& l : s.lights)
+        if (l.intensity != RGB(0) || l.radiance != RGB(0) || l.irradiance != RGB(0)) return true;
+    for (const MediumDesc& m : s.media)
+        if (m.emission != RGB(0)) return true;
+    return false;
+}
+
 SceneDesc loadScene(const std::string& path) {
-    const nlohmann::json doc = parseJson(readText(path), path);
+    const std::string text = readTextFile(path);
+    if (fs::path(path).extension() == ".pbrt" || looksLikePbrt(text)) return loadPbrtScene(path);
+    const nlohmann::json doc = parseJson(text, path);
     return JsonValue(&doc, nlohmann::json::json_pointer(), path).readObject([&](JsonObject& o) { return readScene(o, path); });
 }
 

@@ -1,4 +1,4 @@
-// The JSON scene file (docs/FORMAT.md) -> SceneDesc.
+// Scene files (docs/FORMAT.md) -> SceneDesc.
 #pragma once
 #include <string>
 
@@ -10,6 +10,12 @@ namespace tetglow {
 // the scene file's directory), transformed to world space and rounded to float; colours are
 // multiplied by their "scale". Throws InputError, one line naming the file and the JSON pointer
 // of the bad field, on any problem. Mesh warnings go to stderr.
+// A file whose name ends in .pbrt, or whose first token is a pbrt-v3 directive, is read as a
+// pbrt-v3 scene (scene/PbrtParser.h).
 SceneDesc loadScene(const std::string& path);
+
+// Something gives off light: a light with non-zero intensity, irradiance or radiance, or an
+// emissive medium.
+bool emitsLight(const SceneDesc& scene);
 
 }  // namespace tetglow

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 namespace tetglow {
@@ -49,9 +50,37 @@ SurfaceBVH::SurfaceBVH(const std::vector<glm::dvec3>& positions, const std::vect
         corners_[t] = a;
     }
     rtcCommitScene(scene_);
+
+    // Each edge moved out by the margin: scaled about the incentre by (r + margin) / r. Embree's
+    // rays start at the bounds (see candidates()), so its float error is about 1e-7 of the
+    // bounds' extent; the margin is 1e-5 of it.
+    glm::dvec3 lo(INFINITY), hi(-INFINITY);
+    for (const auto& p : positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+    margin_ = 1e-5 * (glm::length(hi - lo) + glm::length(glm::max(glm::abs(lo), glm::abs(hi))));
+    std::vector<glm::dvec3> grown;
+    std::vector<std::array<uint32_t, 3>> separate;
+    for (const auto& tri : triangles) {
+        const glm::dvec3 a = positions[tri[0]], b = positions[tri[1]], c = positions[tri[2]];
+        const double la = glm::distance(b, c), lb = glm::distance(c, a), lc = glm::distance(a, b), perimeter = la + lb + lc;
+        const glm::dvec3 incentre = (la * a + lb * b + lc * c) / perimeter;
+        const double inradius = glm::length(glm::cross(b - a, c - a)) / perimeter;
+        const double scale = (inradius + margin_) / inradius;
+        const uint32_t first = uint32_t(grown.size());
+        for (const glm::dvec3& p : {a, b, c}) grown.push_back(incentre + (p - incentre) * scale);
+        separate.push_back({first, first + 1, first + 2});
+    }
+    lo_ = hi_ = grown.empty() ? glm::dvec3(0) : grown[0];
+    for (const auto& p : grown) lo_ = glm::min(lo_, p), hi_ = glm::max(hi_, p);
+    grown_ = rtcNewScene(device);
+    rtcSetSceneFlags(grown_, RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
+    attachTriangles(grown_, grown, separate);
+    rtcCommitScene(grown_);
 }
 
-SurfaceBVH::~SurfaceBVH() { rtcReleaseScene(scene_); }
+SurfaceBVH::~SurfaceBVH() {
+    rtcReleaseScene(scene_);
+    rtcReleaseScene(grown_);
+}
 
 double SurfaceBVH::refine(const Ray& ray, uint32_t triangle, float t) const {
     // Embree's float t is off by ~1e-7 / sin(angle) at grazing angles; the plane equation in
@@ -67,6 +96,7 @@ struct QueryContext {
     RTCIntersectContext base;
     const SurfaceBVH* bvh;
     Ray ray;
+    double shift;  // Embree's ray starts at ray.at(shift)
     double tnear;
     Facing facing;
     std::vector<SurfaceHit>* collect;  // when set: record and reject every hit
@@ -82,7 +112,7 @@ void filter(const RTCFilterFunctionNArguments* args) {
     }
     const uint32_t prim = RTCHitN_primID(args->hit, args->N, 0);
     // Embree's window is widened for float rounding; the exact window applies to the refined t.
-    const double t = ctx->bvh->refine(ctx->ray, prim, RTCRayN_tfar(args->ray, args->N, 0));
+    const double t = ctx->bvh->refine(ctx->ray, prim, float(ctx->shift + RTCRayN_tfar(args->ray, args->N, 0)));
     const bool entering = glm::dot(ctx->ray.d, ctx->bvh->normal(prim)) < 0;
     if (ctx->collect) {
         if (t >= ctx->tnear) ctx->collect->push_back({t, prim, entering});
@@ -92,9 +122,11 @@ void filter(const RTCFilterFunctionNArguments* args) {
     if (t < ctx->tnear || (ctx->facing == Facing::Entering && !entering)) args->valid[0] = 0;
 }
 
-RTCRayHit makeRay(const Ray& ray, double tnear, double tfar) {
+RTCRayHit makeRay(const Ray& ray, double tnear, double tfar, double shift = 0) {
     RTCRayHit rh{};
-    rh.ray.org_x = float(ray.o.x), rh.ray.org_y = float(ray.o.y), rh.ray.org_z = float(ray.o.z);
+    const glm::dvec3 o = ray.at(shift);
+    tnear -= shift, tfar -= shift;
+    rh.ray.org_x = float(o.x), rh.ray.org_y = float(o.y), rh.ray.org_z = float(o.z);
     rh.ray.dir_x = float(ray.d.x), rh.ray.dir_y = float(ray.d.y), rh.ray.dir_z = float(ray.d.z);
     // Rounded down by a margin above Embree's float error, so no hit at tnear is lost.
     rh.ray.tnear = float(std::max(tnear * (1 - 1e-6) - 1e-12, 0.0));
@@ -107,7 +139,7 @@ RTCRayHit makeRay(const Ray& ray, double tnear, double tfar) {
 }  // namespace
 
 std::optional<SurfaceHit> SurfaceBVH::intersect(const Ray& ray, double tnear, double tfar, Facing facing) const {
-    QueryContext ctx{{}, this, ray, tnear, facing, nullptr, nullptr};
+    QueryContext ctx{{}, this, ray, 0, tnear, facing, nullptr, nullptr};
     rtcInitIntersectContext(&ctx.base);
     ctx.base.filter = filter;
     RTCRayHit rh = makeRay(ray, tnear, tfar);
@@ -119,7 +151,7 @@ std::optional<SurfaceHit> SurfaceBVH::intersect(const Ray& ray, double tnear, do
 
 std::vector<SurfaceHit> SurfaceBVH::allHits(const Ray& ray, double tnear) const {
     std::vector<SurfaceHit> hits;
-    QueryContext ctx{{}, this, ray, tnear, Facing::Any, &hits, nullptr};
+    QueryContext ctx{{}, this, ray, 0, tnear, Facing::Any, &hits, nullptr};
     rtcInitIntersectContext(&ctx.base);
     ctx.base.filter = filter;
     RTCRayHit rh = makeRay(ray, tnear, INFINITY);
@@ -130,12 +162,38 @@ std::vector<SurfaceHit> SurfaceBVH::allHits(const Ray& ray, double tnear) const 
 
 int SurfaceBVH::crossings(const Ray& ray) const {
     int count = 0;
-    QueryContext ctx{{}, this, ray, 0, Facing::Any, nullptr, &count};
+    QueryContext ctx{{}, this, ray, 0, 0, Facing::Any, nullptr, &count};
     rtcInitIntersectContext(&ctx.base);
     ctx.base.filter = filter;
     RTCRayHit rh = makeRay(ray, 0, INFINITY);
     rtcIntersect1(scene_, &ctx.base, &rh);
     return count;
+}
+
+std::vector<SurfaceHit> SurfaceBVH::candidates(const Ray& ray, double tnear) const {
+    // Embree's ray starts where the ray enters the bounds, a margin early: its float rounding is
+    // then relative to the mesh, however far away the ray's own origin is.
+    double t0 = tnear, t1 = INFINITY;
+    for (int k = 0; k < 3; ++k) {
+        const double inv = 1 / ray.d[k];
+        double a = (lo_[k] - ray.o[k]) * inv, b = (hi_[k] - ray.o[k]) * inv;
+        if (a > b) std::swap(a, b);
+        t0 = std::max(t0, a), t1 = std::min(t1, b);  // NaN (0 * inf) leaves the bound as it was
+    }
+    std::vector<SurfaceHit> hits;
+    if (!(t0 <= t1)) return hits;
+    const double shift = t0 - margin_ / glm::length(ray.d);
+    QueryContext ctx{{}, this, ray, shift, tnear, Facing::Any, &hits, nullptr};
+    rtcInitIntersectContext(&ctx.base);
+    ctx.base.filter = filter;
+    RTCRayHit rh = makeRay(ray, shift, INFINITY, shift);
+    rtcIntersect1(grown_, &ctx.base, &rh);
+    // Each triangle once (Embree may report one twice), by t.
+    std::sort(hits.begin(), hits.end(), [](const SurfaceHit& a, const SurfaceHit& b) { return a.triangle < b.triangle; });
+    hits.erase(std::unique(hits.begin(), hits.end(), [](const SurfaceHit& a, const SurfaceHit& b) { return a.triangle == b.triangle; }),
+               hits.end());
+    std::sort(hits.begin(), hits.end(), [](const SurfaceHit& a, const SurfaceHit& b) { return a.t < b.t; });
+    return hits;
 }
 
 }  // namespace tetglow

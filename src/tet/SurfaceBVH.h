@@ -34,14 +34,21 @@ public:
     std::vector<SurfaceHit> allHits(const Ray& ray, double tnear = 0) const;
     // How many triangles the ray crosses for t > 0 (one traversal): the parity test's count.
     int crossings(const Ray& ray) const;
+    // Every triangle the ray may cross for t >= tnear, sorted by t, a superset for exact tests to
+    // decide: Embree over the triangles grown in their planes by a margin far above its float
+    // error, so that a crossing exactly through an edge or a vertex, which Embree can miss on the
+    // triangles themselves, is never left out.
+    std::vector<SurfaceHit> candidates(const Ray& ray, double tnear = 0) const;
 
     const glm::dvec3& normal(uint32_t triangle) const { return normals_[triangle]; }  // outward, not unit
     // The ray parameter of the triangle's plane, in double precision.
     double refine(const Ray& ray, uint32_t triangle, float embreeT) const;
 
 private:
-    RTCScene scene_ = nullptr;
+    RTCScene scene_ = nullptr, grown_ = nullptr;
     std::vector<glm::dvec3> normals_, corners_;
+    glm::dvec3 lo_, hi_;  // bounds of the grown triangles
+    double margin_ = 0;   // how far each triangle was grown
 };
 
 RTCDevice embreeDevice();

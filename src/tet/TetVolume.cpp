@@ -17,7 +17,6 @@ TetVolume::TetVolume(TetMesh mesh) : mesh_(std::move(mesh)), bvh_(mesh_.vertices
     // centre, and empty cells inherit from a neighbour (breadth-first), so every cell has one.
     Bounds3 b;
     for (const auto& v : mesh_.vertices) b.extend(v);
-    shift_ = 1e-9 * b.diagonal();
     const glm::dvec3 size = glm::max(b.hi - b.lo, glm::dvec3(1e-30));
     const double cell = std::cbrt(size.x * size.y * size.z * 2.0 / double(mesh_.tets.size()));
     gridRes_ = glm::clamp(glm::ivec3(glm::ceil(size / cell)), glm::ivec3(1), glm::ivec3(256));
@@ -99,28 +98,6 @@ bool TetVolume::contains(uint32_t t, const glm::dvec3& p) const {
     return true;
 }
 
-int64_t TetVolume::locateAroundFace(const glm::dvec3& p, uint32_t tet, int face) const {
-    // Each corner's star: the tets sharing that vertex, reached across faces through it.
-    std::vector<uint32_t> star, stack;
-    for (int k = 0; k < 3; ++k) {
-        const uint32_t corner = mesh_.tets[tet][kInwardFace[face][k]];
-        star.assign(1, tet);
-        stack.assign(1, tet);
-        while (!stack.empty()) {
-            const uint32_t t = stack.back();
-            stack.pop_back();
-            if (contains(t, p)) return t;
-            for (int j = 0; j < 4; ++j) {
-                const int32_t adj = mesh_.adjacency[t][j];
-                if (mesh_.tets[t][j] == corner || TetMesh::isBoundary(adj)) continue;
-                const uint32_t n = TetMesh::neighbourTet(adj);
-                if (std::find(star.begin(), star.end(), n) == star.end()) star.push_back(n), stack.push_back(n);
-            }
-        }
-    }
-    return -1;
-}
-
 int64_t TetVolume::lineLocate(uint32_t from, const glm::dvec3& p) const {
     // Walk the segment from a point surely inside (the centroid) to p, re-entering through
     // concavities; p is inside exactly when the medium's segments reach t = 1.
@@ -135,6 +112,19 @@ int64_t TetVolume::lineLocate(uint32_t from, const glm::dvec3& p) const {
         },
         from);
     return found;
+}
+
+std::vector<TetWalk> TetVolume::entriesAlong(const Ray& ray, double tnear) const {
+    std::vector<TetWalk> entries;
+    for (const SurfaceHit& c : bvh_.candidates(ray, tnear)) TetWalk::entriesNear(mesh_, ray, c.triangle, entries);
+    // Around neighbouring candidates the same entry is found twice, with the same t.
+    std::sort(entries.begin(), entries.end(), [](const TetWalk& a, const TetWalk& b) {
+        return a.exitT() < b.exitT() || (a.exitT() == b.exitT() && a.entryTriangle() < b.entryTriangle());
+    });
+    entries.erase(std::unique(entries.begin(), entries.end(),
+                              [](const TetWalk& a, const TetWalk& b) { return a.entryTriangle() == b.entryTriangle(); }),
+                  entries.end());
+    return entries;
 }
 
 namespace {
