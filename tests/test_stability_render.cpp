@@ -61,8 +61,10 @@ SceneDesc furnace(TriangleMesh boundary, const RGB& sigmaA, const RGB& sigmaS, d
 }
 
 // An absorbing polyhedron: along every line the radiance is exp(-sigma_a * chord), the chord
-// from exact plane tests. Grazing below 1e-4 radians is left out: there the chord itself is
-// decided by float precision (Stability.DegenerateLinesThroughAConvexPolyhedron).
+// from exact plane tests. The tet march is exact on every line; volpath and photon end each
+// medium stretch at Embree's float hits, not where the tet walk leaves: off by up to 2e-4
+// through edges and 6e-3 grazing at 1e-4 rad, and grazing at 1e-6 rad or less by up to 0.3
+// (there only bounded).
 TEST(StabilityRender, RaysThroughVerticesEdgesAndGrazingEveryIntegrator) {
     const double sigma = 1.5;
     const Scene scene(furnace(tiltedPolyhedron(2), RGB(sigma), RGB(0), 0));
@@ -76,17 +78,16 @@ TEST(StabilityRender, RaysThroughVerticesEdgesAndGrazingEveryIntegrator) {
         };
         std::map<std::string, Error> errorByKind;  // of |L - exact|
         for (const auto& [kind, ray] : degenerateLines(surface)) {
-            if (kind == "grazing at 1e-06 rad" || kind == "grazing at 1e-08 rad") continue;
             Error& e = errorByKind[kind];
             Rng rng(3, e.lines);
             const double L = integrator->radiance(ray, rng).x, exact = std::exp(-sigma * convexChord(surface, ray));
             ASSERT_TRUE(std::isfinite(L)) << mode.name << ", " << kind;
             EXPECT_GE(L, 0) << mode.name << ", " << kind;
             EXPECT_LE(L, 1 + 1e-12) << mode.name << ", " << kind;
-            // Volpath and photon end each medium stretch at Embree's float hits, not where the tet
-            // walk leaves: off by up to about 2e-4 through edges, 6e-3 grazing (error ~ 1/angle).
-            if (mode.name == "single, tets" || mode.name.rfind("single", 0) != 0) {
-                EXPECT_NEAR(L, exact, mode.name == "single, tets" ? 1e-5 : 1e-2) << mode.name << ", " << kind;
+            const bool embreeBounded = mode.name.rfind("single", 0) != 0;
+            const bool shallow = kind == "grazing at 1e-06 rad" || kind == "grazing at 1e-08 rad";
+            if (mode.name == "single, tets" || (embreeBounded && !shallow)) {
+                EXPECT_NEAR(L, exact, embreeBounded ? 1e-2 : 1e-5) << mode.name << ", " << kind;
             }
             e.sum += std::abs(L - exact), e.max = std::max(e.max, std::abs(L - exact)), ++e.lines;
         }
