@@ -1,11 +1,12 @@
 #!/usr/bin/env python3
 """Where each method breaks, regenerated for docs/RESULTS.md: the figures the stability tests
 print (each test asserts its own bounds; here they are only collected) and the per-query cost
-of the boundary methods from `tetglow compare-boundary` on the fish and blub.
+of the boundary methods from `tetglow compare-boundary --json` on the fish and blub.
 
   bench/stability.py [--build DIR]   rewrites the stability section of docs/RESULTS.md
 """
 import argparse
+import json
 import os
 import subprocess
 
@@ -37,6 +38,34 @@ def printed(tests_binary, test):
     return "\n".join(l for l in r.stdout.splitlines() if l.strip() and not l.startswith(("[", "Running main", "Note:")))
 
 
+def boundary_costs(binary):
+    """Markdown tables from `tetglow compare-boundary MESH --json` on each mesh: time per point
+    classified (mean over the bounding box and the shells) and per line's optical depth."""
+    points = ["**Cost per query of the boundary methods** (`tetglow compare-boundary MESH --json`, one thread).",
+              "Inside/outside of a point, ns (mean over the bounding box and six shells 1e-2 to 1e-7 diagonals"
+              " from the surface; error rates against the tets in brackets):", "",
+              "| mesh | tets | parity 1 ray | parity 3 rays | parity 5 rays | bounding box |", "|---|---|---|---|---|---|"]
+    lines = ["", "Optical depth along random lines across the bounding box (sigma_t 1), the seed's march with one"
+             " parity ray per step:", "", "| mesh | method | step | us per line | x tets | relative error |", "|---|---|---|---|---|---|"]
+    for mesh in MESHES:
+        if not os.path.isfile(mesh):
+            fail(f"{mesh}: missing")
+        medium = json.loads(tetglow(binary, "compare-boundary", mesh, "--json"))["media"][0]
+        regions = medium["classification"]
+        cells = []
+        for i, method in enumerate(regions[0]["methods"]):
+            ns = sum(r["methods"][i]["ns_per_query"] for r in regions) / len(regions)
+            rate = sum(r["methods"][i]["errors"] for r in regions) / sum(r["points"] for r in regions)
+            cells.append(f"{ns:.0f} ({100 * rate:.2g}%)")
+        points.append(f"| {medium['name']} | " + " | ".join(cells) + " |")
+        tets = medium["optical_depth"]["methods"][0]["us_per_ray"]
+        for m in medium["optical_depth"]["methods"]:
+            step = f"{m['step']:.3g}" if m["step"] else "-"
+            lines.append(f"| {medium['name']} | {m['method']} | {step} | {m['us_per_ray']:.3g} | {m['us_per_ray'] / tets:.3g} "
+                         f"| {m['relative_error']:.2g} |")
+    return points + lines
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--build", default=os.path.join(ROOT, "build"), help="build folder holding tetglow and tetglow_tests")
@@ -50,12 +79,7 @@ def main():
              f" what it prints; the bounds are asserted by the tests). Machine: {machine()}.", ""]
     for test, title in TESTS:
         lines += [f"**{title}** (`{test}`):", "", "```", printed(tests_binary, test), "```", ""]
-    lines += ["**Cost per query of the boundary methods** (`tetglow compare-boundary MESH`, one thread: inside/outside"
-              " of points near the surface, and optical depth along lines, tets exact against the parity march):", ""]
-    for mesh in MESHES:
-        if not os.path.isfile(mesh):
-            fail(f"{mesh}: missing")
-        lines += ["```", tetglow(binary, "compare-boundary", mesh).strip(), "```", ""]
+    lines += boundary_costs(binary)
     replace_section("stability", "\n".join(lines).rstrip())
     print("rewrote the stability section of docs/RESULTS.md")
 
