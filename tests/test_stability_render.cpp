@@ -154,8 +154,9 @@ double imageMean(const Image& image) {
 
 // Photon parameters at their extremes on a glowing sphere, where all scattered light comes from
 // photons, against volpath: few photons or a tiny radius give noise (and, in 4 passes, missing
-// light), a huge radius bias. Nothing non-finite, the mean bounded: a beam radius larger than the
-// medium overshoots by about 90% (each disc is scaled by 1 / the inside part of its ball).
+// light), a huge radius bias. Nothing non-finite, the mean bounded: even a beam radius larger than
+// the medium stays within about 6%, as each ball's chord along the ray is clipped to the medium
+// and divided by the ball's volume inside it.
 TEST(StabilityRender, PhotonCountsAndRadiiAtTheirExtremes) {
     MediumDesc glowing = sphereMedium(RGB(0.1), RGB(2.0), 0.3, 2);
     glowing.emission = RGB(0.5);
@@ -190,8 +191,13 @@ TEST(StabilityRender, PhotonCountsAndRadiiAtTheirExtremes) {
         EXPECT_EQ(d.nonFinite, 0u) << c.name;
         EXPECT_GT(bias, -1) << c.name;
         EXPECT_LT(bias, 1.5) << c.name;
+        // The moderate setting, and radii beyond the medium: with enough photons, a huge kernel
+        // clipped to the medium only blurs, so the mean holds.
         if (&c == cases) {
-            EXPECT_LT(std::abs(bias), 0.05);  // the moderate setting
+            EXPECT_LT(std::abs(bias), 0.05);
+        }
+        if (c.radius >= 1 && c.photons >= 2000) {
+            EXPECT_LT(std::abs(bias), 0.1) << c.name;
         }
     }
 }

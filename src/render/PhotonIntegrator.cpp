@@ -64,18 +64,19 @@ void PhotonIntegrator::beginPass(uint64_t pass) {
             else mp.map->assignRadii(desc_.k, mp.maxRadius, float(volumeScale_));
             mp.beams = std::make_unique<PhotonBeams>(mp.map->photons());
             bytes += mp.beams->bytes();
-            mp.kernelScale.clear();
-            if (desc_.boundaryCorrection) {
-                const auto& photons = mp.map->photons();
-                mp.kernelScale.resize(photons.size());
-                tbb::parallel_for(tbb::blocked_range<size_t>(0, photons.size()), [&](const auto& range) {
-                    for (size_t i = range.begin(); i != range.end(); ++i) {
-                        const double r = photons[i].radius;
-                        mp.kernelScale[i] = float(4 * kPi / 3 * r * r * r / balls_[m].inside(glm::dvec3(photons[i].position), r));
-                    }
-                });
-                bytes += mp.kernelScale.size() * sizeof(float);
-            }
+            const auto& photons = mp.map->photons();
+            mp.largestRadius = 0;
+            for (const Photon& photon : photons) mp.largestRadius = std::max(mp.largestRadius, double(photon.radius));
+            mp.invBallVolume.resize(photons.size());
+            tbb::parallel_for(tbb::blocked_range<size_t>(0, photons.size()), [&](const auto& range) {
+                for (size_t i = range.begin(); i != range.end(); ++i) {
+                    const double r = photons[i].radius;
+                    const double volume = desc_.boundaryCorrection ? balls_[m].inside(glm::dvec3(photons[i].position), r)
+                                                                   : 4 * kPi / 3 * r * r * r;
+                    mp.invBallVolume[i] = float(1 / volume);
+                }
+            });
+            bytes += mp.invBallVolume.size() * sizeof(float);
         }
         bytes += mp.map->bytes();
     }
@@ -208,12 +209,18 @@ RGB PhotonIntegrator::beamEstimate(int m, const Ray& ray, const ColumnProfile& c
     const HenyeyGreenstein& phase = scene_.media()[m].medium->phase();
     const auto& photons = mp.map->photons();
     RGB L(0);
-    // Every disc the ray crosses inside this stretch, with a uniform kernel 1 / (pi r^2).
-    mp.beams->query(ray.o, ray.d, column.begin(), column.end(), [&](uint32_t i, double t, double) {
+    // Each photon's ball kernel integrated along the stretch: the chord of the ball within
+    // [begin, end] over the ball's volume (inside the medium, with boundary correction). Unlike
+    // the disc kernel 1 / (pi r^2), which assumes the whole chord lies in the medium, this stays
+    // right where the ball reaches past the stretch's ends, however large the radius.
+    const double begin = column.begin(), end = column.end();
+    mp.beams->query(ray.o, ray.d, begin - mp.largestRadius, end + mp.largestRadius, [&](uint32_t i, double t, double distance2) {
         const Photon& photon = photons[i];
-        double f = phase.eval(-glm::dot(glm::dvec3(unpackDirection(photon.direction)), ray.d));
-        if (!mp.kernelScale.empty()) f *= mp.kernelScale[i];
-        L += column.transmittance(t) * RGB(photon.power) * (f / (kPi * double(photon.radius) * photon.radius));
+        const double half = std::sqrt(std::max(0.0, double(photon.radius) * photon.radius - distance2));
+        const double chord = std::min(end, t + half) - std::max(begin, t - half);
+        if (chord <= 0) return;
+        const double f = phase.eval(-glm::dot(glm::dvec3(unpackDirection(photon.direction)), ray.d));
+        L += column.transmittance(std::clamp(t, begin, end)) * RGB(photon.power) * (f * chord * mp.invBallVolume[i]);
     });
     return L;
 }

@@ -48,9 +48,10 @@ private:
     struct MediumPhotons {
         std::unique_ptr<PhotonMap> map;      // null when the pass stored none
         std::unique_ptr<PhotonBeams> beams;  // beam estimate only
-        // Beam estimate with boundary correction: 1 / the inside fraction of each photon's ball,
-        // so that a photon near the surface keeps its whole power inside the medium.
-        std::vector<float> kernelScale;
+        // Beam estimate: 1 / the volume of each photon's ball, only the part inside the medium
+        // with boundary correction, so that the kernel integrates to 1 over the medium.
+        std::vector<float> invBallVolume;
+        double largestRadius = 0;  // of this pass's photons: how far past a stretch balls reach
         float maxRadius = 0;
     };
 
