@@ -9,7 +9,7 @@
 //   - multiple scattering (and light that reached the medium through glass) from the volume
 //     photons, by the seed's ray march with a k-NN lookup per step (`knn-march`, optionally
 //     dividing by the part of the ball inside the medium) or by the beam radiance estimate
-//     (`beam`: every photon disc the ray crosses, exact along the ray, no step).
+//     (`beam`: every photon ball the ray crosses, integrated exactly along the ray, no step).
 // A diffuse surface gets direct light by next-event estimation and caustics from the surface
 // photons with a cone filter.
 #pragma once
