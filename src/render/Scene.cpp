@@ -155,9 +155,10 @@ RGB Scene::transmittance(Ray ray, double tMax, MediumState state) const {
     RGB tr(1);
     for (int crossings = 0; crossings < 256; ++crossings) {
         const auto hit = intersect(ray, tMax);
+        // An opaque or specular surface blocks the ray whatever lies before it: no walk needed.
+        if (hit && (hit->kind != HitKind::MediumBoundary || media_[hit->index].boundary.type != MaterialType::Interface)) return RGB(0);
         if (state.inside()) tr *= media_[state.medium].medium->transmittance(ray, state.start, hit ? hit->t : tMax);
         if (!hit) return tr;
-        if (hit->kind != HitKind::MediumBoundary || media_[hit->index].boundary.type != MaterialType::Interface) return RGB(0);
         state = afterHit(*hit, ray.d, state);
         ray.o = hit->p;
         tMax -= hit->t;
