@@ -16,7 +16,7 @@ rate() {  # samples/s printed by `tetglow render`
 echo "| run | threads | rendering (s) | samples/s |"
 echo "|---|---|---|---|"
 for threads in 1 2; do
-  log=$("$build/tetglow" render scenes/fish.json --spp 16 --threads "$threads" -o "$out/fish.exr" 2>/dev/null)
+  log=$("$build/tetglow" render scenes/fish.json --integrator volpath --spp 16 --threads "$threads" -o "$out/fish.exr" 2>/dev/null)
   secs=$(sed -n 's/.*rendering \([0-9.]*\) s.*/\1/p' <<<"$log")
   echo "| volpath, fish 400x400, 16 spp | $threads | $secs | $(rate "$log") |"
 done
