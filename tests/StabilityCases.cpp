@@ -4,10 +4,27 @@
 #include <cstdio>
 
 #include <glm/geometric.hpp>
+#include <gtest/gtest.h>
 
 #include "tet/Shapes.h"
+#include "tet/Tetrahedralizer.h"
 
 namespace tetglow::test {
+
+TetVolume tetsOf(const TriangleMesh& mesh) {
+    TetOptions o;
+    o.useCache = false;
+    return TetVolume(tetrahedralize(mesh, o));
+}
+
+void expectTetsRefuse(const TriangleMesh& mesh, const std::string& problem) {
+    try {
+        tetsOf(mesh);
+        ADD_FAILURE() << "the tets accepted a mesh that should fail with: " << problem;
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find(problem), std::string::npos) << e.what();
+    }
+}
 
 TriangleMesh tiltedPolyhedron(int subdivisions) {
     TriangleMesh m = icosphere(subdivisions, 0.8, {0.1, -0.2, 0.3});

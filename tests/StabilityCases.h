@@ -6,8 +6,14 @@
 #include <vector>
 
 #include "tet/TetMesh.h"
+#include "tet/TetVolume.h"
 
 namespace tetglow::test {
+
+// The tets of `mesh`, tetrahedralized afresh (no cache).
+TetVolume tetsOf(const TriangleMesh& mesh);
+// Expects tetrahedralizing `mesh` to fail with an InputError whose message contains `problem`.
+void expectTetsRefuse(const TriangleMesh& mesh, const std::string& problem);
 
 // A tilted, stretched icosahedron subdivided `subdivisions` times: convex, not aligned with its box.
 TriangleMesh tiltedPolyhedron(int subdivisions = 1);

@@ -33,6 +33,22 @@ RGB sampleDirect(const Scene& scene, const glm::dvec3& p, Rng& rng, bool mis, Sc
     return s.f * tr * ls.L * (weight / pdf);
 }
 
+// The Scattering towards wi of a medium's phase function, for a path travelling along d.
+inline auto phaseScattering(const HenyeyGreenstein& phase, const glm::dvec3& d) {
+    return [&phase, d](const glm::dvec3& wi) {
+        const double f = phase.eval(glm::dot(d, wi));
+        return Scattering{RGB(f), f};
+    };
+}
+
+// Light scattered at p, inside tet `tet` of medium m, into the direction -d: one light
+// sample without MIS, its shadow ray walking the tets (Scene::transmittance).
+inline RGB directInMedium(const Scene& scene, int m, const glm::dvec3& p, const glm::dvec3& d, uint32_t tet, Rng& rng) {
+    const MediumState here{m, WalkStart::inside(tet)};
+    return sampleDirect(scene, p, rng, false, phaseScattering(scene.media()[m].medium->phase(), d),
+                        [&](const Ray& r, double t) { return scene.transmittance(r, t, here); });
+}
+
 // The pdf with which sampleDirect would have chosen the point a phase/BSDF ray reached on a
 // light (for the MIS weight of emitters hit by those rays).
 inline double lightPdf(const Scene& scene, const Light& light, const glm::dvec3& from, const glm::dvec3& wi,

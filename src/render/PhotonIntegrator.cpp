@@ -147,15 +147,6 @@ RGB PhotonIntegrator::inMedium(int m, const Ray& ray, WalkStart start, double tM
     return L + directAlong(m, ray, start, tMax, column, rng) + beamEstimate(m, ray, column);
 }
 
-RGB PhotonIntegrator::directAt(int m, const glm::dvec3& p, const glm::dvec3& d, uint32_t tet, Rng& rng) const {
-    const HenyeyGreenstein& phase = scene_.media()[m].medium->phase();
-    const MediumState here{m, WalkStart::inside(tet)};
-    return sampleDirect(scene_, p, rng, false, [&](const glm::dvec3& wi) {
-        const double f = phase.eval(glm::dot(d, wi));
-        return Scattering{RGB(f), f};
-    }, [&](const Ray& r, double t) { return scene_.transmittance(r, t, here); });
-}
-
 RGB PhotonIntegrator::marchKnn(int m, const Ray& ray, const ColumnProfile& column, Rng& rng) const {
     const Medium& medium = *scene_.media()[m].medium;
     const RGB sigmaS = medium.params().sigmaS;
@@ -169,7 +160,7 @@ RGB PhotonIntegrator::marchKnn(int m, const Ray& ray, const ColumnProfile& colum
         for (int i = 0; i < n; ++i) {
             const double t = piece.tIn + (i + u) * h;
             const glm::dvec3 p = ray.at(t);
-            const RGB scattered = sigmaS * medium.density(piece.tet, p) * directAt(m, p, ray.d, piece.tet, rng) + knnEstimate(m, p, ray.d);
+            const RGB scattered = sigmaS * medium.density(piece.tet, p) * directInMedium(scene_, m, p, ray.d, piece.tet, rng) + knnEstimate(m, p, ray.d);
             L += column.transmittance(t) * h * scattered;
         }
     }
@@ -244,7 +235,7 @@ RGB PhotonIntegrator::directAlong(int m, const Ray& ray, WalkStart start, double
         pdf += sigmaT[c] * flight.transmittance[c] / (1 - trEnd[c]) / count;
     }
     const RGB weight = flight.transmittance * medium.params().sigmaS / pdf;
-    return weight * directAt(m, ray.at(flight.t), ray.d, flight.tet, rng);
+    return weight * directInMedium(scene_, m, ray.at(flight.t), ray.d, flight.tet, rng);
 }
 
 RGB PhotonIntegrator::caustics(const Intersection& hit, const glm::dvec3& d, const MaterialDesc& material) const {

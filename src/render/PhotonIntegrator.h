@@ -62,7 +62,6 @@ private:
     RGB beamEstimate(int m, const Ray& ray, const ColumnProfile& column) const;
     // Single scattering at a distance drawn along the stretch (one-sample spectral MIS).
     RGB directAlong(int m, const Ray& ray, WalkStart start, double tMax, const ColumnProfile& column, Rng& rng) const;
-    RGB directAt(int m, const glm::dvec3& p, const glm::dvec3& d, uint32_t tet, Rng& rng) const;
     // sigma_s times in-scattered radiance from the volume photons at p, seen along d.
     RGB knnEstimate(int m, const glm::dvec3& p, const glm::dvec3& d) const;
     RGB caustics(const Intersection& hit, const glm::dvec3& d, const MaterialDesc& material) const;

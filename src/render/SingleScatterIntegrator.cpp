@@ -41,16 +41,9 @@ RGB SingleScatterIntegrator::visibility(const Ray& ray, double tMax, Rng& rng) c
 }
 
 RGB SingleScatterIntegrator::inScattered(size_t m, const glm::dvec3& p, const glm::dvec3& d, int64_t tet, Rng& rng) const {
-    const Medium& medium = *scene_.media()[m].medium;
-    auto scatter = [&](const glm::dvec3& wi) {
-        const double f = medium.phase().eval(glm::dot(d, wi));
-        return Scattering{RGB(f), f};
-    };
-    if (mode_ == BoundaryMode::Tet) {
-        const MediumState here{int(m), WalkStart::inside(uint32_t(tet))};
-        return sampleDirect(scene_, p, rng, false, scatter, [&](const Ray& r, double t) { return scene_.transmittance(r, t, here); });
-    }
-    return sampleDirect(scene_, p, rng, false, scatter, [&](const Ray& r, double t) { return visibility(r, t, rng); });
+    if (mode_ == BoundaryMode::Tet) return directInMedium(scene_, int(m), p, d, uint32_t(tet), rng);
+    return sampleDirect(scene_, p, rng, false, phaseScattering(scene_.media()[m].medium->phase(), d),
+                        [&](const Ray& r, double t) { return visibility(r, t, rng); });
 }
 
 RGB SingleScatterIntegrator::marchTets(size_t m, const Ray& ray, double tMax, const RGB& beta, Rng& rng, RGB& L) const {

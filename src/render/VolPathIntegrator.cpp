@@ -58,10 +58,7 @@ RGB VolPathIntegrator::radiance(const Ray& cameraRay, Rng& rng) const {
                     const glm::dvec3 p = ray.at(flight.t);
                     const MediumState here{state.medium, WalkStart::inside(flight.tet)};
                     const HenyeyGreenstein& phase = medium.phase();
-                    L += path.weight() * sampleDirect(scene_, p, rng, true, [&](const glm::dvec3& wi) {
-                        const double f = phase.eval(glm::dot(ray.d, wi));
-                        return Scattering{RGB(f), f};
-                    }, visibility(here));
+                    L += path.weight() * sampleDirect(scene_, p, rng, true, phaseScattering(phase, ray.d), visibility(here));
                     const double u0 = rng.uniform(), u1 = rng.uniform();
                     const glm::dvec3 wi = phase.sample(ray.d, {u0, u1});
                     specular = false, lastPdf = phase.eval(glm::dot(ray.d, wi)), lastPoint = p;
