@@ -15,8 +15,8 @@ namespace tetglow {
 TetVolume::TetVolume(TetMesh mesh) : mesh_(std::move(mesh)), bvh_(mesh_.vertices, mesh_.surface) {
     // Start grid: about two tets per cell; each cell keeps the tet whose centroid is nearest its
     // centre, and empty cells inherit from a neighbour (breadth-first), so every cell has one.
-    Bounds3 b;
-    for (const auto& v : mesh_.vertices) b.extend(v);
+    for (const auto& v : mesh_.vertices) bounds_.extend(v);
+    const Bounds3& b = bounds_;
     const glm::dvec3 size = glm::max(b.hi - b.lo, glm::dvec3(1e-30));
     const double cell = std::cbrt(size.x * size.y * size.z * 2.0 / double(mesh_.tets.size()));
     gridRes_ = glm::clamp(glm::ivec3(glm::ceil(size / cell)), glm::ivec3(1), glm::ivec3(256));
@@ -61,7 +61,9 @@ uint32_t TetVolume::gridTet(const glm::dvec3& p) const {
 }
 
 int64_t TetVolume::locate(const glm::dvec3& p, int64_t hint) const {
-    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) return -1;
+    // Outside the box (or not a number) is outside, without the walk to the surface and the
+    // Embree ray behind it: photons from lights far outside ask this once each.
+    if (!bounds_.contains(p)) return -1;
     uint32_t t = hint >= 0 ? uint32_t(hint) : gridTet(p);
     return visibilityWalk(p, t) ? int64_t(t) : lineLocate(t, p);
 }

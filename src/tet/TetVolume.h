@@ -52,6 +52,7 @@ private:
 
     TetMesh mesh_;
     SurfaceBVH bvh_;
+    Bounds3 bounds_;  // of the vertices
     glm::dvec3 gridLo_, gridScale_;
     glm::ivec3 gridRes_;
     std::vector<uint32_t> grid_;

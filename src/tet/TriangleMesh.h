@@ -38,6 +38,10 @@ struct Bounds3 {
         if (!b.empty()) extend(b.lo), extend(b.hi);
     }
     bool empty() const { return lo.x > hi.x; }
+    // Closed box; false for NaN.
+    bool contains(const glm::dvec3& p) const {
+        return p.x >= lo.x && p.x <= hi.x && p.y >= lo.y && p.y <= hi.y && p.z >= lo.z && p.z <= hi.z;
+    }
     double diagonal() const;
 };
 
