@@ -22,6 +22,21 @@ LightSample towards(const glm::dvec3& p, const glm::dvec3& q, const RGB& intensi
     return {intensity / d2, v / d, d, 1, true};
 }
 
+// A disk that covers the scene's bounding sphere, facing any direction: where photons from
+// lights at infinity start (pbrt's infinite and distant lights).
+struct SceneDisk {
+    glm::dvec3 centre;
+    double radius;
+    explicit SceneDisk(const Bounds3& sceneBounds)
+        : centre(0.5 * (sceneBounds.lo + sceneBounds.hi)), radius(std::max(0.5 * sceneBounds.diagonal(), 1e-6)) {}
+    double area() const { return kPi * radius * radius; }
+    // A uniform point on the disk facing d, just outside the bounding sphere, upstream of d.
+    glm::dvec3 sample(const glm::dvec3& d, const Frame& frame, const glm::dvec2& u) const {
+        const glm::dvec2 q = sampleUniformDisk(u) * radius;
+        return centre - radius * d + q.x * frame.s + q.y * frame.t;
+    }
+};
+
 // A point, or with a profile pbrt-v3's spot light.
 class PointLight : public Light {
 public:
@@ -52,26 +67,21 @@ private:
 class DistantLight : public Light {
 public:
     DistantLight(const glm::dvec3& direction, const RGB& irradiance, const Bounds3& sceneBounds)
-        : direction_(glm::normalize(direction)), irradiance_(irradiance), frame_(direction_) {
-        centre_ = 0.5 * (sceneBounds.lo + sceneBounds.hi);
-        radius_ = std::max(0.5 * sceneBounds.diagonal(), 1e-6);
-    }
+        : direction_(glm::normalize(direction)), irradiance_(irradiance), frame_(direction_), disk_(sceneBounds) {}
     LightSample sample(const glm::dvec3&, const glm::dvec2&) const override { return {irradiance_, -direction_, INFINITY, 1, true}; }
     double pdf(const glm::dvec3&, const glm::dvec3&, const glm::dvec3&, uint32_t) const override { return 0; }
     RGB emitted(const glm::dvec3&, uint32_t) const override { return RGB(0); }
     PhotonEmission emitPhoton(const glm::dvec2& u, const glm::dvec2&) const override {
-        const glm::dvec2 q = sampleUniformDisk(u) * radius_;
-        return {{centre_ - radius_ * direction_ + q.x * frame_.s + q.y * frame_.t, direction_}, power()};
+        return {{disk_.sample(direction_, frame_, u), direction_}, power()};
     }
-    RGB power() const override { return irradiance_ * (kPi * radius_ * radius_); }
+    RGB power() const override { return irradiance_ * disk_.area(); }
     bool isDelta() const override { return true; }
 
 private:
     glm::dvec3 direction_;  // of travel
     RGB irradiance_;
     Frame frame_;
-    glm::dvec3 centre_;
-    double radius_;
+    SceneDisk disk_;
 };
 
 // Triangles emitting radiance, uniform over area; or, with a spot profile, radiance
@@ -92,8 +102,7 @@ public:
     void setSpot(const SpotProfile& profile, const RGB& intensity) { spot_ = profile, radiance_ = intensity / area_; }
 
     LightSample sample(const glm::dvec3& p, const glm::dvec2& u) const override {
-        const auto [tri, b] = samplePoint(u);
-        const glm::dvec3 q = b.x * mesh_.corner(tri, 0) + b.y * mesh_.corner(tri, 1) + (1 - b.x - b.y) * mesh_.corner(tri, 2);
+        const auto [tri, q] = samplePoint(u);
         LightSample s = towards(p, q, RGB(0));
         s.delta = false;
         s.pdf = pdf(p, s.wi, q, tri);
@@ -111,8 +120,7 @@ public:
         return spot_ ? radiance_ * spot_->falloff(-wi) / std::abs(cosLight) : radiance_;
     }
     PhotonEmission emitPhoton(const glm::dvec2& uPos, const glm::dvec2& uDir) const override {
-        const auto [tri, b] = samplePoint(uPos);
-        const glm::dvec3 p = b.x * mesh_.corner(tri, 0) + b.y * mesh_.corner(tri, 1) + (1 - b.x - b.y) * mesh_.corner(tri, 2);
+        const auto [tri, p] = samplePoint(uPos);
         if (spot_) {
             // Directions uniform in the cone: flux = L cos / (pdfArea pdfDir) = I falloff / pdfDir.
             const glm::dvec3 w = spot_->sampleCone(uDir);
@@ -136,12 +144,13 @@ public:
 
 private:
     // A triangle chosen by area with u.x, then a uniform point on it (what is left of u.x is
-    // reused), as barycentric weights of corners 0 and 1.
-    std::pair<uint32_t, glm::dvec2> samplePoint(const glm::dvec2& u) const {
+    // reused).
+    std::pair<uint32_t, glm::dvec3> samplePoint(const glm::dvec2& u) const {
         const double target = u.x * area_;
         const auto tri = uint32_t(std::min<size_t>(std::upper_bound(cdf_.begin(), cdf_.end(), target) - cdf_.begin(), cdf_.size() - 1));
         const double lo = tri ? cdf_[tri - 1] : 0, ux = std::clamp((target - lo) / (cdf_[tri] - lo), 0.0, 1.0 - 1e-16);
-        return {tri, sampleUniformTriangle({ux, u.y})};
+        const glm::dvec2 b = sampleUniformTriangle({ux, u.y});
+        return {tri, b.x * mesh_.corner(tri, 0) + b.y * mesh_.corner(tri, 1) + (1 - b.x - b.y) * mesh_.corner(tri, 2)};
     }
 
     TriangleMesh mesh_;
@@ -155,10 +164,7 @@ private:
 
 class EnvironmentLight : public Light {
 public:
-    EnvironmentLight(const RGB& radiance, const Bounds3& sceneBounds) : radiance_(radiance) {
-        centre_ = 0.5 * (sceneBounds.lo + sceneBounds.hi);
-        radius_ = std::max(0.5 * sceneBounds.diagonal(), 1e-6);
-    }
+    EnvironmentLight(const RGB& radiance, const Bounds3& sceneBounds) : radiance_(radiance), disk_(sceneBounds) {}
     LightSample sample(const glm::dvec3&, const glm::dvec2& u) const override {
         return {radiance_, sampleUniformSphere(u), INFINITY, kInv4Pi, false};
     }
@@ -168,17 +174,14 @@ public:
     // it that covers the scene, so flux = L / (pdfDir pdfArea) = L 4 pi pi r^2.
     PhotonEmission emitPhoton(const glm::dvec2& uPos, const glm::dvec2& uDir) const override {
         const glm::dvec3 d = sampleUniformSphere(uDir);
-        const Frame frame(d);
-        const glm::dvec2 q = sampleUniformDisk(uPos) * radius_;
-        return {{centre_ - radius_ * d + q.x * frame.s + q.y * frame.t, d}, power()};
+        return {{disk_.sample(d, Frame(d), uPos), d}, power()};
     }
-    RGB power() const override { return radiance_ * (4 * kPi * kPi * radius_ * radius_); }
+    RGB power() const override { return radiance_ * (4 * kPi * disk_.area()); }
     bool isEnvironment() const override { return true; }
 
 private:
     RGB radiance_;
-    glm::dvec3 centre_;
-    double radius_;
+    SceneDisk disk_;
 };
 
 }  // namespace
