@@ -9,9 +9,36 @@
 #include "TestScenes.h"
 #include "render/Integrator.h"
 #include "render/Renderer.h"
+#include "tet/Shapes.h"
 
 namespace tetglow::test {
 namespace {
+
+// An index-matched surface (material "interface") is invisible to every ray: camera rays cross
+// it, and so must shadow rays (Scene::transmittance) and the single-scatter march's rays
+// (Scene::intersectOpaque); a diffuse one in the same place blocks them.
+TEST(Render, IndexMatchedSurfacesPassEveryRay) {
+    const RGB sigmaA(0.4, 1.1, 2.3);
+    for (MaterialType type : {MaterialType::Interface, MaterialType::Diffuse}) {
+        SceneDesc desc = sceneWith(sphereMedium(sigmaA, RGB(0)), 8);
+        SurfaceDesc wall;
+        wall.name = "wall";
+        wall.mesh = quad({-3, -3, 2}, {6, 0, 0}, {0, 6, 0});  // between the camera and the sphere
+        wall.material.type = type;
+        desc.surfaces.push_back(wall);
+        const Scene scene(desc);
+        const Ray ray{{0, 0, 4}, {0, 0, -1}};
+        const bool passes = type == MaterialType::Interface;
+        // Through the wall and the whole unit sphere: a chord of 2.
+        const RGB tr = scene.transmittance(ray, 10, scene.mediumAt(ray.o));
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(tr[c], passes ? std::exp(-2 * sigmaA[c]) : 0, 1e-9) << int(type);
+        const auto opaque = scene.intersectOpaque(ray);
+        EXPECT_EQ(opaque.has_value(), !passes) << int(type);
+        if (opaque) {
+            EXPECT_NEAR(opaque->t, 2, 1e-6);
+        }
+    }
+}
 
 // (a) A purely absorbing sphere in front of a white environment: every pixel is exactly the
 // transmittance along its chord, the chord taken from Embree's hits on the boundary.

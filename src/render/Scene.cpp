@@ -134,7 +134,7 @@ MediumState Scene::afterHit(const Intersection& hit, const glm::dvec3& d, const 
 }
 
 bool Scene::crossInterface(const Intersection& hit, Ray& ray, MediumState& state) const {
-    if (material(hit).type != MaterialType::Interface) return false;
+    if (!indexMatched(hit)) return false;
     state = afterHit(hit, ray.d, state);
     ray.o = hit.p;
     return true;
@@ -156,7 +156,7 @@ RGB Scene::transmittance(Ray ray, double tMax, MediumState state) const {
     for (int crossings = 0; crossings < 256; ++crossings) {
         const auto hit = intersect(ray, tMax);
         // An opaque or specular surface blocks the ray whatever lies before it: no walk needed.
-        if (hit && (hit->kind != HitKind::MediumBoundary || media_[hit->index].boundary.type != MaterialType::Interface)) return RGB(0);
+        if (hit && !indexMatched(*hit)) return RGB(0);
         if (state.inside()) tr *= media_[state.medium].medium->transmittance(ray, state.start, hit ? hit->t : tMax);
         if (!hit) return tr;
         state = afterHit(*hit, ray.d, state);
@@ -172,7 +172,7 @@ std::optional<Intersection> Scene::intersectOpaque(const Ray& ray, double tMax) 
         auto hit = intersect(Ray{ray.at(t0), ray.d}, tMax - t0);
         if (!hit) return std::nullopt;
         hit->t += t0;
-        if (hit->kind != HitKind::MediumBoundary || media_[hit->index].boundary.type != MaterialType::Interface) return hit;
+        if (!indexMatched(*hit)) return hit;
         t0 = hit->t;
     }
     return std::nullopt;

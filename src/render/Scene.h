@@ -62,6 +62,8 @@ public:
     const MaterialDesc& material(const Intersection& hit) const;
     // The medium state after the path leaves `hit` in direction `d`, having been in `before`.
     MediumState afterHit(const Intersection& hit, const glm::dvec3& d, const MediumState& before) const;
+    // Whether `hit` is index-matched (material "interface"): every ray crosses it unchanged.
+    bool indexMatched(const Intersection& hit) const { return material(hit).type == MaterialType::Interface; }
     // Passes an index-matched boundary: when `hit` is one, moves the ray's origin to it,
     // updates `state` and returns true.
     bool crossInterface(const Intersection& hit, Ray& ray, MediumState& state) const;
