@@ -147,14 +147,14 @@ void addRenderCommand(CLI::App& app) {
     cmd->add_option("--step", o->step, "single: ray-march step in world units")->check(kFinite & CLI::PositiveNumber);
     cmd->add_option("--max-depth", o->maxDepth, "Events per path")->check(CLI::Range(1, 100000));
     cmd->add_option("--photons", o->photons, "photon: photon paths per pass")->check(CLI::Range(int64_t(1), int64_t(1) << 40));
-    auto* k = cmd->add_option("--k", o->k, "photon: neighbours that set the radius of each lookup (k-NN) or disc (beam)")
+    auto* k = cmd->add_option("--k", o->k, "photon: neighbours that set the radius of each lookup (k-NN) or photon ball (beam)")
                   ->check(CLI::Range(1, 100000));
     cmd->add_option("--radius", o->radius, "photon: a fixed radius (world units) instead of --k")
         ->check(kFinite & CLI::PositiveNumber)
         ->excludes(k);
     cmd->add_option("--estimate", o->estimate, "photon: knn-march (the seed's march with a k-NN lookup per step) or beam")
         ->check(CLI::IsMember({"knn-march", "beam"}));
-    cmd->add_option("--boundary-correction", o->boundaryCorrection, "photon, knn-march: divide by the part of the ball inside the medium (on|off)")
+    cmd->add_option("--boundary-correction", o->boundaryCorrection, "photon: divide each kernel by the part of its ball inside the medium (on|off)")
         ->check(CLI::IsMember({"on", "off"}));
     auto* passes = cmd->add_option("--passes", o->spp, "photon: passes, each with fresh photons and one sample per pixel (the same as --spp)")
                        ->check(CLI::Range(1, 1 << 20));

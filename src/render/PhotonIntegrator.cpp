@@ -18,8 +18,6 @@ namespace {
 // estimate instead of one lookup that spans the whole scene.
 constexpr double kMaxRadiusFraction = 0.2;  // of the medium's (or the scene's) bounding-box diagonal
 
-double diagonalOf(const TriangleMesh& mesh) { return bounds(mesh).diagonal(); }
-
 }  // namespace
 
 PhotonIntegrator::PhotonIntegrator(const Scene& scene, const IntegratorDesc& desc)
@@ -28,10 +26,10 @@ PhotonIntegrator::PhotonIntegrator(const Scene& scene, const IntegratorDesc& des
     for (const auto& m : scene.media()) {
         balls_.emplace_back(m.medium->volume().bvh());
         MediumPhotons photons;
-        const TriangleMesh boundary = m.medium->mesh().surfaceMesh();
-        photons.maxRadius = float(kMaxRadiusFraction * diagonalOf(boundary));
+        const Bounds3 box = bounds(m.medium->mesh().surfaceMesh());
+        photons.maxRadius = float(kMaxRadiusFraction * box.diagonal());
         media_.push_back(std::move(photons));
-        all.extend(bounds(boundary));
+        all.extend(box);
     }
     for (const auto& s : scene.desc().surfaces) all.extend(bounds(s.mesh));
     surfaceMaxRadius_ = float(kMaxRadiusFraction * (all.empty() ? 1.0 : all.diagonal()));
