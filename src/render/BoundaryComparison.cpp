@@ -19,10 +19,6 @@ double timePerCall(size_t n, F&& f) {
     return n ? std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / double(n) : 0;
 }
 
-bool inBox(const Bounds3& box, const glm::dvec3& p) {
-    return p.x >= box.lo.x && p.y >= box.lo.y && p.z >= box.lo.z && p.x <= box.hi.x && p.y <= box.hi.y && p.z <= box.hi.z;
-}
-
 }  // namespace
 
 std::vector<InsideTest> insideTests(const TetVolume* tets, const SurfaceBVH& bvh, const Bounds3& box) {
@@ -30,7 +26,7 @@ std::vector<InsideTest> insideTests(const TetVolume* tets, const SurfaceBVH& bvh
     if (tets) tests.push_back({"tets", [tets](const glm::dvec3& p) { return tets->locate(p) >= 0; }});
     for (int rays : {1, 3, 5})
         tests.push_back({"parity " + std::to_string(rays), [&bvh, rays](const glm::dvec3& p) { return insideByParity(bvh, p, rays); }});
-    tests.push_back({"bbox", [box](const glm::dvec3& p) { return inBox(box, p); }});
+    tests.push_back({"bbox", [box](const glm::dvec3& p) { return box.contains(p); }});
     return tests;
 }
 
