@@ -1,7 +1,9 @@
 // Direction and point sampling shared by the light transport code.
 #pragma once
+#include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
@@ -67,6 +69,13 @@ inline glm::dvec3 sampleUniformTetrahedron(glm::dvec3 u) {
 }
 
 // Veach's power heuristic (beta = 2) for one sample of each strategy.
+// The index i with cdf[i - 1] <= u * cdf.back() < cdf[i], for a running sum `cdf` of weights:
+// each index with probability weight / total.
+inline size_t sampleCdf(const std::vector<double>& cdf, double u) {
+    const auto i = size_t(std::upper_bound(cdf.begin(), cdf.end(), u * cdf.back()) - cdf.begin());
+    return std::min(i, cdf.size() - 1);
+}
+
 inline double powerHeuristic(double pdfA, double pdfB) {
     const double a = pdfA * pdfA, b = pdfB * pdfB;
     return a + b > 0 ? a / (a + b) : 0;

@@ -49,7 +49,7 @@ std::vector<PointRegion> samplePoints(const TriangleMesh& surface, const std::ve
                 region.points.push_back(box.lo + (box.hi - box.lo) * u);
                 continue;
             }
-            const auto t = uint32_t(std::min<size_t>(std::upper_bound(cdf.begin(), cdf.end(), u.x * area) - cdf.begin(), cdf.size() - 1));
+            const auto t = uint32_t(sampleCdf(cdf, u.x));
             const glm::dvec2 b = sampleUniformTriangle({u.y, u.z});
             const glm::dvec3 a = surface.corner(t, 0), e1 = surface.corner(t, 1) - a, e2 = surface.corner(t, 2) - a;
             const double side = rng.uniform() < 0.5 ? -1 : 1;

@@ -146,9 +146,8 @@ private:
     // A triangle chosen by area with u.x, then a uniform point on it (what is left of u.x is
     // reused).
     std::pair<uint32_t, glm::dvec3> samplePoint(const glm::dvec2& u) const {
-        const double target = u.x * area_;
-        const auto tri = uint32_t(std::min<size_t>(std::upper_bound(cdf_.begin(), cdf_.end(), target) - cdf_.begin(), cdf_.size() - 1));
-        const double lo = tri ? cdf_[tri - 1] : 0, ux = std::clamp((target - lo) / (cdf_[tri] - lo), 0.0, 1.0 - 1e-16);
+        const auto tri = uint32_t(sampleCdf(cdf_, u.x));
+        const double lo = tri ? cdf_[tri - 1] : 0, ux = std::clamp((u.x * area_ - lo) / (cdf_[tri] - lo), 0.0, 1.0 - 1e-16);
         const glm::dvec2 b = sampleUniformTriangle({ux, u.y});
         return {tri, b.x * mesh_.corner(tri, 0) + b.y * mesh_.corner(tri, 1) + (1 - b.x - b.y) * mesh_.corner(tri, 2)};
     }

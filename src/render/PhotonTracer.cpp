@@ -17,11 +17,6 @@ namespace {
 constexpr uint64_t kPhotonStream = uint64_t(1) << 62;
 constexpr uint64_t kBlock = 1024;  // paths per parallel task
 
-size_t pick(const std::vector<double>& cdf, double u) {
-    const auto i = size_t(std::upper_bound(cdf.begin(), cdf.end(), u * cdf.back()) - cdf.begin());
-    return std::min(i, cdf.size() - 1);
-}
-
 double probability(const std::vector<double>& cdf, size_t i) { return (cdf[i] - (i ? cdf[i - 1] : 0)) / cdf.back(); }
 
 Photon makePhoton(const glm::dvec3& p, const RGB& power, const glm::dvec3& direction) {
@@ -136,7 +131,7 @@ PhotonSource::PhotonSource(const Scene& scene) {
 }
 
 PhotonSource::Emission PhotonSource::sample(const Scene& scene, Rng& rng) const {
-    const size_t i = pick(cdf_, rng.uniform());
+    const size_t i = sampleCdf(cdf_, rng.uniform());
     const double chosen = probability(cdf_, i);
     const Emitter& e = emitters_[i];
     Emission out;
@@ -149,7 +144,7 @@ PhotonSource::Emission PhotonSource::sample(const Scene& scene, Rng& rng) const 
     }
     const Medium& medium = *scene.media()[e.medium].medium;
     const TetMesh& mesh = medium.mesh();
-    const auto tet = uint32_t(pick(e.tetCdf, rng.uniform()));
+    const auto tet = uint32_t(sampleCdf(e.tetCdf, rng.uniform()));
     const auto& v = mesh.tets[tet];
     const glm::dvec3 p0 = mesh.vertices[v[0]];
     const double u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
