@@ -17,43 +17,45 @@ std::string gMeshPath = std::string(TETGLOW_SOURCE_DIR) + "/scenes/meshes/fish.o
 
 struct Fixture {
     std::unique_ptr<TetVolume> volume;
-    std::vector<Ray> rays;                        // each crosses the medium
-    std::vector<uint32_t> entries;                // Embree's entry triangle per ray
-    std::vector<std::vector<glm::dvec3>> paths;   // ray-march sample points, inside and outside
-    std::vector<std::vector<glm::dvec3>> inside;  // the samples of each path inside the medium
-    double spacing = 0;                           // between samples, in t
+    Bounds3 box;                  // of the medium: the seed's march samples only inside it
+    std::vector<Ray> rays;        // each crosses the medium
+    std::vector<uint32_t> entries;  // Embree's entry triangle per ray
+    std::vector<double> t0, t1;   // each ray's stretch in the box
+    std::vector<std::vector<glm::dvec3>> inside;  // march samples (step diagonal / 100) inside the medium
 };
 
 const Fixture& fixture() {
     static const Fixture f = [] {
         Fixture f;
         f.volume = std::make_unique<TetVolume>(tetrahedralize(readMesh(gMeshPath)));
-        Bounds3 b;
-        for (const auto& v : f.volume->mesh().vertices) b.extend(v);
-        const double diag = b.diagonal();
+        for (const auto& v : f.volume->mesh().vertices) f.box.extend(v);
+        const double diag = f.box.diagonal();
         std::mt19937_64 rng(1);
         std::uniform_real_distribution<double> u(0, 1);
         while (f.rays.size() < 4096) {
-            const glm::dvec3 target = b.lo + (b.hi - b.lo) * glm::dvec3(u(rng), u(rng), u(rng));
+            const glm::dvec3 target = f.box.lo + (f.box.hi - f.box.lo) * glm::dvec3(u(rng), u(rng), u(rng));
             const double z = 2 * u(rng) - 1, phi = 2 * M_PI * u(rng), s = std::sqrt(1 - z * z);
             const glm::dvec3 d(s * std::cos(phi), s * std::sin(phi), z);
             const Ray ray{target - d * diag, d};
             auto hit = f.volume->bvh().intersect(ray, 0, INFINITY, Facing::Entering);
-            if (!hit) continue;
+            double t0 = 0, t1 = INFINITY;
+            if (!hit || !clip(f.box, ray, t0, t1)) continue;
             f.rays.push_back(ray);
             f.entries.push_back(hit->triangle);
-            std::vector<glm::dvec3> path, in;  // the seed's ray march: 200 steps across the box
-            f.spacing = 2 * diag / 200;
-            for (int k = 0; k < 200; ++k) {
-                path.push_back(ray.at((k + 0.5) * f.spacing));
-                if (f.volume->locate(path.back()) >= 0) in.push_back(path.back());
-            }
-            f.paths.push_back(std::move(path));
+            f.t0.push_back(t0), f.t1.push_back(t1);
+            std::vector<glm::dvec3> in;
+            for (double t = t0 + 0.5 * diag / 100; t < t1; t += diag / 100)
+                if (f.volume->locate(ray.at(t)) >= 0) in.push_back(ray.at(t));
             if (!in.empty()) f.inside.push_back(std::move(in));
         }
         return f;
     }();
     return f;
+}
+
+// The seed's ray march along ray r: sample k at t0 + (k + 0.5) step, for the samples inside the box.
+size_t marchSamples(const Fixture& f, size_t r, double step) {
+    return size_t(std::max(0.0, std::ceil((f.t1[r] - f.t0[r]) / step - 0.5)));
 }
 
 void BM_TetSteps(benchmark::State& state) {
@@ -96,29 +98,40 @@ void BM_EmbreeEntryExit(benchmark::State& state) {
 BENCHMARK(BM_EmbreeEntryExit);
 
 void BM_LocateAlongPath(benchmark::State& state) {
-    // The ray march's inside test with tets: walk the ray once, then each sample's tet is the
-    // segment holding it (-1 between segments). The walk's cost is included.
+    // The march's inside test with tets, as the single-scattering integrator does it: walk the
+    // ray once through the box and give each sample the tet of the segment holding it (-1
+    // between segments), on the fly. The walk's cost is included. Argument: diagonal / step.
     const Fixture& f = fixture();
-    size_t i = 0, points = 0;
-    std::vector<WalkSegment> segments;
-    for (auto _ : state) {
-        const size_t r = i++ % f.rays.size();
-        const Ray& ray = f.rays[r];
-        segments.clear();
-        f.volume->traverse(ray, 0, INFINITY, [&](const WalkSegment& s) { return segments.push_back(s), true; },
-                           TetVolume::kOutside);
-        size_t k = 0;
-        for (int j = 0; j < 200; ++j) {
-            const double t = (j + 0.5) * f.spacing;
-            while (k < segments.size() && segments[k].tOut < t) ++k;
-            benchmark::DoNotOptimize(k < segments.size() && segments[k].tIn <= t ? int64_t(segments[k].tet) : -1);
+    const double step = f.box.diagonal() / double(state.range(0));
+    std::vector<int64_t> tets;
+    size_t i = 0, points = 0, wrong = 0;
+    auto locateAll = [&](size_t r) {
+        const double t0 = f.t0[r];
+        const size_t n = marchSamples(f, r, step);
+        tets.assign(n, -1);
+        size_t k = 0;  // the next sample
+        f.volume->traverse(f.rays[r], t0, f.t1[r], [&](const WalkSegment& s) {
+            while (k < n && t0 + (double(k) + 0.5) * step < s.tIn) ++k;  // between segments: outside
+            for (; k < n && t0 + (double(k) + 0.5) * step < s.tOut; ++k) tets[k] = s.tet;
+            return true;
+        }, TetVolume::kOutside);
+        return n;
+    };
+    for (size_t r = 0; r < 256; ++r)  // once, untimed: the located tets hold their samples
+        for (size_t k = 0, n = locateAll(r); k < n; ++k) {
+            const glm::dvec3 p = f.rays[r].at(f.t0[r] + (double(k) + 0.5) * step);
+            wrong += tets[k] >= 0 ? !f.volume->contains(uint32_t(tets[k]), p) : f.volume->locate(p) >= 0;
         }
-        points += 200;
+    for (auto _ : state) {
+        points += locateAll(i++ % f.rays.size());
+        benchmark::DoNotOptimize(tets.data());
     }
     state.counters["points/s"] = benchmark::Counter(double(points), benchmark::Counter::kIsRate);
+    state.counters["points/ray"] = double(points) / double(state.iterations());
+    state.counters["wrong"] = double(wrong);
     state.counters["bytes/tet"] = double(f.volume->mesh().bytesPerTet());
 }
-BENCHMARK(BM_LocateAlongPath);
+BENCHMARK(BM_LocateAlongPath)->Arg(100)->Arg(500)->Arg(2500);
 
 void BM_LocateWithHint(benchmark::State& state) {
     // Point location by visibility walk from the previous sample's tet, for the samples inside.
@@ -135,16 +148,20 @@ void BM_LocateWithHint(benchmark::State& state) {
 BENCHMARK(BM_LocateWithHint);
 
 void BM_ParityAlongPath(benchmark::State& state) {
+    // The seed's inside test at the same samples: rays from each (majority of range(0)).
     const Fixture& f = fixture();
     const int rays = int(state.range(0));
+    const double step = f.box.diagonal() / double(state.range(1));
     size_t i = 0, points = 0;
     for (auto _ : state) {
-        for (const auto& p : f.paths[i++ % f.paths.size()]) benchmark::DoNotOptimize(insideByParity(f.volume->bvh(), p, rays));
-        points += 200;
+        const size_t r = i++ % f.rays.size(), n = marchSamples(f, r, step);
+        for (size_t k = 0; k < n; ++k)
+            benchmark::DoNotOptimize(insideByParity(f.volume->bvh(), f.rays[r].at(f.t0[r] + (double(k) + 0.5) * step), rays));
+        points += n;
     }
     state.counters["points/s"] = benchmark::Counter(double(points), benchmark::Counter::kIsRate);
 }
-BENCHMARK(BM_ParityAlongPath)->Arg(1)->Arg(3)->Arg(5);
+BENCHMARK(BM_ParityAlongPath)->ArgsProduct({{1, 3, 5}, {100, 500, 2500}});
 
 }  // namespace
 }  // namespace tetglow
