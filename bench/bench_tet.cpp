@@ -24,6 +24,12 @@ struct Fixture {
     std::vector<std::vector<glm::dvec3>> inside;  // march samples (step diagonal / 100) inside the medium
 };
 
+// The seed's ray march along ray r: sample k at t0 + (k + 0.5) step, for the samples inside the box.
+size_t marchSamples(const Fixture& f, size_t r, double step) {
+    return size_t(std::max(0.0, std::ceil((f.t1[r] - f.t0[r]) / step - 0.5)));
+}
+double marchT(const Fixture& f, size_t r, size_t k, double step) { return f.t0[r] + (double(k) + 0.5) * step; }
+
 const Fixture& fixture() {
     static const Fixture f = [] {
         Fixture f;
@@ -43,19 +49,15 @@ const Fixture& fixture() {
             f.rays.push_back(ray);
             f.entries.push_back(hit->triangle);
             f.t0.push_back(t0), f.t1.push_back(t1);
+            const size_t r = f.rays.size() - 1;
             std::vector<glm::dvec3> in;
-            for (double t = t0 + 0.5 * diag / 100; t < t1; t += diag / 100)
-                if (f.volume->locate(ray.at(t)) >= 0) in.push_back(ray.at(t));
+            for (size_t k = 0, n = marchSamples(f, r, diag / 100); k < n; ++k)
+                if (const glm::dvec3 p = ray.at(marchT(f, r, k, diag / 100)); f.volume->locate(p) >= 0) in.push_back(p);
             if (!in.empty()) f.inside.push_back(std::move(in));
         }
         return f;
     }();
     return f;
-}
-
-// The seed's ray march along ray r: sample k at t0 + (k + 0.5) step, for the samples inside the box.
-size_t marchSamples(const Fixture& f, size_t r, double step) {
-    return size_t(std::max(0.0, std::ceil((f.t1[r] - f.t0[r]) / step - 0.5)));
 }
 
 void BM_TetSteps(benchmark::State& state) {
@@ -106,20 +108,19 @@ void BM_LocateAlongPath(benchmark::State& state) {
     std::vector<int64_t> tets;
     size_t i = 0, points = 0, wrong = 0;
     auto locateAll = [&](size_t r) {
-        const double t0 = f.t0[r];
         const size_t n = marchSamples(f, r, step);
         tets.assign(n, -1);
         size_t k = 0;  // the next sample
-        f.volume->traverse(f.rays[r], t0, f.t1[r], [&](const WalkSegment& s) {
-            while (k < n && t0 + (double(k) + 0.5) * step < s.tIn) ++k;  // between segments: outside
-            for (; k < n && t0 + (double(k) + 0.5) * step < s.tOut; ++k) tets[k] = s.tet;
+        f.volume->traverse(f.rays[r], f.t0[r], f.t1[r], [&](const WalkSegment& s) {
+            while (k < n && marchT(f, r, k, step) < s.tIn) ++k;  // between segments: outside
+            for (; k < n && marchT(f, r, k, step) < s.tOut; ++k) tets[k] = s.tet;
             return true;
         }, TetVolume::kOutside);
         return n;
     };
     for (size_t r = 0; r < 256; ++r)  // once, untimed: the located tets hold their samples
         for (size_t k = 0, n = locateAll(r); k < n; ++k) {
-            const glm::dvec3 p = f.rays[r].at(f.t0[r] + (double(k) + 0.5) * step);
+            const glm::dvec3 p = f.rays[r].at(marchT(f, r, k, step));
             wrong += tets[k] >= 0 ? !f.volume->contains(uint32_t(tets[k]), p) : f.volume->locate(p) >= 0;
         }
     for (auto _ : state) {
@@ -156,7 +157,7 @@ void BM_ParityAlongPath(benchmark::State& state) {
     for (auto _ : state) {
         const size_t r = i++ % f.rays.size(), n = marchSamples(f, r, step);
         for (size_t k = 0; k < n; ++k)
-            benchmark::DoNotOptimize(insideByParity(f.volume->bvh(), f.rays[r].at(f.t0[r] + (double(k) + 0.5) * step), rays));
+            benchmark::DoNotOptimize(insideByParity(f.volume->bvh(), f.rays[r].at(marchT(f, r, k, step)), rays));
         points += n;
     }
     state.counters["points/s"] = benchmark::Counter(double(points), benchmark::Counter::kIsRate);

@@ -29,15 +29,12 @@ def rates(path):
     return out, perRay, run["context"]
 
 
-def crossover(r, perRay, parity, target=20):
-    """Samples per ray from which the tets locate `target` times the parity test's rate: the
-    tets' time per ray is a fixed walk plus a cost per sample, fitted to the coarsest and finest
-    steps; the parity test's time is per sample."""
+def fitWalk(r, perRay):
+    """The tets' time per ray as a fixed walk plus a cost per sample (seconds), fitted to the
+    coarsest and finest steps."""
     (n0, s0), (n1, s1) = [(perRay[f"BM_LocateAlongPath/{k}"], r[f"BM_LocateAlongPath/{k}"]) for k in (STEPS[0], STEPS[-1])]
     perSample = (n1 / s1 - n0 / s0) / (n1 - n0)
-    walk = n0 / s0 - n0 * perSample
-    budget = 1 / (target * parity) - perSample
-    return walk / budget if budget > 0 else float("inf"), walk, perSample
+    return n0 / s0 - n0 * perSample, perSample
 
 
 def main():
@@ -60,10 +57,13 @@ def main():
                   + " | ".join(f"{tets / p:.1f}" for p in parity) + " |")
     print()
     for name, r, perRay, _ in runs:
+        walk, perSample = fitWalk(r, perRay)
+        chord = perRay[f"BM_LocateAlongPath/{STEPS[0]}"] / STEPS[0]  # mean stretch in the box, in diagonals
         for n in RAYS:
             parity = max(r[f"BM_ParityAlongPath/{n}/{k}"] for k in STEPS)  # its best, as for every figure
-            samples, walk, perSample = crossover(r, perRay, parity)
-            chord = perRay[f"BM_LocateAlongPath/{STEPS[0]}"] / STEPS[0]  # mean stretch in the box, in diagonals
+            # Samples per ray from which the tets locate 20 times the parity test's rate.
+            budget = 1 / (20 * parity) - perSample
+            samples = walk / budget if budget > 0 else float("inf")
             print(f"- {name}, parity {n} ray{'s' if n > 1 else ''} ({1e9 / parity:.0f} ns per sample): tets 20x from "
                   f"{samples:.0f} samples per ray (step diagonal / {samples / chord:.0f}); walk {walk * 1e9:.0f} ns "
                   f"per ray + {perSample * 1e9:.1f} ns per sample")
