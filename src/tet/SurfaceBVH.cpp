@@ -69,8 +69,7 @@ SurfaceBVH::SurfaceBVH(const std::vector<glm::dvec3>& positions, const std::vect
         for (const glm::dvec3& p : {a, b, c}) grown.push_back(incentre + (p - incentre) * scale);
         separate.push_back({first, first + 1, first + 2});
     }
-    lo_ = hi_ = grown.empty() ? glm::dvec3(0) : grown[0];
-    for (const auto& p : grown) lo_ = glm::min(lo_, p), hi_ = glm::max(hi_, p);
+    for (const auto& p : grown) grownBounds_.extend(p);
     grown_ = rtcNewScene(device);
     rtcSetSceneFlags(grown_, RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
     attachTriangles(grown_, grown, separate);
@@ -174,25 +173,14 @@ std::vector<SurfaceHit> SurfaceBVH::candidates(const Ray& ray, double tnear) con
     // Embree's ray starts where the ray enters the bounds, a margin early: its float rounding is
     // then relative to the mesh, however far away the ray's own origin is.
     double t0 = tnear, t1 = INFINITY;
-    for (int k = 0; k < 3; ++k) {
-        const double inv = 1 / ray.d[k];
-        double a = (lo_[k] - ray.o[k]) * inv, b = (hi_[k] - ray.o[k]) * inv;
-        if (a > b) std::swap(a, b);
-        t0 = std::max(t0, a), t1 = std::min(t1, b);  // NaN (0 * inf) leaves the bound as it was
-    }
     std::vector<SurfaceHit> hits;
-    if (!(t0 <= t1)) return hits;
+    if (!clip(grownBounds_, ray, t0, t1)) return hits;
     const double shift = t0 - margin_ / glm::length(ray.d);
     QueryContext ctx{{}, this, ray, shift, tnear, Facing::Any, &hits, nullptr};
     rtcInitIntersectContext(&ctx.base);
     ctx.base.filter = filter;
     RTCRayHit rh = makeRay(ray, shift, INFINITY, shift);
     rtcIntersect1(grown_, &ctx.base, &rh);
-    // Each triangle once (Embree may report one twice), by t.
-    std::sort(hits.begin(), hits.end(), [](const SurfaceHit& a, const SurfaceHit& b) { return a.triangle < b.triangle; });
-    hits.erase(std::unique(hits.begin(), hits.end(), [](const SurfaceHit& a, const SurfaceHit& b) { return a.triangle == b.triangle; }),
-               hits.end());
-    std::sort(hits.begin(), hits.end(), [](const SurfaceHit& a, const SurfaceHit& b) { return a.t < b.t; });
     return hits;
 }
 

@@ -10,6 +10,7 @@
 #include <glm/vec3.hpp>
 
 #include "tet/Ray.h"
+#include "tet/TriangleMesh.h"
 
 namespace tetglow {
 
@@ -34,8 +35,8 @@ public:
     std::vector<SurfaceHit> allHits(const Ray& ray, double tnear = 0) const;
     // How many triangles the ray crosses for t > 0 (one traversal): the parity test's count.
     int crossings(const Ray& ray) const;
-    // Every triangle the ray may cross for t >= tnear, sorted by t, a superset for exact tests to
-    // decide: Embree over the triangles grown in their planes by a margin far above its float
+    // Every triangle the ray may cross for t >= tnear, in no order and possibly twice, a superset
+    // for exact tests to decide (the caller orders what they accept): Embree over the triangles grown in their planes by a margin far above its float
     // error, so that a crossing exactly through an edge or a vertex, which Embree can miss on the
     // triangles themselves, is never left out.
     std::vector<SurfaceHit> candidates(const Ray& ray, double tnear = 0) const;
@@ -47,7 +48,7 @@ public:
 private:
     RTCScene scene_ = nullptr, grown_ = nullptr;
     std::vector<glm::dvec3> normals_, corners_;
-    glm::dvec3 lo_, hi_;  // bounds of the grown triangles
+    Bounds3 grownBounds_;
     double margin_ = 0;   // how far each triangle was grown
 };
 

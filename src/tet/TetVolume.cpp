@@ -119,7 +119,8 @@ int64_t TetVolume::lineLocate(uint32_t from, const glm::dvec3& p) const {
 std::vector<TetWalk> TetVolume::entriesAlong(const Ray& ray, double tnear) const {
     std::vector<TetWalk> entries;
     for (const SurfaceHit& c : bvh_.candidates(ray, tnear)) TetWalk::entriesNear(mesh_, ray, c.triangle, entries);
-    // Around neighbouring candidates the same entry is found twice, with the same t.
+    // Around neighbouring candidates, and from a candidate Embree reports twice, the same entry is
+    // found twice, with the same t: ordered by (t, triangle), the copies are adjacent.
     std::sort(entries.begin(), entries.end(), [](const TetWalk& a, const TetWalk& b) {
         return a.exitT() < b.exitT() || (a.exitT() == b.exitT() && a.entryTriangle() < b.entryTriangle());
     });
