@@ -7,6 +7,7 @@
 
 #include "scene/PbrtTransform.h"
 #include "scene/PlyReader.h"
+#include "scene/SceneShapes.h"
 
 namespace tetglow {
 namespace {
@@ -82,14 +83,9 @@ PbrtMesh readPbrtMesh(const std::string& type, PbrtParams& params, const PbrtLoc
     PbrtMesh out;
     out.hasNormals = !object.normals.empty();
     out.swapsHandedness = det < 0;
-    out.mesh.positions.reserve(object.mesh.positions.size());
-    for (const glm::dvec3& p : object.mesh.positions) {
-        const glm::dvec3 q(objectToWorld * glm::dvec4(p, 1));
-        const glm::dvec3 f(roundToFloat(q.x), roundToFloat(q.y), roundToFloat(q.z));
-        if (!std::isfinite(f.x) || !std::isfinite(f.y) || !std::isfinite(f.z))
-            pbrtError(where, params.directive() + ": a vertex is not a finite float once transformed");
-        out.mesh.positions.push_back(f);
-    }
+    out.mesh.positions = object.mesh.positions;
+    if (placePositions(out.mesh.positions, objectToWorld) != SIZE_MAX)
+        pbrtError(where, params.directive() + ": a vertex is not a finite float once transformed");
     // pbrt-v3 (Triangle::Intersect): the normal is cross(p1 - p0, p2 - p0) of the world-space
     // points, negated when ReverseOrientation and a mirroring transform disagree; with "N" it is
     // instead turned to the side of the (likewise negated) interpolated shading normal.

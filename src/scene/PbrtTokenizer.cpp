@@ -56,13 +56,17 @@ std::optional<PbrtToken> PbrtTokenizer::scan(Source& s) {
     const std::string& t = s.text;
     while (s.pos < t.size()) {
         const char c = t[s.pos];
-        const PbrtLocation at{s.file, s.line};
         if (isSpace(c)) {
             s.line += c == '\n';
             ++s.pos;
-        } else if (c == '#') {
+            continue;
+        }
+        if (c == '#') {
             while (s.pos < t.size() && t[s.pos] != '\n' && t[s.pos] != '\r') ++s.pos;
-        } else if (c == '[' || c == ']') {
+            continue;
+        }
+        const PbrtLocation at{s.file, s.line};  // where the token starts: copies the path, so once per token
+        if (c == '[' || c == ']') {
             ++s.pos;
             return PbrtToken{c == '[' ? PbrtToken::Kind::Open : PbrtToken::Kind::Close, std::string(1, c), at};
         } else if (c == '"') {

@@ -240,8 +240,9 @@ bool emitsLight(const SceneDesc& s) {
 }
 
 SceneDesc loadScene(const std::string& path) {
+    if (fs::path(path).extension() == ".pbrt") return loadPbrtScene(path);  // without reading the file here too
     const std::string text = readTextFile(path);
-    if (fs::path(path).extension() == ".pbrt" || looksLikePbrt(text)) return loadPbrtScene(path);
+    if (looksLikePbrt(text)) return loadPbrtScene(path);
     const nlohmann::json doc = parseJson(text, path);
     return JsonValue(&doc, nlohmann::json::json_pointer(), path).readObject([&](JsonObject& o) { return readScene(o, path); });
 }

@@ -51,16 +51,11 @@ glm::dmat4 readTransform(const JsonValue& v) {
     return m;
 }
 
-// Positions through `m`, rounded to float so that every consumer sees the same vertices; a
-// mirroring transform flips the winding so that outward stays outward.
+// Positions through `m` (placePositions); a mirroring transform flips the winding so that
+// outward stays outward.
 void place(const JsonValue& shape, TriangleMesh& mesh, const glm::dmat4& m) {
-    for (size_t i = 0; i < mesh.positions.size(); ++i) {
-        const glm::dvec3 q(m * glm::dvec4(mesh.positions[i], 1));
-        const glm::dvec3 p(roundToFloat(q.x), roundToFloat(q.y), roundToFloat(q.z));
-        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
-            shape.error("vertex " + std::to_string(i) + " is not a finite float once placed");
-        mesh.positions[i] = p;
-    }
+    if (const size_t bad = placePositions(mesh.positions, m); bad != SIZE_MAX)
+        shape.error("vertex " + std::to_string(bad) + " is not a finite float once placed");
     if (glm::determinant(glm::dmat3(m)) < 0)
         for (auto& t : mesh.triangles) std::swap(t[1], t[2]);
 }
@@ -105,6 +100,16 @@ TriangleMesh readDisk(JsonObject& o) {
 enum class ShapeType { Mesh, Sphere, Box, Quad, Disk };
 
 }  // namespace
+
+size_t placePositions(std::vector<glm::dvec3>& positions, const glm::dmat4& m) {
+    for (size_t i = 0; i < positions.size(); ++i) {
+        const glm::dvec3 q(m * glm::dvec4(positions[i], 1));
+        const glm::dvec3 p(roundToFloat(q.x), roundToFloat(q.y), roundToFloat(q.z));
+        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) return i;
+        positions[i] = p;
+    }
+    return SIZE_MAX;
+}
 
 Parallelogram readParallelogram(JsonObject& o) {
     Parallelogram p;
