@@ -1,6 +1,7 @@
 // Each `tetglow` subcommand lives in its own file and registers itself here.
 #pragma once
 #include <cmath>
+#include <filesystem>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -14,6 +15,12 @@ void addDiffCommand(CLI::App& app);
 void addValidateCommand(CLI::App& app);
 void addCompareBoundaryCommand(CLI::App& app);
 void addConvertCommand(CLI::App& app);
+
+// Creates the folder an output file goes into, if it names one.
+inline void createParentFolder(const std::string& path) {
+    const auto parent = std::filesystem::path(path).parent_path();
+    if (!parent.empty()) std::filesystem::create_directories(parent);
+}
 
 // CLI11's range checks let NaN through (every comparison with NaN is false).
 inline const CLI::Validator kFinite{[](std::string& s) -> std::string {

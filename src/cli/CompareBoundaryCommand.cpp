@@ -98,15 +98,10 @@ void writePicture(const Options& o, Subject& s) {
                  picture.pixelsWithDisagreement);
 }
 
-void createParent(const std::string& path) {
-    const auto parent = std::filesystem::path(path).parent_path();
-    if (!parent.empty()) std::filesystem::create_directories(parent);
-}
-
 void run(const Options& o) {
     if (!o.picture.empty() && std::filesystem::path(o.picture).extension() != ".exr")
         throw InputError(o.picture + ": the picture must be an .exr file");
-    for (const auto& path : {o.picture, o.csv}) createParent(path);
+    for (const auto& path : {o.picture, o.csv}) createParentFolder(path);
     Subject s = std::filesystem::path(o.input).extension() == ".json" ? loadSceneSubject(o.input) : loadMeshSubject(o.input);
     for (size_t m = 0; m < s.volumes.size(); ++m) s.reports[m].comparison = compareBoundary(*s.volumes[m], o.comparison);
     if (!o.picture.empty()) writePicture(o, s);
@@ -151,7 +146,7 @@ void addCompareBoundaryCommand(CLI::App& app) {
                     "Also write the debug picture (.exr, with a .png beside it): green inside by both tests, "
                     "dim red in the bounding box only, magenta where tets and parity disagree");
     cmd->add_option("--picture-width", o->pictureWidth, "Width of the picture (default: the scene's; 320 for a mesh)")
-        ->check(CLI::Range(1, 16384));
+        ->check(CLI::Range(1, kMaxResolution));
     cmd->callback([o] { run(*o); });
 }
 

@@ -20,8 +20,7 @@ void run(const Options& o) {
     std::error_code ec;
     if (fs::equivalent(o.scene, o.output, ec)) throw InputError(o.output + ": is the scene being converted");
     const SceneDesc scene = loadScene(o.scene);
-    const auto parent = fs::path(o.output).parent_path();
-    if (!parent.empty()) fs::create_directories(parent);
+    createParentFolder(o.output);
     const auto meshes = writeScene(scene, o.output);
     std::printf("%s and %zu mesh files: %zu lights, %zu surfaces, %zu media\n", o.output.c_str(), meshes.size(), scene.lights.size(),
                 scene.surfaces.size(), scene.media.size());

@@ -67,8 +67,9 @@ void applyOverrides(const Options& o, SceneDesc& scene) {
     if (!o.resolution.empty()) {
         int w = 0, h = 0;
         char end = 0;
-        if (std::sscanf(o.resolution.c_str(), "%dx%d%c", &w, &h, &end) != 2 || w < 1 || h < 1 || w > 16384 || h > 16384)
-            throw CLI::ValidationError("--resolution", "expected WxH with 1 <= W, H <= 16384, got '" + o.resolution + "'");
+        if (std::sscanf(o.resolution.c_str(), "%dx%d%c", &w, &h, &end) != 2 || w < 1 || h < 1 || w > kMaxResolution || h > kMaxResolution)
+            throw CLI::ValidationError("--resolution", "expected WxH with 1 <= W, H <= " + std::to_string(kMaxResolution) +
+                                                           ", got '" + o.resolution + "'");
         scene.camera.width = w, scene.camera.height = h;
     }
 }
@@ -84,8 +85,7 @@ void run(const Options& o) {
     applyOverrides(o, desc);
     const std::string output = outputPath(o, desc);
     if (std::filesystem::path(output).extension() != ".exr") throw InputError(output + ": the output must be an .exr file");
-    const auto parent = std::filesystem::path(output).parent_path();
-    if (!parent.empty()) std::filesystem::create_directories(parent);
+    createParentFolder(output);
 
     const Scene scene(desc);
     for (const auto& m : scene.media())

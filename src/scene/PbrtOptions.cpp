@@ -13,8 +13,6 @@ namespace {
 
 using Class = PbrtParamClass;
 
-constexpr int kMaxResolution = 16384;
-
 void note(std::vector<std::string>& warnings, const PbrtLocation& where, const std::string& kind, const std::string& message) {
     warnings.push_back(where.str() + ": " + kind + ": " + message);
 }

@@ -18,6 +18,8 @@ namespace tetglow {
 // camera; Left: along cross(up, view), as pbrt's LookAt builds it (the mirror image).
 enum class Handedness { Right, Left };
 
+inline constexpr int kMaxResolution = 16384;  // pixels along either image axis, in every front end
+
 struct CameraDesc {
     glm::dvec3 position{0, 0, 5}, lookAt{0}, up{0, 1, 0};
     double fov = 40;  // degrees across the shorter image axis (pbrt's convention)

@@ -16,7 +16,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr int kMaxResolution = 16384;
 constexpr int kMaxParityRays = 15;
 constexpr Range kUnitInterval{.lo = 0, .hi = 1};
 
