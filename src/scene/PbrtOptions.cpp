@@ -13,9 +13,6 @@ namespace {
 
 using Class = PbrtParamClass;
 
-void note(std::vector<std::string>& warnings, const PbrtLocation& where, const std::string& kind, const std::string& message) {
-    warnings.push_back(where.str() + ": " + kind + ": " + message);
-}
 
 // An error naming the parameter when it is given at all.
 void reject(PbrtParams& p, const std::string& name, Class cls, const std::string& why) {
@@ -98,9 +95,10 @@ IntegratorDesc readIntegrator(PbrtCall* sampler, PbrtCall* integrator, std::vect
         if (d.spp < 1) pbrtError(sampler->where, "Sampler: the number of samples per pixel must be at least 1");
         if (const int seed = sampler->params.getInt("seed", 0); seed > 0) d.seed = uint64_t(seed);
         sampler->params.reportUnused(warnings);
-        note(warnings, sampler->where, "note",
-             "Sampler \"" + sampler->type + "\": tetglow draws its own random numbers; only the count, " + std::to_string(d.spp) +
-                 " samples per pixel, is used");
+        pbrtWarn(warnings, sampler->where,
+                 "Sampler \"" + sampler->type + "\": tetglow draws its own random numbers; only the count, " + std::to_string(d.spp) +
+                     " samples per pixel, is used",
+                 "note");
     }
     int maxDepth = 5;  // pbrt-v3's default
     if (integrator) {
@@ -124,15 +122,15 @@ void checkFilter(PbrtCall* filter, std::vector<std::string>& warnings) {
     PbrtParams& p = filter->params;
     const bool box = filter->type == "box" && p.getFloat("xwidth", 0.5) == 0.5 && p.getFloat("ywidth", 0.5) == 0.5;
     if (!box)
-        note(warnings, filter->where, "warning",
-             "PixelFilter \"" + filter->type + "\": tetglow averages the samples in each pixel (pbrt-v3's \"box\" of width 0.5), so the image is a little sharper than pbrt-v3's");
+        pbrtWarn(warnings, filter->where,
+                 "PixelFilter \"" + filter->type + "\": tetglow averages the samples in each pixel (pbrt-v3's \"box\" of width 0.5), so the image is a little sharper than pbrt-v3's");
 }
 
 // pbrt-v3's "path" ignores media: it sees glass boundaries as glass and index-matched ones not at all.
 void dropMedia(SceneDesc& scene, const PbrtLocation& where, std::vector<std::string>& warnings) {
     if (scene.media.empty()) return;
-    note(warnings, where, "warning",
-         "Integrator \"path\" ignores the " + std::to_string(scene.media.size()) + " media, as pbrt-v3 does; use \"volpath\" to render them");
+    pbrtWarn(warnings, where,
+             "Integrator \"path\" ignores the " + std::to_string(scene.media.size()) + " media, as pbrt-v3 does; use \"volpath\" to render them");
     for (MediumDesc& m : scene.media)
         if (m.boundaryMaterial.type == MaterialType::Dielectric) scene.surfaces.push_back({m.name, std::move(m.boundary), m.boundaryMaterial});
     scene.media.clear();
@@ -148,7 +146,7 @@ void applyPbrtOptions(PbrtOptions& o, SceneDesc& scene, std::vector<std::string>
     scene.output = f.filename;
     if (std::filesystem::path(f.filename).extension() != ".exr") {
         scene.output = std::filesystem::path(f.filename).replace_extension(".exr").string();
-        note(warnings, film->where, "warning", "Film: tetglow writes OpenEXR: " + scene.output + " instead of " + f.filename);
+        pbrtWarn(warnings, film->where, "Film: tetglow writes OpenEXR: " + scene.output + " instead of " + f.filename);
     }
     if (film) film->params.reportUnused(warnings);
     scene.integrator = readIntegrator(o.sampler ? &*o.sampler : nullptr, o.integrator ? &*o.integrator : nullptr, warnings);

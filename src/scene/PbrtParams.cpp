@@ -169,8 +169,7 @@ void PbrtParams::fail(const PbrtParam& p, const std::string& message) const {
 void PbrtParams::reportUnused(std::vector<std::string>& warnings) const {
     for (const PbrtParam& p : params_)
         if (!p.used)
-            warnings.push_back(p.where.str() + ": warning: " + directive_ + ": parameter " + p.declaration() +
-                               " is not used (pbrt-v3 ignores it too)");
+            pbrtWarn(warnings, p.where, directive_ + ": parameter " + p.declaration() + " is not used (pbrt-v3 ignores it too)");
 }
 
 }  // namespace tetglow

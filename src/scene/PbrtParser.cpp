@@ -272,7 +272,7 @@ void Parser::worldBegin(const PbrtToken& d) {
 void Parser::worldEnd(const PbrtToken& d) {
     require(Block::World, d);
     for (auto it = stack_.rbegin(); it != stack_.rend(); ++it)
-        warnings_.push_back(it->where.str() + ": warning: " + (it->attributes ? "AttributeBegin" : "TransformBegin") + " without an end before WorldEnd");
+        pbrtWarn(warnings_, it->where, std::string(it->attributes ? "AttributeBegin" : "TransformBegin") + " without an end before WorldEnd");
     block_ = Block::Done;
 }
 
@@ -362,7 +362,7 @@ void Parser::include(const PbrtToken& d) {
     std::error_code ec;
     const bool besideExists = fs::exists(beside, ec), pbrtV3Exists = fs::exists(pbrtV3, ec);
     if (besideExists && pbrtV3Exists && !fs::equivalent(beside, pbrtV3, ec))
-        warnings_.push_back(d.where.str() + ": warning: Include reads " + beside.string() + "; pbrt-v3 would read " + pbrtV3.string());
+        pbrtWarn(warnings_, d.where, "Include reads " + beside.string() + "; pbrt-v3 would read " + pbrtV3.string());
     tokens_.include((besideExists || !pbrtV3Exists ? beside : pbrtV3).string(), d.where);
 }
 

@@ -56,7 +56,7 @@ private:
         double g;
     };
     MaterialDesc material(PbrtCall& shape, const PbrtAttributes& attributes);
-    void warn(const PbrtLocation& where, const std::string& message) { warnings_.push_back(where.str() + ": warning: " + message); }
+    void warn(const PbrtLocation& where, const std::string& message) { pbrtWarn(warnings_, where, message); }
 
     std::filesystem::path searchDir_;
     std::vector<std::string>& warnings_;
