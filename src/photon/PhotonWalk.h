@@ -12,7 +12,6 @@ namespace tetglow {
 struct PhotonEvent {
     glm::dvec3 position, direction;  // direction of travel before scattering
     RGB power;                       // flux arriving at the event times sigma_s (what is scattered)
-    uint32_t tet;
 };
 
 struct WalkResult {
@@ -47,7 +46,7 @@ WalkResult photonWalk(const Medium& medium, Ray ray, WalkStart start, const RGB&
         result.absorbedFlux += arriving * params.sigmaA * flight.density;
         path.beta *= params.sigmaS * flight.density;
         const glm::dvec3 p = ray.at(flight.t);
-        onScatter(PhotonEvent{p, ray.d, arriving * params.sigmaS * flight.density, flight.tet});
+        onScatter(PhotonEvent{p, ray.d, arriving * params.sigmaS * flight.density});
         // Roulette on the flux that goes on, relative to what was emitted.
         const double keep = std::min(1.0, maxComponent(path.weight()));
         if (!(keep > 0) || rng.uniform() >= keep) break;
