@@ -165,19 +165,23 @@ RGB PhotonIntegrator::marchKnn(int m, const Ray& ray, const ColumnProfile& colum
     return L;
 }
 
+double PhotonIntegrator::gather(const PhotonMap& map, const glm::dvec3& p, double scale, float maxRadius,
+                                std::vector<Neighbour>& near) const {
+    if (desc_.radius > 0) {
+        const double r = desc_.radius * scale;
+        map.withinRadius(glm::vec3(p), float(r), near);
+        return r;
+    }
+    map.knn(glm::vec3(p), desc_.k, near, maxRadius * maxRadius);
+    // Fewer than k within reach: the ball is the largest allowed.
+    return scale * (near.size() == size_t(desc_.k) ? std::sqrt(double(near.back().distance2)) : double(maxRadius));
+}
+
 RGB PhotonIntegrator::knnEstimate(int m, const glm::dvec3& p, const glm::dvec3& d) const {
     const MediumPhotons& mp = media_[m];
     if (!mp.map) return RGB(0);
     thread_local std::vector<Neighbour> near;
-    double r;
-    if (desc_.radius > 0) {
-        r = desc_.radius * volumeScale_;
-        mp.map->withinRadius(glm::vec3(p), float(r), near);
-    } else {
-        mp.map->knn(glm::vec3(p), desc_.k, near, mp.maxRadius * mp.maxRadius);
-        // Fewer than k within reach: the ball is the largest allowed.
-        r = volumeScale_ * (near.size() == size_t(desc_.k) ? std::sqrt(double(near.back().distance2)) : double(mp.maxRadius));
-    }
+    const double r = gather(*mp.map, p, volumeScale_, mp.maxRadius, near);
     const HenyeyGreenstein& phase = scene_.media()[m].medium->phase();
     const auto& photons = mp.map->photons();
     RGB sum(0);
@@ -239,14 +243,7 @@ RGB PhotonIntegrator::directAlong(int m, const Ray& ray, WalkStart start, double
 RGB PhotonIntegrator::caustics(const Intersection& hit, const glm::dvec3& d, const MaterialDesc& material) const {
     if (!surface_) return RGB(0);
     thread_local std::vector<Neighbour> near;
-    double r;
-    if (desc_.radius > 0) {
-        r = desc_.radius * surfaceScale_;
-        surface_->withinRadius(glm::vec3(hit.p), float(r), near);
-    } else {
-        surface_->knn(glm::vec3(hit.p), desc_.k, near, surfaceMaxRadius_ * surfaceMaxRadius_);
-        r = surfaceScale_ * (near.size() == size_t(desc_.k) ? std::sqrt(double(near.back().distance2)) : double(surfaceMaxRadius_));
-    }
+    const double r = gather(*surface_, hit.p, surfaceScale_, surfaceMaxRadius_, near);
     const double side = glm::dot(d, hit.n);
     RGB sum(0);
     for (const Neighbour& n : near) {

@@ -62,6 +62,10 @@ private:
     RGB beamEstimate(int m, const Ray& ray, const ColumnProfile& column) const;
     // Single scattering at a distance drawn along the stretch (one-sample spectral MIS).
     RGB directAlong(int m, const Ray& ray, WalkStart start, double tMax, const ColumnProfile& column, Rng& rng) const;
+    // The photons of `map` around p, nearest first: those within the fixed radius times `scale`,
+    // or the k nearest within maxRadius. Returns the gather radius: the fixed one, or `scale`
+    // times the k-th distance (maxRadius when fewer than k are within reach).
+    double gather(const PhotonMap& map, const glm::dvec3& p, double scale, float maxRadius, std::vector<Neighbour>& near) const;
     // sigma_s times in-scattered radiance from the volume photons at p, seen along d.
     RGB knnEstimate(int m, const glm::dvec3& p, const glm::dvec3& d) const;
     RGB caustics(const Intersection& hit, const glm::dvec3& d, const MaterialDesc& material) const;
