@@ -39,7 +39,7 @@ MediumReport describe(const std::string& name, const TetVolume& v) {
     MediumReport r;
     r.name = name;
     r.tets = v.mesh().tets.size(), r.triangles = v.mesh().surface.size();
-    r.diagonal = bounds(v.mesh().surfaceMesh()).diagonal();
+    r.diagonal = v.bounds().diagonal();
     return r;
 }
 
@@ -75,7 +75,7 @@ Subject loadMeshSubject(const std::string& path) {
     s.volumes.push_back(s.mesh.get());
     s.reports.push_back(describe(std::filesystem::path(path).filename().string(), *s.mesh));
     // A three-quarter view from +z (the fish's side) that holds the whole bounding box.
-    const Bounds3 box = bounds(s.mesh->mesh().surfaceMesh());
+    const Bounds3 box = s.mesh->bounds();
     const glm::dvec3 centre = 0.5 * (box.lo + box.hi);
     s.camera.lookAt = centre;
     s.camera.position = centre + box.diagonal() * glm::dvec3(0.35, 0.3, 1.4);

@@ -152,7 +152,7 @@ ChordTable compareChords(const std::vector<Line>& lines, const std::vector<Chord
 
 BoundaryComparison compareBoundary(const TetVolume& volume, const ComparisonOptions& options) {
     const TriangleMesh surface = volume.mesh().surfaceMesh();
-    const Bounds3 box = bounds(surface);
+    const Bounds3& box = volume.bounds();
     BoundaryComparison result;
     result.classification = compareClassification(samplePoints(surface, options.shells, options.points, options.seed),
                                                   insideTests(&volume, volume.bvh(), box),

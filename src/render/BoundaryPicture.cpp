@@ -13,7 +13,7 @@ BoundaryPicture renderBoundaryPicture(const Camera& camera, const std::vector<co
     };
     std::vector<Bounds3> boxes;
     Bounds3 all;
-    for (const TetVolume* v : media) boxes.push_back(bounds(v->mesh().surfaceMesh())), all.extend(boxes.back());
+    for (const TetVolume* v : media) boxes.push_back(v->bounds()), all.extend(boxes.back());
     // Lengths shade by 1 - exp(-length / scale): a chord of a tenth of the scene's diagonal is clearly lit.
     const double scale = 0.1 * all.diagonal();
     BoundaryPicture picture;

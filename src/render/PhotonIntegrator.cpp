@@ -26,7 +26,7 @@ PhotonIntegrator::PhotonIntegrator(const Scene& scene, const IntegratorDesc& des
     for (const auto& m : scene.media()) {
         balls_.emplace_back(m.medium->volume().bvh());
         MediumPhotons photons;
-        const Bounds3 box = bounds(m.medium->mesh().surfaceMesh());
+        const Bounds3 box = m.medium->volume().bounds();
         photons.maxRadius = float(kMaxRadiusFraction * box.diagonal());
         media_.push_back(std::move(photons));
         all.extend(box);

@@ -61,7 +61,7 @@ Scene::Scene(const SceneDesc& desc) : desc_(desc), camera_(desc.camera) {
     tetSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     Bounds3 geometry;
     for (const auto& surface : desc.surfaces) geometry.extend(bounds(surface.mesh));
-    for (const auto& m : media_) geometry.extend(bounds(m.medium->mesh().surfaceMesh()));
+    for (const auto& m : media_) geometry.extend(m.medium->volume().bounds());
     if (geometry.empty()) geometry.extend(desc.camera.position);  // nothing but lights
     for (const auto& l : desc.lights) {
         lights_.push_back(makeLight(l, geometry));

@@ -12,7 +12,7 @@ SingleScatterIntegrator::SingleScatterIntegrator(const Scene& scene, const Integ
     for (const auto& m : scene.media()) {
         if (mode_ != BoundaryMode::Tet && !m.medium->homogeneous())
             throw InputError(m.name + ": the parity and bbox boundary modes need a homogeneous medium (no per-vertex density)");
-        boxes_.push_back(bounds(m.medium->mesh().surfaceMesh()));
+        boxes_.push_back(m.medium->volume().bounds());
     }
 }
 

@@ -24,6 +24,8 @@ public:
 
     const TetMesh& mesh() const { return mesh_; }
     const SurfaceBVH& bvh() const { return bvh_; }
+    // Box of the vertices: the surface's, since Steiner points lie inside it.
+    const Bounds3& bounds() const { return bounds_; }
 
     // The tet containing p, or -1 outside the medium. `hint` is a tet near p (along a path, the
     // previous one); without it the grid supplies one. Exact: a visibility walk with exact
