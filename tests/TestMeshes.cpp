@@ -73,7 +73,8 @@ std::string tempDir() {
 
 std::string writeTemp(const std::string& name, const std::string& contents) {
     const std::string path = tempDir() + "/" + name;
-    std::ofstream(path) << contents;
+    std::filesystem::create_directories(std::filesystem::path(path).parent_path());
+    std::ofstream(path, std::ios::binary) << contents;
     return path;
 }
 

@@ -27,6 +27,7 @@ std::string sharedMesh(const std::string& name);  // "" when ../shared/meshes is
 
 // A fresh temporary directory for this test.
 std::string tempDir();
+// Writes `contents` byte for byte to `name` (which may name sub-folders) in tempDir().
 std::string writeTemp(const std::string& name, const std::string& contents);
 
 struct CommandResult {

@@ -1,7 +1,6 @@
 // pbrt-v3 scene files: every supported directive with its parameters and pbrt-v3's defaults;
 // anything else an error naming the directive, the file and the line.
 #include <algorithm>
-#include <filesystem>
 
 #include <gtest/gtest.h>
 
@@ -16,21 +15,16 @@ namespace {
 const std::string kCube = R"("point P" [-0.5 -0.5 -0.5  0.5 -0.5 -0.5  0.5 0.5 -0.5  -0.5 0.5 -0.5  -0.5 -0.5 0.5  0.5 -0.5 0.5  0.5 0.5 0.5  -0.5 0.5 0.5]
     "integer indices" [0 2 1 0 3 2  4 5 6 4 6 7  0 1 5 0 5 4  2 3 7 2 7 6  1 2 6 1 6 5  0 4 7 0 7 3])";
 
-std::string write(const std::string& name, const std::string& text) {
-    std::filesystem::create_directories(std::filesystem::path(test::tempDir() + "/" + name).parent_path());
-    return test::writeTemp(name, text);
-}
-
 TEST(Pbrt, EveryDirectiveIsRead) {
-    write("parts/lights.pbrt", R"(# included by world.pbrt, named relative to scene.pbrt's folder (pbrt-v3's rule, the fallback)
+    test::writeTemp("parts/lights.pbrt", R"(# included by world.pbrt, named relative to scene.pbrt's folder (pbrt-v3's rule, the fallback)
 LightSource "spot" "color I" [5 5 5] "point from" [0 3 0] "point to" [0 0 0] "float coneangle" 40 "float conedeltaangle" 8
 )");
-    write("parts/world.pbrt", R"(LightSource "point" "rgb I" [1 2 3]
+    test::writeTemp("parts/world.pbrt", R"(LightSource "point" "rgb I" [1 2 3]
 Include "parts/lights.pbrt"
 )");
-    write("meshes/tri.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+    test::writeTemp("meshes/tri.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
                             "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
-    const std::string path = write("scene.pbrt", R"(# every directive tetglow reads
+    const std::string path = test::writeTemp("scene.pbrt", R"(# every directive tetglow reads
 Scale -1 1 1
 LookAt 0 1 6  0 0.5 0  0 1 0
 Camera "perspective" "float fov" [35] "float lensradius" 0 "float focaldistance" 10
@@ -136,7 +130,7 @@ WorldEnd
 }
 
 TEST(Pbrt, DefaultsArePbrtv3s) {
-    const std::string path = write("scene.pbrt", "WorldBegin\nLightSource \"point\"\nShape \"trianglemesh\" \"point P\" [0 0 1  1 0 1  0 1 1]\nWorldEnd\n");
+    const std::string path = test::writeTemp("scene.pbrt", "WorldBegin\nLightSource \"point\"\nShape \"trianglemesh\" \"point P\" [0 0 1  1 0 1  0 1 1]\nWorldEnd\n");
     const SceneDesc s = loadPbrtScene(path);
     EXPECT_EQ(s.camera.width, 1280);
     EXPECT_EQ(s.camera.height, 720);
@@ -164,7 +158,7 @@ TEST(Pbrt, SamplersGiveTheirSampleCounts) {
         {R"(Sampler "maxmindist" "integer pixelsamples" 16)", 16},
     };
     for (const auto& [line, spp] : cases) {
-        const std::string path = write("scene.pbrt", line + "\nCamera \"perspective\" \"float halffov\" 20\nWorldBegin\nLightSource \"point\"\nWorldEnd\n");
+        const std::string path = test::writeTemp("scene.pbrt", line + "\nCamera \"perspective\" \"float halffov\" 20\nWorldBegin\nLightSource \"point\"\nWorldEnd\n");
         std::vector<std::string> warnings;
         const SceneDesc s = loadPbrtScene(path, &warnings);
         EXPECT_EQ(s.integrator.spp, spp) << line;
@@ -177,7 +171,7 @@ TEST(Pbrt, SamplersGiveTheirSampleCounts) {
 // pbrt-v3 renders media only with "volpath": "path" (its default) sees a glass boundary as
 // glass and an index-matched one not at all.
 TEST(Pbrt, ThePathIntegratorIgnoresMediaAsPbrtDoes) {
-    const std::string path = write("scene.pbrt", R"(Integrator "path"
+    const std::string path = test::writeTemp("scene.pbrt", R"(Integrator "path"
 WorldBegin
 LightSource "point"
 MakeNamedMedium "fog" "string type" "homogeneous"
@@ -202,8 +196,8 @@ WorldEnd
 
 TEST(Pbrt, LoadSceneKnowsPbrtByExtensionOrContent) {
     const std::string text = "# no extension to go by\nLookAt 0 0 5 0 0 0 0 1 0\nCamera \"perspective\"\nWorldBegin\nLightSource \"point\"\nWorldEnd\n";
-    EXPECT_EQ(loadScene(write("scene.txt", text)).lights.size(), 1u);
-    EXPECT_EQ(loadScene(write("scene.pbrt", "\n" + text)).lights.size(), 1u);
+    EXPECT_EQ(loadScene(test::writeTemp("scene.txt", text)).lights.size(), 1u);
+    EXPECT_EQ(loadScene(test::writeTemp("scene.pbrt", "\n" + text)).lights.size(), 1u);
     EXPECT_TRUE(looksLikePbrt("  # comment\n\nWorldBegin"));
     EXPECT_FALSE(looksLikePbrt("{\"camera\": {}}"));
     EXPECT_FALSE(looksLikePbrt("Cameras"));
@@ -211,24 +205,24 @@ TEST(Pbrt, LoadSceneKnowsPbrtByExtensionOrContent) {
 
 // pbrt-v3 (core/parser.cpp) resolves every Include against the first file's folder.
 TEST(Pbrt, IncludesAreRelativeToTheIncludingFile) {
-    write("parts/a.pbrt", "LightSource \"point\"\nInclude \"b.pbrt\"\n");
-    write("parts/b.pbrt", "LightSource \"point\"\n");
-    const std::string path = write("scene.pbrt", "WorldBegin\nInclude \"parts/a.pbrt\"\nWorldEnd\n");
+    test::writeTemp("parts/a.pbrt", "LightSource \"point\"\nInclude \"b.pbrt\"\n");
+    test::writeTemp("parts/b.pbrt", "LightSource \"point\"\n");
+    const std::string path = test::writeTemp("scene.pbrt", "WorldBegin\nInclude \"parts/a.pbrt\"\nWorldEnd\n");
     std::vector<std::string> warnings;
     EXPECT_EQ(loadPbrtScene(path, &warnings).lights.size(), 2u);
     EXPECT_TRUE(warnings.empty());
     // pbrt-v3's own rule, the first file's folder, is the fallback.
-    write("parts/a.pbrt", "LightSource \"point\"\nInclude \"parts/b.pbrt\"\nWorldEnd\n");  // WorldEnd in an included file
-    write("scene.pbrt", "WorldBegin\nInclude \"parts/a.pbrt\"\n");
+    test::writeTemp("parts/a.pbrt", "LightSource \"point\"\nInclude \"parts/b.pbrt\"\nWorldEnd\n");  // WorldEnd in an included file
+    test::writeTemp("scene.pbrt", "WorldBegin\nInclude \"parts/a.pbrt\"\n");
     EXPECT_EQ(loadPbrtScene(path, &warnings).lights.size(), 2u);
     // Where both exist and differ, the including file's folder wins, with a warning.
-    write("b.pbrt", "LightSource \"point\"\nLightSource \"point\"\n");
-    write("parts/a.pbrt", "LightSource \"point\"\nInclude \"b.pbrt\"\nWorldEnd\n");
+    test::writeTemp("b.pbrt", "LightSource \"point\"\nLightSource \"point\"\n");
+    test::writeTemp("parts/a.pbrt", "LightSource \"point\"\nInclude \"b.pbrt\"\nWorldEnd\n");
     EXPECT_EQ(loadPbrtScene(path, &warnings).lights.size(), 2u);
     ASSERT_EQ(warnings.size(), 1u);
     EXPECT_EQ(warnings[0], test::tempDir() + "/parts/a.pbrt:2: warning: Include reads " + test::tempDir() + "/parts/b.pbrt; pbrt-v3 would read " +
                                test::tempDir() + "/b.pbrt");
-    write("parts/a.pbrt", "Include \"none.pbrt\"\n");
+    test::writeTemp("parts/a.pbrt", "Include \"none.pbrt\"\n");
     try {
         loadPbrtScene(path);
         FAIL() << "none.pbrt does not exist";
@@ -284,7 +278,7 @@ TEST(Pbrt, UnsupportedInputIsAnErrorNamingFileAndLine) {
     };
     const std::string head = "Camera \"perspective\"\nMakeNamedMedium \"fog\" \"string type\" \"homogeneous\"\nWorldBegin\n";
     for (const Case& c : cases) {
-        const std::string path = write("scene.pbrt", head + c.line + "\nLightSource \"point\"\nWorldEnd\n");
+        const std::string path = test::writeTemp("scene.pbrt", head + c.line + "\nLightSource \"point\"\nWorldEnd\n");
         try {
             loadPbrtScene(path);
             ADD_FAILURE() << "no error for: " << c.line;
@@ -304,7 +298,7 @@ TEST(Pbrt, UnsupportedInputIsAnErrorNamingFileAndLine) {
 TEST(Pbrt, BrokenFilesAreErrorsToo) {
     auto error = [](const std::string& text) {
         try {
-            loadPbrtScene(write("scene.pbrt", text));
+            loadPbrtScene(test::writeTemp("scene.pbrt", text));
         } catch (const InputError& e) {
             return std::string(e.what());
         }
@@ -326,7 +320,7 @@ TEST(Pbrt, BrokenFilesAreErrorsToo) {
 }
 
 TEST(Pbrt, UnusedParametersAreWarningsNamingThem) {
-    const std::string path = write("scene.pbrt", R"(WorldBegin
+    const std::string path = test::writeTemp("scene.pbrt", R"(WorldBegin
 LightSource "point" "float scale" 2
 Shape "trianglemesh" "point P" [0 0 1  1 0 1  0 1 1]
   "float radius" 3

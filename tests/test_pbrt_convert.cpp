@@ -183,8 +183,7 @@ WorldEnd
 
 TEST(PbrtConvert, MediumInMeshSceneRendersTheSameBothWays) {
     const std::string dir = test::tempDir();
-    std::filesystem::create_directories(dir + "/meshes");
-    std::ofstream(dir + "/meshes/cube.ply") << kCubePly;
+    test::writeTemp("meshes/cube.ply", kCubePly);
     const std::string pbrt = test::writeTemp("media.pbrt", kMediaScene), json = dir + "/json/media.json";
 
     const auto converted = test::runTetglow("convert " + pbrt + " -o " + json);

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <bit>
 #include <cstring>
-#include <fstream>
 #include <sstream>
 
 #include <gtest/gtest.h>
@@ -62,15 +61,9 @@ std::string binaryPly(bool little) {
     return s;
 }
 
-std::string writeFile(const std::string& name, const std::string& bytes) {
-    const std::string path = test::tempDir() + "/" + name;
-    std::ofstream(path, std::ios::binary) << bytes;
-    return path;
-}
-
 TEST(PbrtPly, AsciiAndBinaryGiveTheSameCube) {
     std::vector<std::string> warnings;
-    const PlyMesh ascii = readPly(writeFile("a.ply", asciiPly()), warnings);
+    const PlyMesh ascii = readPly(test::writeTemp("a.ply", asciiPly()), warnings);
     ASSERT_EQ(ascii.mesh.positions.size(), 8u);
     ASSERT_EQ(ascii.mesh.triangles.size(), 12u);  // six quads, the pentagon skipped
     ASSERT_EQ(ascii.normals.size(), 8u);
@@ -83,7 +76,7 @@ TEST(PbrtPly, AsciiAndBinaryGiveTheSameCube) {
     EXPECT_NE(warnings[0].find("skipped 1 faces that are neither triangles nor quads"), std::string::npos) << warnings[0];
 
     for (bool little : {true, false}) {
-        const PlyMesh binary = readPly(writeFile("b.ply", binaryPly(little)), warnings);
+        const PlyMesh binary = readPly(test::writeTemp("b.ply", binaryPly(little)), warnings);
         EXPECT_EQ(binary.mesh.positions, ascii.mesh.positions) << little;
         EXPECT_EQ(binary.mesh.triangles, ascii.mesh.triangles) << little;
         EXPECT_TRUE(binary.normals.empty());
@@ -93,7 +86,7 @@ TEST(PbrtPly, AsciiAndBinaryGiveTheSameCube) {
 TEST(PbrtPly, BrokenFilesAreErrors) {
     std::vector<std::string> warnings;
     auto error = [&](const std::string& bytes) {
-        const std::string path = writeFile("bad.ply", bytes);
+        const std::string path = test::writeTemp("bad.ply", bytes);
         try {
             readPly(path, warnings);
         } catch (const InputError& e) {
