@@ -47,12 +47,9 @@ private:
 
 void applyOverrides(const Options& o, SceneDesc& scene) {
     IntegratorDesc& integ = scene.integrator;
-    if (o.integrator == "volpath") integ.type = IntegratorType::VolPath;
-    if (o.integrator == "single") integ.type = IntegratorType::Single;
-    if (o.integrator == "photon") integ.type = IntegratorType::Photon;
-    if (o.boundary == "tet") integ.boundary = BoundaryMode::Tet;
-    if (o.boundary == "parity") integ.boundary = BoundaryMode::Parity;
-    if (o.boundary == "bbox") integ.boundary = BoundaryMode::Bbox;
+    // The options were checked against the same tables.
+    if (const auto v = valueOf(kIntegratorNames, o.integrator)) integ.type = *v;
+    if (const auto v = valueOf(kBoundaryNames, o.boundary)) integ.boundary = *v;
     if (o.spp) integ.spp = o.spp;
     if (o.maxDepth) integ.maxDepth = o.maxDepth;
     if (o.step > 0) integ.stepSize = o.step;
@@ -60,8 +57,7 @@ void applyOverrides(const Options& o, SceneDesc& scene) {
     if (o.photons) integ.photons = uint64_t(o.photons);
     if (o.k) integ.k = o.k, integ.radius = 0;
     if (o.radius > 0) integ.radius = o.radius;
-    if (o.estimate == "beam") integ.estimate = PhotonEstimate::Beam;
-    if (o.estimate == "knn-march") integ.estimate = PhotonEstimate::KnnMarch;
+    if (const auto v = valueOf(kEstimateNames, o.estimate)) integ.estimate = *v;
     if (!o.boundaryCorrection.empty()) integ.boundaryCorrection = o.boundaryCorrection == "on";
     if (o.time > 0) integ.timeLimit = o.time, integ.spp = o.spp ? o.spp : 1 << 20;
     if (!o.resolution.empty()) {
@@ -137,13 +133,13 @@ void addRenderCommand(CLI::App& app) {
     cmd->add_option("scene", o->scene, "Scene file: JSON, or pbrt-v3 (.pbrt); see docs/FORMAT.md")->required()->check(CLI::ExistingFile);
     cmd->add_option("-o,--output", o->output, "Output .exr (a .png preview is written beside it)");
     cmd->add_option("--integrator", o->integrator, "volpath (reference), single (the seed's ray march) or photon")
-        ->check(CLI::IsMember({"volpath", "single", "photon"}));
+        ->check(CLI::IsMember(namesOf(kIntegratorNames)));
     cmd->add_option("--spp", o->spp, "Samples per pixel")->check(CLI::Range(1, 1 << 20));
     cmd->add_option("--threads", o->threads, "Threads (default: all cores)")->check(CLI::Range(1, 1024));
     cmd->add_option("--seed", o->seed, "Random seed: the same seed gives the same image at any thread count")->check(CLI::NonNegativeNumber);
     cmd->add_option("--resolution", o->resolution, "Image size WxH");
     cmd->add_option("--boundary", o->boundary, "single: where the medium is: tet (exact), parity (the seed's test) or bbox")
-        ->check(CLI::IsMember({"tet", "parity", "bbox"}));
+        ->check(CLI::IsMember(namesOf(kBoundaryNames)));
     cmd->add_option("--step", o->step, "single: ray-march step in world units")->check(kFinite & CLI::PositiveNumber);
     cmd->add_option("--max-depth", o->maxDepth, "Events per path")->check(CLI::Range(1, 100000));
     cmd->add_option("--photons", o->photons, "photon: photon paths per pass")->check(CLI::Range(int64_t(1), int64_t(1) << 40));
@@ -153,7 +149,7 @@ void addRenderCommand(CLI::App& app) {
         ->check(kFinite & CLI::PositiveNumber)
         ->excludes(k);
     cmd->add_option("--estimate", o->estimate, "photon: knn-march (the seed's march with a k-NN lookup per step) or beam")
-        ->check(CLI::IsMember({"knn-march", "beam"}));
+        ->check(CLI::IsMember(namesOf(kEstimateNames)));
     cmd->add_option("--boundary-correction", o->boundaryCorrection, "photon: divide each kernel by the part of its ball inside the medium (on|off)")
         ->check(CLI::IsMember({"on", "off"}));
     auto* passes = cmd->add_option("--passes", o->spp, "photon: passes, each with fresh photons and one sample per pixel (the same as --spp)")

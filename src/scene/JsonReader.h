@@ -58,9 +58,10 @@ public:
     glm::dvec3 vec3OrScalar(const Range& range = {}) const;  // one number x stands for (x, x, x)
     std::vector<JsonValue> array() const;
 
-    // The value for the string this value names, e.g. choice<LightType>({{"point", LightType::Point}, ...}).
-    template <class T>
-    T choice(std::initializer_list<std::pair<std::string_view, T>> options) const;
+    // The value for the string this value names, e.g. choice<LightType>({{"point", LightType::Point}, ...}),
+    // or from a table of such pairs.
+    template <class T, class Options = std::initializer_list<std::pair<std::string_view, T>>>
+    T choice(const Options& options) const;
 
     // Reads this object with `read(JsonObject&)`, then rejects every key `read` did not ask for,
     // so that a typo is an error and not a silently ignored setting.
@@ -92,11 +93,11 @@ private:
     std::vector<std::string> asked_;
 };
 
-template <class T>
-T JsonValue::choice(std::initializer_list<std::pair<std::string_view, T>> options) const {
+template <class T, class Options>
+T JsonValue::choice(const Options& options) const {
     std::vector<std::string_view> names;
     for (const auto& option : options) names.push_back(option.first);
-    return options.begin()[choiceIndex(names)].second;
+    return std::begin(options)[choiceIndex(names)].second;
 }
 
 template <class F>

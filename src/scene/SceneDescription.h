@@ -1,9 +1,12 @@
 // A scene as the user described it: plain data, every path resolved and every mesh loaded and
 // placed in world space. The renderer builds its acceleration structures from this.
 #pragma once
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -91,6 +94,35 @@ enum class BoundaryMode { Tet, Parity, Bbox };
 // The photon integrator's volume estimate along eye rays: the seed's ray march with a k-NN
 // lookup per step, or the beam radiance estimate (Jarosz, Zwicker, Jensen 2008).
 enum class PhotonEstimate { KnnMarch, Beam };
+
+// What scene files and `render`'s options call each value: one table each for the loader, the
+// writer and the command line.
+template <class T, size_t N>
+using NameTable = std::array<std::pair<std::string_view, T>, N>;
+inline constexpr NameTable<IntegratorType, 3> kIntegratorNames{
+    {{"volpath", IntegratorType::VolPath}, {"single", IntegratorType::Single}, {"photon", IntegratorType::Photon}}};
+inline constexpr NameTable<BoundaryMode, 3> kBoundaryNames{
+    {{"tet", BoundaryMode::Tet}, {"parity", BoundaryMode::Parity}, {"bbox", BoundaryMode::Bbox}}};
+inline constexpr NameTable<PhotonEstimate, 2> kEstimateNames{{{"knn-march", PhotonEstimate::KnnMarch}, {"beam", PhotonEstimate::Beam}}};
+
+template <class T, size_t N>
+std::string_view nameOf(const NameTable<T, N>& table, T value) {
+    for (const auto& [name, v] : table)
+        if (v == value) return name;
+    return {};
+}
+template <class T, size_t N>
+std::optional<T> valueOf(const NameTable<T, N>& table, std::string_view name) {
+    for (const auto& [n, value] : table)
+        if (n == name) return value;
+    return std::nullopt;
+}
+template <class T, size_t N>
+std::vector<std::string> namesOf(const NameTable<T, N>& table) {
+    std::vector<std::string> names;
+    for (const auto& entry : table) names.emplace_back(entry.first);
+    return names;
+}
 
 struct IntegratorDesc {
     IntegratorType type = IntegratorType::VolPath;

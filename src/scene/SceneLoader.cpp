@@ -62,13 +62,12 @@ IntegratorDesc readIntegrator(JsonObject& o) {
     IntegratorDesc d;
     constexpr int64_t kMaxInt = std::numeric_limits<int>::max();
     if (auto f = o["type"])
-        d.type = f.choice<IntegratorType>(
-            {{"volpath", IntegratorType::VolPath}, {"single", IntegratorType::Single}, {"photon", IntegratorType::Photon}});
+        d.type = f.choice<IntegratorType>(kIntegratorNames);
     if (auto f = o["spp"]) d.spp = int(f.integer(1, kMaxInt));
     if (auto f = o["max_depth"]) d.maxDepth = int(f.integer(1, kMaxInt));
     if (auto f = o["seed"]) d.seed = uint64_t(f.integer(0));
     if (auto f = o["boundary"])
-        d.boundary = f.choice<BoundaryMode>({{"tet", BoundaryMode::Tet}, {"parity", BoundaryMode::Parity}, {"bbox", BoundaryMode::Bbox}});
+        d.boundary = f.choice<BoundaryMode>(kBoundaryNames);
     if (auto f = o["step"]) d.stepSize = f.number(kPositive);
     if (auto f = o["parity_rays"]) {
         d.parityRays = int(f.integer(1, kMaxParityRays));
@@ -78,7 +77,7 @@ IntegratorDesc readIntegrator(JsonObject& o) {
     if (auto f = o["photons"]) d.photons = uint64_t(f.integer(1, int64_t(1) << 40));
     if (auto f = o["k"]) d.k = int(f.integer(1, 100000));
     if (auto f = o["radius"]) d.radius = f.number(kPositive);
-    if (auto f = o["estimate"]) d.estimate = f.choice<PhotonEstimate>({{"beam", PhotonEstimate::Beam}, {"knn-march", PhotonEstimate::KnnMarch}});
+    if (auto f = o["estimate"]) d.estimate = f.choice<PhotonEstimate>(kEstimateNames);
     if (auto f = o["alpha"]) d.alpha = f.number({.lo = 0, .hi = 1, .loOpen = true});
     if (auto f = o["boundary_correction"]) d.boundaryCorrection = f.boolean();
     if (auto f = o["time"]) d.timeLimit = f.number(kPositive);

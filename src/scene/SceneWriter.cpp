@@ -67,14 +67,11 @@ public:
 
 private:
     static Json integrator(const IntegratorDesc& d) {
-        const char* types[] = {"volpath", "single", "photon"};
-        const char* boundaries[] = {"tet", "parity", "bbox"};
-        const char* estimates[] = {"knn-march", "beam"};
-        Json j = {{"type", types[int(d.type)]},   {"spp", d.spp},
+        Json j = {{"type", nameOf(kIntegratorNames, d.type)},   {"spp", d.spp},
                   {"max_depth", d.maxDepth},      {"seed", d.seed},
-                  {"boundary", boundaries[int(d.boundary)]}, {"step", d.stepSize},
+                  {"boundary", nameOf(kBoundaryNames, d.boundary)}, {"step", d.stepSize},
                   {"parity_rays", d.parityRays},  {"photons", d.photons},
-                  {"k", d.k},                     {"estimate", estimates[int(d.estimate)]},
+                  {"k", d.k},                     {"estimate", nameOf(kEstimateNames, d.estimate)},
                   {"alpha", d.alpha},             {"boundary_correction", d.boundaryCorrection}};
         // 0 means "not set" for these two; the loader takes only positive values.
         if (d.radius > 0) j["radius"] = d.radius;
