@@ -9,7 +9,7 @@ job=${1:-build}
 case "$job" in demo|test|build) ;; *) echo "usage: $0 demo|test|build" >&2; exit 2 ;; esac
 
 packages=(g++ cmake make libtet1.5-dev libembree-dev libopenexr-dev libglm-dev libtbb-dev nlohmann-json3-dev
-          libcli11-dev libpng-dev libgtest-dev libbenchmark-dev gnuplot-nox python3)
+          libcli11-dev libnanoflann-dev libpng-dev libgtest-dev libbenchmark-dev gnuplot-nox python3)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "ok installed" || missing+=("$p")
