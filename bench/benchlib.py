@@ -111,14 +111,14 @@ set format y '%g'
 RESULTS = os.path.join(ROOT, "docs", "RESULTS.md")
 
 
-def replace_section(name, text):
-    """Puts `text` between <!-- name:begin --> and <!-- name:end --> in docs/RESULTS.md, leaving
-    the rest (written by hand or by other scripts) as it is. The markers must already be there."""
+def replace_section(name, text, path=RESULTS):
+    """Puts `text` between <!-- name:begin --> and <!-- name:end --> in `path` (docs/RESULTS.md),
+    leaving the rest (written by hand or by other scripts) as it is. The markers must already be there."""
     begin, end = f"<!-- {name}:begin -->", f"<!-- {name}:end -->"
-    with open(RESULTS) as f:
+    with open(path) as f:
         doc = f.read()
     if doc.count(begin) != 1 or doc.count(end) != 1 or doc.index(begin) > doc.index(end):
-        fail(f"{RESULTS}: needs exactly one {begin} followed by one {end}")
+        fail(f"{path}: needs exactly one {begin} followed by one {end}")
     head, rest = doc.split(begin)
-    with open(RESULTS, "w") as f:
+    with open(path, "w") as f:
         f.write(f"{head}{begin}\n{text}\n{end}{rest.split(end, 1)[1]}")
