@@ -70,14 +70,14 @@ TEST(Retune, CoefficientsRoundTripThroughTheLoadersChecks) {
     nlohmann::json j = nlohmann::json::parse(mediumCoefficientsJson(m).dump());
     j["scale"] = 2;
     MediumDesc read;
-    JsonValue(&j, {}, "request").readObject([&](JsonObject& o) { return readMediumCoefficients(o, read), 0; });
+    JsonValue(&j, nlohmann::json::json_pointer(), "request").readObject([&](JsonObject& o) { return readMediumCoefficients(o, read), 0; });
     EXPECT_EQ(read.sigmaA, 2.0 * m.sigmaA);
     EXPECT_EQ(read.sigmaS, 2.0 * m.sigmaS);
     EXPECT_EQ(read.g, m.g);
     EXPECT_EQ(read.emission, m.emission);
     j["g"] = 1.5;
     try {
-        JsonValue(&j, {}, "request").readObject([&](JsonObject& o) { return readMediumCoefficients(o, read), 0; });
+        JsonValue(&j, nlohmann::json::json_pointer(), "request").readObject([&](JsonObject& o) { return readMediumCoefficients(o, read), 0; });
         FAIL() << "g = 1.5 was accepted";
     } catch (const InputError& e) {
         EXPECT_STREQ(e.what(), "request: /g: expected a number in (-1, 1), got 1.5");
@@ -85,7 +85,7 @@ TEST(Retune, CoefficientsRoundTripThroughTheLoadersChecks) {
     IntegratorDesc integ;
     integ.photons = 1234, integ.k = 5, integ.maxDepth = 9;
     const nlohmann::json ij = nlohmann::json::parse(integratorJson(integ).dump());
-    const IntegratorDesc back = JsonValue(&ij, {}, "request").readObject(readIntegrator);
+    const IntegratorDesc back = JsonValue(&ij, nlohmann::json::json_pointer(), "request").readObject(readIntegrator);
     EXPECT_EQ(back.photons, 1234u);
     EXPECT_EQ(back.k, 5);
     EXPECT_EQ(back.maxDepth, 9);
