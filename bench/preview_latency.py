@@ -8,7 +8,7 @@ saves the image every --every seconds while the last change renders, saves the s
 preview and renders the tuned scene with --reference-passes passes as the reference; each saved
 image's relative MSE against it (`tetglow diff`) gives the time to relative MSE 0.05.
 
-  bench/preview_latency.py [--build DIR] [--changes N] [--reference-passes N]
+  bench/preview_latency.py [--build DIR] [--changes N] [--watch S] [--reference-passes N] [--reference EXR]
 """
 import argparse
 import json
@@ -37,7 +37,8 @@ def main():
     parser.add_argument("--changes", type=int, default=5)
     parser.add_argument("--reference-passes", type=int, default=400)
     parser.add_argument("--every", type=float, default=0.25)
-    parser.add_argument("--watch", type=float, default=8, help="seconds of saved images after the last change")
+    parser.add_argument("--watch", type=float, default=20, help="seconds of saved images after the last change")
+    parser.add_argument("--reference", help="the reference EXR: read when it exists, else rendered there (default: a temporary file)")
     a = parser.parse_args()
     tetglow = os.path.join(a.build, "tetglow")
     work = tempfile.mkdtemp(prefix="tetglow-preview-bench-")
@@ -83,14 +84,14 @@ def main():
     print(f"changes of g: {a.changes}; first new image (quick look, 100x100): median {statistics.median(quick):.3f} s, "
           f"range {min(quick):.3f}-{max(quick):.3f} s; first full-size pass: median {statistics.median(full):.3f} s, "
           f"range {min(full):.3f}-{max(full):.3f} s", flush=True)
-    reference = os.path.join(work, "reference.exr")
-    t = time.perf_counter()
-    subprocess.run([tetglow, "render", tuned, "--passes", str(a.reference_passes), "-o", reference], check=True, capture_output=True)
-    reference_seconds = time.perf_counter() - t
+    reference = a.reference or os.path.join(work, "reference.exr")
+    if not os.path.isfile(reference):
+        t = time.perf_counter()
+        subprocess.run([tetglow, "render", tuned, "--passes", str(a.reference_passes), "-o", reference], check=True, capture_output=True)
+        print(f"reference: {a.reference_passes} passes of the tuned scene (g {g}) in {time.perf_counter() - t:.0f} s")
     errors = [(s, p, relative_mse(tetglow, exr, reference)) for s, p, exr in saves]
     reached = next(((s, p, e) for s, p, e in errors if e <= 0.05), None)
 
-    print(f"reference: {a.reference_passes} passes of the tuned scene in {reference_seconds:.0f} s")
     print("| seconds after the change | passes | relative MSE |")
     print("|---|---|---|")
     for s, p, e in errors:

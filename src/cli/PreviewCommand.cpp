@@ -78,18 +78,26 @@ double exposureOf(const std::string& text) {
 
 class PreviewServer {
 public:
-    PreviewServer(const std::string& scenePath, const SceneDesc& desc, std::unique_ptr<Scene> scene, int threads)
-        : dir_(fs::absolute(scenePath).parent_path()), stem_(fs::path(scenePath).stem().string()), settings_(desc),
-          live_(std::move(scene), threads) {
-        generation_ = live_.restart(settings_.scene());
+    PreviewServer(const std::string& scenePath, const SceneDesc& desc)
+        : dir_(fs::absolute(scenePath).parent_path()), stem_(fs::path(scenePath).stem().string()), settings_(desc) {
         routes();
     }
 
-    // Serves until SIGINT or SIGTERM.
-    void serve(const std::string& host, int port) {
+    // Before the scene is built, so that a taken port costs no tetrahedralization.
+    int bind(const std::string& host, int port) {
         const int bound = port == 0 ? server_.bind_to_any_port(host) : (server_.bind_to_port(host, port) ? port : -1);
         if (bound < 0) throw InputError("cannot listen on " + host + ":" + std::to_string(port) + " (in use, or not an address of this machine)");
-        std::printf("preview: http://%s:%d/ (Ctrl-C stops)\n", host.c_str(), bound);
+        return bound;
+    }
+
+    // Renders the scene and serves until SIGINT or SIGTERM.
+    void serve(std::unique_ptr<Scene> scene, int threads, const std::string& url) {
+        live_ = std::make_unique<LiveRender>(std::move(scene), threads);
+        {
+            std::lock_guard lock(settingsMutex_);
+            generation_ = live_->restart(settings_.scene());
+        }
+        std::printf("preview: %s (Ctrl-C stops)\n", url.c_str());
         std::fflush(stdout);
         std::thread watcher([&] {
             while (!stopRequested) std::this_thread::sleep_for(std::chrono::milliseconds(100));
@@ -137,12 +145,12 @@ private:
             j["settings"] = settings_.json();
             j["generation"] = generation_;
         }
-        const auto live = live_.latest();
+        const auto live = live_->latest();
         j["image"] = nullptr;
         if (live)
             j["image"] = {{"version", live->version}, {"generation", live->generation}, {"passes", live->passes},
                           {"seconds", live->seconds}, {"width", live->image.width}, {"height", live->image.height}};
-        j["render_error"] = live_.error();
+        j["render_error"] = live_->error();
         return j;
     }
 
@@ -152,7 +160,7 @@ private:
             // Checked as JSON: a number in range, or the loader's one-line error.
             exposure = exposureOf("{\"exposure\": " + req.get_param_value("exposure") + "}");
         }
-        const auto live = live_.latest();
+        const auto live = live_->latest();
         if (!live) return sendError(res, "no image yet", 503);
         const std::vector<uint8_t> png = encodePng(live->image, exposure);
         res.set_header("Cache-Control", "no-store");
@@ -162,7 +170,7 @@ private:
     void change(const httplib::Request& req, httplib::Response& res) {
         std::lock_guard lock(settingsMutex_);
         settings_.apply(req.body);  // InputError: 400 with the message, settings unchanged
-        generation_ = live_.restart(settings_.scene());
+        generation_ = live_->restart(settings_.scene());
         sendJson(res, {{"generation", generation_}, {"settings", settings_.json()}});
     }
 
@@ -180,7 +188,7 @@ private:
 
     void saveImage(const httplib::Request& req, httplib::Response& res) {
         const double exposure = exposureOf(req.body);
-        const auto live = live_.latest();
+        const auto live = live_->latest();
         if (!live) return sendError(res, "no image yet", 503);
         std::lock_guard lock(saveMutex_);
         const std::string exr = freshStem(dir_, stem_ + "-image") + ".exr";
@@ -194,20 +202,21 @@ private:
     std::mutex settingsMutex_, saveMutex_;
     PreviewSettings settings_;
     uint64_t generation_ = 0;
-    LiveRender live_;
+    std::unique_ptr<LiveRender> live_;  // from serve() on, before any request is read
     httplib::Server server_;
 };
 
 void run(const Options& o) {
     const SceneDesc desc = loadScene(o.scene);
+    PreviewServer server(o.scene, desc);
+    const int port = server.bind(o.host, o.port);
     auto scene = std::make_unique<Scene>(desc);
     for (const auto& m : scene->media())
         std::fprintf(stderr, "medium %s: %zu tets, %s in %.2f s\n", m.name.c_str(), m.medium->mesh().tets.size(),
                      m.stats.fromCache ? "read from the cache" : "tetrahedralized", m.stats.seconds);
     std::signal(SIGINT, onStop);
     std::signal(SIGTERM, onStop);
-    PreviewServer server(o.scene, desc, std::move(scene), o.threads);
-    server.serve(o.host, o.port);
+    server.serve(std::move(scene), o.threads, "http://" + o.host + ":" + std::to_string(port) + "/");
 }
 
 }  // namespace
