@@ -94,7 +94,7 @@ class Server:
 
 def check_requests(server):
     """Only the page, the image and the API answer; bad requests get one-line errors and change nothing."""
-    for path in ["/nope", "/etc/passwd", "/..%2f..%2fetc%2fpasswd", "/web/preview.js", "/index.html", "/image.exr"]:
+    for path in ["/nope", "/etc/passwd", "/..%2f..%2fetc%2fpasswd", "/web/preview.js", "/index.html", "/image.exr", "/previewXjs"]:
         status, body = server.json(path)
         check(status == 404 and body == {"error": "not found"}, f"GET {path}: {status} {body}")
     before = server.state()
@@ -116,6 +116,8 @@ def check_requests(server):
         check(status == 400, f"POST /settings {body}: status {status}")
         check(reply["error"].startswith(message.split("{...")[0]), f"POST /settings {body}: {reply['error']!r}, expected {message!r}")
         check("\n" not in reply["error"], "a multi-line error")
+    status, reply = server.json("/settings", '{"media": [{"g": 0.1}], "pad": "' + "x" * 70000 + '"}')
+    check(status == 413 and reply["error"] == "request too large: at most 65536 bytes", f"a 70 kB request: {status} {reply}")
     status, reply = server.json("/image.png?exposure=abc")
     check(status == 400 and reply["error"].startswith("request:1:14: /exposure: syntax error"), f"exposure=abc: {reply}")
     after = server.state()
@@ -157,6 +159,11 @@ def main():
         wait_for("the first image in the page", lambda: js("return document.getElementById('image').naturalWidth") == 128)
         wait_for("the first render to finish", finished)
         _, first = server.request("/image.png")
+        check(server.request("/image.png?exposure=2")[1] != first, "exposure does not change the PNG")
+        exposure = browser.find_element(By.ID, "exposure")
+        exposure.send_keys(Keys.ARROW_RIGHT)  # one step: 0.1 stops
+        wait_for("the page's image at the new exposure", lambda: "exposure=0.1&" in browser.find_element(By.ID, "image").get_attribute("src"))
+        exposure.send_keys(Keys.ARROW_LEFT)
         first_generation = server.state()["generation"]
 
         # Drag the g slider: the render starts again from its first pass, and the image changes.

@@ -5,7 +5,7 @@
 const $ = (id) => document.getElementById(id);
 let settings = null;      // the last good settings, as the server holds them
 let generation = -1;      // which of them the controls show
-let imageVersion = -1, imageLoading = false;
+let shownImage = '', imageLoading = false;  // shownImage: the version and exposure on screen
 let sending = false, queued = null;
 
 // Colours are linear [0, 1] values shown as #rrggbb.
@@ -135,12 +135,13 @@ function showImage(image) {
     ' · ' + image.seconds.toFixed(2) + ' s · ' + image.width + '×' + image.height;
   $('progress').dataset.passes = image.passes;
   $('progress').dataset.generation = image.generation;
-  if (image.version === imageVersion || imageLoading) return;
+  const query = 'exposure=' + $('exposure').value + '&v=' + image.version;
+  if (query === shownImage || imageLoading) return;
   imageLoading = true;
   const img = new Image();
-  img.onload = () => { $('image').src = img.src; imageVersion = image.version; imageLoading = false; };
+  img.onload = () => { $('image').src = img.src; shownImage = query; imageLoading = false; };
   img.onerror = () => { imageLoading = false; };
-  img.src = '/image.png?exposure=' + $('exposure').value + '&v=' + image.version;
+  img.src = '/image.png?' + query;
 }
 
 async function poll() {
@@ -171,10 +172,7 @@ $('lookup').addEventListener('change', () => {
   change({ integrator: { radius: $('lookup').value === 'radius' ? (settings.integrator.radius ?? 0.05) : null } });
 });
 $('resolution-scale').addEventListener('change', () => change({ resolution_scale: Number($('resolution-scale').value) }));
-$('exposure').addEventListener('input', () => {
-  $('exposure-value').textContent = $('exposure').value;
-  imageVersion = -1;  // the same image again, at the new exposure
-});
+$('exposure').addEventListener('input', () => { $('exposure-value').textContent = $('exposure').value; });
 $('save-scene').addEventListener('click', () =>
   post('/save/scene').then((r) => { $('saved').textContent = 'saved ' + r.scene; showError(''); }).catch((e) => showError(e.message)));
 $('save-image').addEventListener('click', () =>

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <mutex>
+#include <regex>
 #include <thread>
 
 #include <httplib.h>
@@ -115,7 +116,9 @@ private:
             const std::string name = file.name;
             const std::string body(reinterpret_cast<const char*>(file.bytes), file.size);
             const std::string type = contentType(name);
-            server_.Get(name == "index.html" ? "/" : "/" + name, [body, type](const httplib::Request&, httplib::Response& res) {
+            // httplib's patterns are regular expressions: the name's dots must match dots only.
+            const std::string pattern = name == "index.html" ? "/" : "/" + std::regex_replace(name, std::regex("\\."), "\\.");
+            server_.Get(pattern, [body, type](const httplib::Request&, httplib::Response& res) {
                 res.set_content(body, type);
             });
         }
@@ -125,7 +128,11 @@ private:
         server_.Post("/save/scene", [this](const httplib::Request&, httplib::Response& res) { saveScene(res); });
         server_.Post("/save/image", [this](const httplib::Request& req, httplib::Response& res) { saveImage(req, res); });
         server_.set_error_handler([](const httplib::Request&, httplib::Response& res) {
-            if (res.body.empty()) sendError(res, res.status == 404 ? "not found" : "bad request", res.status);
+            if (!res.body.empty()) return;
+            sendError(res, res.status == 404   ? "not found"
+                           : res.status == 413 ? "request too large: at most " + std::to_string(kMaxRequestBytes) + " bytes"
+                                               : "bad request",
+                      res.status);
         });
         server_.set_exception_handler([](const httplib::Request&, httplib::Response& res, std::exception_ptr e) {
             try {
