@@ -8,8 +8,11 @@ cd "$(dirname "$0")"
 job=${1:-build}
 case "$job" in demo|test|build) ;; *) echo "usage: $0 demo|test|build" >&2; exit 2 ;; esac
 
-packages=(g++ cmake make libtet1.5-dev libembree-dev libopenexr-dev libglm-dev libtbb-dev nlohmann-json3-dev
-          libcli11-dev libnanoflann-dev libpng-dev libgtest-dev libbenchmark-dev gnuplot-nox python3)
+packages=(g++ cmake make pkg-config libtet1.5-dev libembree-dev libopenexr-dev libglm-dev libtbb-dev nlohmann-json3-dev
+          libcli11-dev libnanoflann-dev libpng-dev libcpp-httplib-dev libgtest-dev libbenchmark-dev gnuplot-nox python3)
+# Only the tests need these: tetglow preview's page is tested in headless Chromium.
+test_packages=(chromium chromium-driver python3-selenium)
+[ "$job" = test ] && packages+=("${test_packages[@]}")
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "ok installed" || missing+=("$p")

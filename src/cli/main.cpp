@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
     tetglow::cli::addValidateCommand(app);
     tetglow::cli::addCompareBoundaryCommand(app);
     tetglow::cli::addConvertCommand(app);
+    tetglow::cli::addPreviewCommand(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

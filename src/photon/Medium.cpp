@@ -25,13 +25,19 @@ glm::dvec4 affineThrough(const TetMesh& mesh, uint32_t t, const std::vector<doub
 
 }  // namespace
 
-Medium::Medium(const MediumParams& params, TetMesh mesh, std::vector<double> vertexDensity)
-    : params_(params), sigmaT_(params.sigmaA + params.sigmaS), phase_(params.g), volume_(std::move(mesh)) {
-    if (vertexDensity.empty()) return;
+Medium::Medium(const MediumParams& params, TetMesh mesh, std::vector<double> vertexDensity) : volume_(std::move(mesh)) {
+    setParams(params, std::move(vertexDensity));
+}
+
+void Medium::setParams(const MediumParams& params, std::vector<double> vertexDensity) {
     const TetMesh& m = volume_.mesh();
-    if (vertexDensity.size() != m.vertices.size()) throw std::invalid_argument("Medium: one density per tet vertex expected");
-    densityPlane_.resize(m.tets.size());
-    for (uint32_t t = 0; t < m.tets.size(); ++t) densityPlane_[t] = affineThrough(m, t, vertexDensity);
+    if (!vertexDensity.empty() && vertexDensity.size() != m.vertices.size())
+        throw std::invalid_argument("Medium: one density per tet vertex expected");
+    params_ = params;
+    sigmaT_ = params.sigmaA + params.sigmaS;
+    phase_ = HenyeyGreenstein(params.g);
+    densityPlane_.assign(vertexDensity.empty() ? 0 : m.tets.size(), glm::dvec4(0));
+    for (uint32_t t = 0; t < densityPlane_.size(); ++t) densityPlane_[t] = affineThrough(m, t, vertexDensity);
 }
 
 double Medium::density(uint32_t tet, const glm::dvec3& p) const {

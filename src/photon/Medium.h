@@ -44,6 +44,8 @@ class Medium {
 public:
     // vertexDensity: one value >= 0 per tet vertex, or empty for density 1 everywhere.
     Medium(const MediumParams& params, TetMesh mesh, std::vector<double> vertexDensity = {});
+    // New coefficients and density on the same tets (the preview's re-tuning: no new tets).
+    void setParams(const MediumParams& params, std::vector<double> vertexDensity = {});
 
     const TetVolume& volume() const { return volume_; }
     const TetMesh& mesh() const { return volume_.mesh(); }

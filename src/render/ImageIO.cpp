@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <stdexcept>
 
 #include <OpenEXR/ImfChannelList.h>
@@ -131,21 +132,32 @@ Image readExr(const std::string& path, const std::string& layer) {
     }
 }
 
-void writePng(const std::string& path, const Image& rgb, double exposure) {
+std::vector<uint8_t> encodePng(const Image& rgb, double exposure) {
     const double scale = std::exp2(exposure);
     std::vector<uint8_t> bytes;
     bytes.reserve(3 * rgb.pixels.size());
     for (const auto& p : rgb.pixels)
         for (uint8_t b : previewPixel(p, scale)) bytes.push_back(b);
+    png_image image;
+    std::memset(&image, 0, sizeof image);
+    image.version = PNG_IMAGE_VERSION;
+    image.width = rgb.width;
+    image.height = rgb.height;
+    image.format = PNG_FORMAT_RGB;
+    png_alloc_size_t size = 0;  // asked for first, then written
+    if (!png_image_write_get_memory_size(image, size, 0, bytes.data(), 0, nullptr)) throw std::runtime_error(image.message);
+    std::vector<uint8_t> png(size);
+    if (!png_image_write_to_memory(&image, png.data(), &size, 0, bytes.data(), 0, nullptr)) throw std::runtime_error(image.message);
+    png.resize(size);
+    return png;
+}
+
+void writePng(const std::string& path, const Image& rgb, double exposure) {
     writeAtomically(path, [&](const std::string& temporary) {
-        png_image image;
-        std::memset(&image, 0, sizeof image);
-        image.version = PNG_IMAGE_VERSION;
-        image.width = rgb.width;
-        image.height = rgb.height;
-        image.format = PNG_FORMAT_RGB;
-        if (!png_image_write_to_file(&image, temporary.c_str(), 0, bytes.data(), 0, nullptr))
-            throw std::runtime_error(image.message);
+        const std::vector<uint8_t> png = encodePng(rgb, exposure);
+        std::ofstream out(temporary, std::ios::binary);
+        out.write(reinterpret_cast<const char*>(png.data()), std::streamsize(png.size()));
+        if (!out.flush()) throw std::runtime_error("write failed");
     });
 }
 

@@ -2,6 +2,7 @@
 // Files are written to a temporary name in the same directory and renamed when complete,
 // so an interrupted or failed write never leaves a partial or empty file.
 #pragma once
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,8 @@ Image readExr(const std::string& path, const std::string& layer = "");
 // [0, 1] are shown exactly, and overexposed pixels keep their hue instead of drifting towards
 // white or yellow as a per-channel clamp would. NaN or Inf pixels are magenta, so they stand out.
 void writePng(const std::string& path, const Image& rgb, double exposure = 0);
+// The same preview as PNG file bytes (tetglow preview serves them).
+std::vector<uint8_t> encodePng(const Image& rgb, double exposure = 0);
 
 // "out/x.exr" -> "out/x.png".
 std::string previewPath(const std::string& exrPath);

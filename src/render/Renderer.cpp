@@ -39,7 +39,9 @@ RenderResult render(const Scene& scene, Integrator& integrator, const RenderOpti
                 if (lock) options.progress(options.timeLimit > 0 ? std::min(1.0, elapsed() / options.timeLimit) : double(done) / totalPixels);
             });
         });
-        if (!cancelled()) result.passes = pass + 1;
+        if (cancelled()) break;
+        result.passes = pass + 1;
+        if (options.passDone) options.passDone(film, result.passes);
     }
     result.cancelled = cancelled();
     result.image = film.image();

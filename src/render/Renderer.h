@@ -15,6 +15,8 @@ struct RenderOptions {
     double timeLimit = 0;  // > 0: no pass starts after this many seconds (at least one runs)
     const std::atomic<bool>* cancel = nullptr;    // checked between tiles
     std::function<void(double fraction)> progress;  // called from one thread at a time
+    // After each complete pass, with the film so far (live previews), on the thread that called render().
+    std::function<void(const Film& film, int passes)> passDone;
 };
 
 struct RenderResult {

@@ -1,6 +1,7 @@
 #include "render/Scene.h"
 
 #include <chrono>
+#include <stdexcept>
 
 #include <glm/geometric.hpp>
 
@@ -19,6 +20,19 @@ std::vector<glm::dvec3> unitNormals(const std::vector<glm::dvec3>& positions, co
     return normals;
 }
 
+// The description's coefficients and density on the medium's tets.
+void setCoefficients(Medium& medium, const MediumDesc& desc) {
+    MediumParams params{desc.sigmaA, desc.sigmaS, desc.g, desc.emission};
+    std::vector<double> density;
+    if (desc.density.isConstant()) {
+        // A constant density only scales the coefficients.
+        params.sigmaA *= desc.density.offset, params.sigmaS *= desc.density.offset, params.emission *= desc.density.offset;
+    } else {
+        density = evaluateDensity(desc.density, medium.mesh().vertices);
+    }
+    medium.setParams(params, std::move(density));
+}
+
 SceneMedium buildMedium(const MediumDesc& desc) {
     SceneMedium m;
     m.name = desc.name;
@@ -26,15 +40,8 @@ SceneMedium buildMedium(const MediumDesc& desc) {
     try {
         TetMesh mesh = tetrahedralize(desc.boundary, desc.tetOptions, &m.stats);
         m.steinerPoints = mesh.vertices.size() - mesh.surfaceVertexCount;
-        MediumParams params{desc.sigmaA, desc.sigmaS, desc.g, desc.emission};
-        std::vector<double> density;
-        if (desc.density.isConstant()) {
-            // A constant density only scales the coefficients.
-            params.sigmaA *= desc.density.offset, params.sigmaS *= desc.density.offset, params.emission *= desc.density.offset;
-        } else {
-            density = evaluateDensity(desc.density, mesh.vertices);
-        }
-        m.medium = std::make_unique<Medium>(params, std::move(mesh), std::move(density));
+        m.medium = std::make_unique<Medium>(MediumParams{}, std::move(mesh));
+        setCoefficients(*m.medium, desc);
     } catch (const InputError& e) {
         throw InputError(desc.name + ": " + e.what());
     }
@@ -89,6 +96,24 @@ Scene::Scene(const SceneDesc& desc) : desc_(desc), camera_(desc.camera) {
 }
 
 Scene::~Scene() { rtcReleaseScene(scene_); }
+
+void Scene::retuneMedia(const std::vector<MediumDesc>& media) {
+    if (media.size() != media_.size()) throw std::invalid_argument("Scene::retuneMedia: a different number of media");
+    for (size_t i = 0; i < media.size(); ++i) {
+        const MediumDesc& old = desc_.media[i];
+        const MediumDesc& m = media[i];
+        if (m.boundary.positions != old.boundary.positions || m.boundary.triangles != old.boundary.triangles ||
+            m.tetOptions.radiusEdgeRatio != old.tetOptions.radiusEdgeRatio || m.tetOptions.maxVolume != old.tetOptions.maxVolume)
+            throw std::invalid_argument("Scene::retuneMedia: medium " + m.name + " has other tets");
+        setCoefficients(*media_[i].medium, m);
+        desc_.media[i] = m;
+    }
+}
+
+void Scene::setCamera(const CameraDesc& camera) {
+    desc_.camera = camera;
+    camera_ = Camera(camera);
+}
 
 std::optional<Intersection> Scene::intersect(const Ray& ray, double tMax) const {
     RTCIntersectContext context;

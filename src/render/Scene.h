@@ -48,6 +48,11 @@ public:
     Scene& operator=(const Scene&) = delete;
 
     const SceneDesc& desc() const { return desc_; }
+    // New coefficients and densities for every medium, on the tets it has (the boundary meshes
+    // and TetGen options must be the ones it was built with); integrators made before are stale.
+    void retuneMedia(const std::vector<MediumDesc>& media);
+    // Another image size or view; the ray epsilon stays the one the scene was built with.
+    void setCamera(const CameraDesc& camera);
     const Camera& camera() const { return camera_; }
     const std::vector<std::unique_ptr<Light>>& lights() const { return lights_; }
     const std::vector<SceneMedium>& media() const { return media_; }

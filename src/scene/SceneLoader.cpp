@@ -58,32 +58,6 @@ CameraDesc readCamera(JsonObject& o) {
     return c;
 }
 
-IntegratorDesc readIntegrator(JsonObject& o) {
-    IntegratorDesc d;
-    constexpr int64_t kMaxInt = std::numeric_limits<int>::max();
-    if (auto f = o["type"])
-        d.type = f.choice<IntegratorType>(kIntegratorNames);
-    if (auto f = o["spp"]) d.spp = int(f.integer(1, kMaxInt));
-    if (auto f = o["max_depth"]) d.maxDepth = int(f.integer(1, kMaxInt));
-    if (auto f = o["seed"]) d.seed = uint64_t(f.integer(0));
-    if (auto f = o["boundary"])
-        d.boundary = f.choice<BoundaryMode>(kBoundaryNames);
-    if (auto f = o["step"]) d.stepSize = f.number(kPositive);
-    if (auto f = o["parity_rays"]) {
-        d.parityRays = int(f.integer(1, kMaxParityRays));
-        // A majority vote needs an odd count.
-        if (d.parityRays % 2 == 0) f.fail("an odd integer in 1.." + std::to_string(kMaxParityRays));
-    }
-    if (auto f = o["photons"]) d.photons = uint64_t(f.integer(1, int64_t(1) << 40));
-    if (auto f = o["k"]) d.k = int(f.integer(1, 100000));
-    if (auto f = o["radius"]) d.radius = f.number(kPositive);
-    if (auto f = o["estimate"]) d.estimate = f.choice<PhotonEstimate>(kEstimateNames);
-    if (auto f = o["alpha"]) d.alpha = f.number({.lo = 0, .hi = 1, .loOpen = true});
-    if (auto f = o["boundary_correction"]) d.boundaryCorrection = f.boolean();
-    if (auto f = o["time"]) d.timeLimit = f.number(kPositive);
-    return d;
-}
-
 void readSpotCone(JsonObject& o, LightDesc& l) {
     const JsonValue lookAt = o["look_at"];
     l.lookAt = lookAt.vec3();
@@ -193,14 +167,7 @@ MediumDesc readMedium(JsonObject& o, const fs::path& dir) {
     MediumDesc m;
     m.name = nameOf(o.self(), shape);
     m.boundary = std::move(shape.mesh);
-    const double scale = scaleOf(o);
-    if (auto f = o["sigma_a"]) m.sigmaA = rgb(f);
-    if (auto f = o["sigma_s"]) m.sigmaS = rgb(f);
-    m.sigmaA *= scale;
-    m.sigmaS *= scale;
-    if (auto f = o["g"]) m.g = f.number({.lo = -1, .hi = 1, .loOpen = true, .hiOpen = true});
-    if (auto f = o["emission"]) m.emission = rgb(f);
-    if (auto f = o["density"]) m.density = f.readObject(readDensity);
+    readMediumCoefficients(o, m);
     if (auto f = o["boundary"])
         m.boundaryMaterial = f.readObject([](JsonObject& b) {
             return readMaterial(b, {{"interface", MaterialType::Interface}, {"dielectric", MaterialType::Dielectric}});
@@ -228,6 +195,43 @@ SceneDesc readScene(JsonObject& o, const std::string& path) {
 }
 
 }  // namespace
+
+IntegratorDesc readIntegrator(JsonObject& o) {
+    IntegratorDesc d;
+    constexpr int64_t kMaxInt = std::numeric_limits<int>::max();
+    if (auto f = o["type"])
+        d.type = f.choice<IntegratorType>(kIntegratorNames);
+    if (auto f = o["spp"]) d.spp = int(f.integer(1, kMaxInt));
+    if (auto f = o["max_depth"]) d.maxDepth = int(f.integer(1, kMaxInt));
+    if (auto f = o["seed"]) d.seed = uint64_t(f.integer(0));
+    if (auto f = o["boundary"])
+        d.boundary = f.choice<BoundaryMode>(kBoundaryNames);
+    if (auto f = o["step"]) d.stepSize = f.number(kPositive);
+    if (auto f = o["parity_rays"]) {
+        d.parityRays = int(f.integer(1, kMaxParityRays));
+        // A majority vote needs an odd count.
+        if (d.parityRays % 2 == 0) f.fail("an odd integer in 1.." + std::to_string(kMaxParityRays));
+    }
+    if (auto f = o["photons"]) d.photons = uint64_t(f.integer(1, int64_t(1) << 40));
+    if (auto f = o["k"]) d.k = int(f.integer(1, 100000));
+    if (auto f = o["radius"]) d.radius = f.number(kPositive);
+    if (auto f = o["estimate"]) d.estimate = f.choice<PhotonEstimate>(kEstimateNames);
+    if (auto f = o["alpha"]) d.alpha = f.number({.lo = 0, .hi = 1, .loOpen = true});
+    if (auto f = o["boundary_correction"]) d.boundaryCorrection = f.boolean();
+    if (auto f = o["time"]) d.timeLimit = f.number(kPositive);
+    return d;
+}
+
+void readMediumCoefficients(JsonObject& o, MediumDesc& m) {
+    const double scale = scaleOf(o);
+    if (auto f = o["sigma_a"]) m.sigmaA = rgb(f);
+    if (auto f = o["sigma_s"]) m.sigmaS = rgb(f);
+    m.sigmaA *= scale;
+    m.sigmaS *= scale;
+    if (auto f = o["g"]) m.g = f.number({.lo = -1, .hi = 1, .loOpen = true, .hiOpen = true});
+    if (auto f = o["emission"]) m.emission = rgb(f);
+    if (auto f = o["density"]) m.density = f.readObject(readDensity);
+}
 
 bool emitsLight(const SceneDesc& s) {
     for (const LightDesc& l : s.lights)

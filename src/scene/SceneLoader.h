@@ -2,6 +2,7 @@
 #pragma once
 #include <string>
 
+#include "scene/JsonReader.h"
 #include "scene/SceneDescription.h"
 
 namespace tetglow {
@@ -13,6 +14,13 @@ namespace tetglow {
 // A file whose name ends in .pbrt, or whose first token is a pbrt-v3 directive, is read as a
 // pbrt-v3 scene (scene/PbrtParser.h).
 SceneDesc loadScene(const std::string& path);
+
+// The parts of a scene file the preview re-tunes, with the loader's own checks and errors.
+// An "integrator" object (absent keys keep their defaults).
+IntegratorDesc readIntegrator(JsonObject& o);
+// A medium's "scale", "sigma_a", "sigma_s", "g", "emission" and "density": the keys present
+// replace m's values (sigma_a and sigma_s times "scale", 1 when absent).
+void readMediumCoefficients(JsonObject& o, MediumDesc& m);
 
 // Something gives off light: a light with non-zero intensity, irradiance or radiance, or an
 // emissive medium.

@@ -36,6 +36,15 @@ void print(const Json& j, const std::string& indent, std::string& out) {
     out += indent + (j.is_object() ? "}" : "]");
 }
 
+Json densityJson(const DensityDesc& d) {
+    switch (d.type) {
+        case DensityDesc::Type::Constant: return {{"type", "constant"}, {"value", d.offset}};
+        case DensityDesc::Type::Linear: return {{"type", "linear"}, {"offset", d.offset}, {"gradient", vec(d.gradient)}};
+        case DensityDesc::Type::Noise: break;
+    }
+    return {{"type", "noise"}, {"offset", d.offset}, {"amplitude", d.amplitude}, {"frequency", d.frequency}, {"seed", d.seed}};
+}
+
 class Writer {
 public:
     Writer(const SceneDesc& scene, const std::string& jsonPath)
@@ -50,7 +59,7 @@ public:
                        {"fov", c.fov},
                        {"resolution", {c.width, c.height}},
                        {"handedness", c.handedness == Handedness::Left ? "left" : "right"}};
-        j["integrator"] = integrator(scene_.integrator);
+        j["integrator"] = integratorJson(scene_.integrator);
         // loadScene takes "output" relative to the scene file's folder.
         if (!scene_.output.empty()) j["output"] = fs::absolute(scene_.output).lexically_relative(fs::absolute(dir_)).string();
         j["lights"] = Json::array();
@@ -66,19 +75,6 @@ public:
     std::vector<std::string> written;
 
 private:
-    static Json integrator(const IntegratorDesc& d) {
-        Json j = {{"type", nameOf(kIntegratorNames, d.type)},   {"spp", d.spp},
-                  {"max_depth", d.maxDepth},      {"seed", d.seed},
-                  {"boundary", nameOf(kBoundaryNames, d.boundary)}, {"step", d.stepSize},
-                  {"parity_rays", d.parityRays},  {"photons", d.photons},
-                  {"k", d.k},                     {"estimate", nameOf(kEstimateNames, d.estimate)},
-                  {"alpha", d.alpha},             {"boundary_correction", d.boundaryCorrection}};
-        // 0 means "not set" for these two; the loader takes only positive values.
-        if (d.radius > 0) j["radius"] = d.radius;
-        if (d.timeLimit > 0) j["time"] = d.timeLimit;
-        return j;
-    }
-
     static Json material(const MaterialDesc& m) {
         switch (m.type) {
             case MaterialType::Diffuse: return {{"type", "diffuse"}, {"reflectance", vec(m.reflectance)}};
@@ -86,15 +82,6 @@ private:
             case MaterialType::Interface: break;
         }
         return {{"type", "interface"}};
-    }
-
-    static Json density(const DensityDesc& d) {
-        switch (d.type) {
-            case DensityDesc::Type::Constant: return {{"type", "constant"}, {"value", d.offset}};
-            case DensityDesc::Type::Linear: return {{"type", "linear"}, {"offset", d.offset}, {"gradient", vec(d.gradient)}};
-            case DensityDesc::Type::Noise: break;
-        }
-        return {{"type", "noise"}, {"offset", d.offset}, {"amplitude", d.amplitude}, {"frequency", d.frequency}, {"seed", d.seed}};
     }
 
     // A "mesh" shape whose OBJ file holds the world-space triangles as they are.
@@ -124,14 +111,11 @@ private:
     }
 
     Json medium(const MediumDesc& m, size_t index) {
-        return {{"shape", mesh(m.boundary, "medium", index)},
-                {"sigma_a", vec(m.sigmaA)},
-                {"sigma_s", vec(m.sigmaS)},
-                {"g", m.g},
-                {"emission", vec(m.emission)},
-                {"density", density(m.density)},
-                {"boundary", material(m.boundaryMaterial)},
-                {"tetgen", {{"quality", m.tetOptions.radiusEdgeRatio}, {"max_volume", m.tetOptions.maxVolume}}}};
+        Json j = {{"shape", mesh(m.boundary, "medium", index)}};
+        j.update(mediumCoefficientsJson(m));
+        j["boundary"] = material(m.boundaryMaterial);
+        j["tetgen"] = {{"quality", m.tetOptions.radiusEdgeRatio}, {"max_volume", m.tetOptions.maxVolume}};
+        return j;
     }
 
     const SceneDesc& scene_;
@@ -140,6 +124,23 @@ private:
 };
 
 }  // namespace
+
+Json integratorJson(const IntegratorDesc& d) {
+    Json j = {{"type", nameOf(kIntegratorNames, d.type)},   {"spp", d.spp},
+              {"max_depth", d.maxDepth},      {"seed", d.seed},
+              {"boundary", nameOf(kBoundaryNames, d.boundary)}, {"step", d.stepSize},
+              {"parity_rays", d.parityRays},  {"photons", d.photons},
+              {"k", d.k},                     {"estimate", nameOf(kEstimateNames, d.estimate)},
+              {"alpha", d.alpha},             {"boundary_correction", d.boundaryCorrection}};
+    // 0 means "not set" for these two; the loader takes only positive values.
+    if (d.radius > 0) j["radius"] = d.radius;
+    if (d.timeLimit > 0) j["time"] = d.timeLimit;
+    return j;
+}
+
+Json mediumCoefficientsJson(const MediumDesc& m) {
+    return {{"sigma_a", vec(m.sigmaA)}, {"sigma_s", vec(m.sigmaS)}, {"g", m.g}, {"emission", vec(m.emission)}, {"density", densityJson(m.density)}};
+}
 
 std::vector<std::string> writeScene(const SceneDesc& scene, const std::string& jsonPath) {
     Writer writer(scene, jsonPath);

@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "scene/SceneDescription.h"
 
 namespace tetglow {
@@ -12,5 +14,10 @@ namespace tetglow {
 // <stem>-light-<i>.obj; returns the mesh files written. Throws InputError when a file cannot
 // be written.
 std::vector<std::string> writeScene(const SceneDesc& scene, const std::string& jsonPath);
+
+// The "integrator" object, and a medium's "sigma_a", "sigma_s", "g", "emission" and "density",
+// as writeScene writes them (keys in the order FORMAT.md lists them).
+nlohmann::ordered_json integratorJson(const IntegratorDesc& d);
+nlohmann::ordered_json mediumCoefficientsJson(const MediumDesc& m);
 
 }  // namespace tetglow

@@ -1,0 +1,241 @@
+// tetglow preview SCENE: a local web page that shows the render refining pass after pass and
+// tunes the media and the integrator while it runs (cpp-httplib). The server answers only its
+// own page (compiled in from web/), the current image, the settings and two saves whose file
+// names it chooses itself; every other request gets 404.
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <mutex>
+#include <regex>
+#include <thread>
+
+#include <httplib.h>
+
+#include "WebFiles.h"
+#include "cli/Commands.h"
+#include "cli/PreviewSettings.h"
+#include "render/ImageIO.h"
+#include "render/LiveRender.h"
+#include "scene/SceneLoader.h"
+#include "scene/SceneWriter.h"
+
+namespace tetglow::cli {
+namespace {
+
+namespace fs = std::filesystem;
+using Json = nlohmann::json;
+
+struct Options {
+    std::string scene, host = "127.0.0.1";
+    int port = 8080, threads = 0;
+};
+
+constexpr Range kExposure{.lo = -20, .hi = 20};
+constexpr size_t kMaxRequestBytes = 64 * 1024;
+
+std::atomic<bool> stopRequested{false};
+void onStop(int) { stopRequested = true; }
+
+// "<base>-<n>": the first n for which no file in `dir` starts with "<base>-<n>." or
+// "<base>-<n>-", so that a save never overwrites a file (a scene's meshes go beside it).
+std::string freshStem(const fs::path& dir, const std::string& base) {
+    for (int n = 1;; ++n) {
+        const std::string stem = base + "-" + std::to_string(n);
+        bool taken = false;
+        for (const auto& entry : fs::directory_iterator(dir)) {
+            const std::string name = entry.path().filename().string();
+            if (name.rfind(stem + ".", 0) == 0 || name.rfind(stem + "-", 0) == 0) taken = true;
+        }
+        if (!taken) return (dir / stem).string();
+    }
+}
+
+std::string contentType(const std::string& file) {
+    const std::string ext = fs::path(file).extension().string();
+    if (ext == ".html") return "text/html; charset=utf-8";
+    if (ext == ".js") return "text/javascript; charset=utf-8";
+    if (ext == ".css") return "text/css; charset=utf-8";
+    return "application/octet-stream";
+}
+
+void sendJson(httplib::Response& res, const Json& j, int status = 200) {
+    res.status = status;
+    res.set_content(j.dump(), "application/json");
+}
+
+void sendError(httplib::Response& res, const std::string& message, int status = 400) { sendJson(res, {{"error", message}}, status); }
+
+// The exposure a request asks for ("exposure" in the query or the JSON body), 0 when absent.
+double exposureOf(const std::string& text) {
+    if (text.empty()) return 0;
+    const Json j = parseJson(text, "request");
+    return JsonValue(&j, Json::json_pointer(), "request").readObject([](JsonObject& o) {
+        const JsonValue e = o["exposure"];
+        return e ? e.number(kExposure) : 0.0;
+    });
+}
+
+class PreviewServer {
+public:
+    PreviewServer(const std::string& scenePath, const SceneDesc& desc)
+        : dir_(fs::absolute(scenePath).parent_path()), stem_(fs::path(scenePath).stem().string()), settings_(desc) {
+        routes();
+    }
+
+    // Before the scene is built, so that a taken port costs no tetrahedralization.
+    int bind(const std::string& host, int port) {
+        const int bound = port == 0 ? server_.bind_to_any_port(host) : (server_.bind_to_port(host, port) ? port : -1);
+        if (bound < 0) throw InputError("cannot listen on " + host + ":" + std::to_string(port) + " (in use, or not an address of this machine)");
+        return bound;
+    }
+
+    // Renders the scene and serves until SIGINT or SIGTERM.
+    void serve(std::unique_ptr<Scene> scene, int threads, const std::string& url) {
+        live_ = std::make_unique<LiveRender>(std::move(scene), threads);
+        {
+            std::lock_guard lock(settingsMutex_);
+            generation_ = live_->restart(settings_.scene());
+        }
+        std::printf("preview: %s (Ctrl-C stops)\n", url.c_str());
+        std::fflush(stdout);
+        std::thread watcher([&] {
+            while (!stopRequested) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+            server_.stop();
+        });
+        server_.listen_after_bind();
+        stopRequested = true;
+        watcher.join();
+    }
+
+private:
+    void routes() {
+        server_.set_payload_max_length(kMaxRequestBytes);
+        for (const web::File& file : web::kFiles) {
+            const std::string name = file.name;
+            const std::string body(reinterpret_cast<const char*>(file.bytes), file.size);
+            const std::string type = contentType(name);
+            // httplib's patterns are regular expressions: the name's dots must match dots only.
+            const std::string pattern = name == "index.html" ? "/" : "/" + std::regex_replace(name, std::regex("\\."), "\\.");
+            server_.Get(pattern, [body, type](const httplib::Request&, httplib::Response& res) {
+                res.set_content(body, type);
+            });
+        }
+        server_.Get("/state", [this](const httplib::Request&, httplib::Response& res) { sendJson(res, state()); });
+        server_.Get("/image.png", [this](const httplib::Request& req, httplib::Response& res) { image(req, res); });
+        server_.Post("/settings", [this](const httplib::Request& req, httplib::Response& res) { change(req, res); });
+        server_.Post("/save/scene", [this](const httplib::Request&, httplib::Response& res) { saveScene(res); });
+        server_.Post("/save/image", [this](const httplib::Request& req, httplib::Response& res) { saveImage(req, res); });
+        server_.set_error_handler([](const httplib::Request&, httplib::Response& res) {
+            if (!res.body.empty()) return;
+            sendError(res, res.status == 404   ? "not found"
+                           : res.status == 413 ? "request too large: at most " + std::to_string(kMaxRequestBytes) + " bytes"
+                                               : "bad request",
+                      res.status);
+        });
+        server_.set_exception_handler([](const httplib::Request&, httplib::Response& res, std::exception_ptr e) {
+            try {
+                std::rethrow_exception(e);
+            } catch (const InputError& error) {
+                sendError(res, error.what());
+            } catch (const std::exception& error) {
+                sendError(res, error.what(), 500);
+            }
+        });
+    }
+
+    Json state() {
+        Json j;
+        {
+            std::lock_guard lock(settingsMutex_);
+            j["settings"] = settings_.json();
+            j["generation"] = generation_;
+        }
+        const auto live = live_->latest();
+        j["image"] = nullptr;
+        if (live)
+            j["image"] = {{"version", live->version}, {"generation", live->generation}, {"passes", live->passes},
+                          {"seconds", live->seconds}, {"width", live->image.width}, {"height", live->image.height}};
+        j["render_error"] = live_->error();
+        return j;
+    }
+
+    void image(const httplib::Request& req, httplib::Response& res) {
+        double exposure = 0;
+        if (req.has_param("exposure")) {
+            // Checked as JSON: a number in range, or the loader's one-line error.
+            exposure = exposureOf("{\"exposure\": " + req.get_param_value("exposure") + "}");
+        }
+        const auto live = live_->latest();
+        if (!live) return sendError(res, "no image yet", 503);
+        const std::vector<uint8_t> png = encodePng(live->image, exposure);
+        res.set_header("Cache-Control", "no-store");
+        res.set_content(std::string(png.begin(), png.end()), "image/png");
+    }
+
+    void change(const httplib::Request& req, httplib::Response& res) {
+        std::lock_guard lock(settingsMutex_);
+        settings_.apply(req.body);  // InputError: 400 with the message, settings unchanged
+        generation_ = live_->restart(settings_.scene());
+        sendJson(res, {{"generation", generation_}, {"settings", settings_.json()}});
+    }
+
+    void saveScene(httplib::Response& res) {
+        std::lock_guard lock(saveMutex_);
+        SceneDesc scene;
+        {
+            std::lock_guard settingsLock(settingsMutex_);
+            scene = settings_.scene();
+        }
+        const std::string path = freshStem(dir_, stem_ + "-tuned") + ".json";
+        writeScene(scene, path);
+        sendJson(res, {{"scene", path}});
+    }
+
+    void saveImage(const httplib::Request& req, httplib::Response& res) {
+        const double exposure = exposureOf(req.body);
+        const auto live = live_->latest();
+        if (!live) return sendError(res, "no image yet", 503);
+        std::lock_guard lock(saveMutex_);
+        const std::string exr = freshStem(dir_, stem_ + "-image") + ".exr";
+        writeExr(exr, live->image);
+        writePng(previewPath(exr), live->image, exposure);
+        sendJson(res, {{"exr", exr}, {"png", previewPath(exr)}, {"passes", live->passes}, {"generation", live->generation}});
+    }
+
+    const fs::path dir_;
+    const std::string stem_;
+    std::mutex settingsMutex_, saveMutex_;
+    PreviewSettings settings_;
+    uint64_t generation_ = 0;
+    std::unique_ptr<LiveRender> live_;  // from serve() on, before any request is read
+    httplib::Server server_;
+};
+
+void run(const Options& o) {
+    const SceneDesc desc = loadScene(o.scene);
+    PreviewServer server(o.scene, desc);
+    const int port = server.bind(o.host, o.port);
+    auto scene = std::make_unique<Scene>(desc);
+    for (const auto& m : scene->media())
+        std::fprintf(stderr, "medium %s: %zu tets, %s in %.2f s\n", m.name.c_str(), m.medium->mesh().tets.size(),
+                     m.stats.fromCache ? "read from the cache" : "tetrahedralized", m.stats.seconds);
+    std::signal(SIGINT, onStop);
+    std::signal(SIGTERM, onStop);
+    server.serve(std::move(scene), o.threads, "http://" + o.host + ":" + std::to_string(port) + "/");
+}
+
+}  // namespace
+
+void addPreviewCommand(CLI::App& app) {
+    auto o = std::make_shared<Options>();
+    auto* cmd = app.add_subcommand("preview", "Serve a local web page that renders the scene live while its media and integrator are tuned");
+    cmd->add_option("scene", o->scene, "Scene file: JSON, or pbrt-v3 (.pbrt)")->required()->check(CLI::ExistingFile);
+    cmd->add_option("--port", o->port, "TCP port (0: any free one; the URL printed says which)")->check(CLI::Range(0, 65535));
+    cmd->add_option("--host", o->host, "Address to listen on (default 127.0.0.1: this machine only)");
+    cmd->add_option("--threads", o->threads, "Render threads (default: all cores)")->check(CLI::Range(1, 1024));
+    cmd->callback([o] { run(*o); });
+}
+
+}  // namespace tetglow::cli

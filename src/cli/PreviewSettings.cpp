@@ -1,0 +1,77 @@
+#include "cli/PreviewSettings.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "scene/SceneLoader.h"
+#include "scene/SceneWriter.h"
+
+namespace tetglow::cli {
+namespace {
+
+const std::string kSource = "request";  // errors name the request as the loader names a file
+constexpr Range kResolutionScale{.lo = 0, .hi = 1, .loOpen = true};
+
+nlohmann::json unordered(const nlohmann::ordered_json& j) { return nlohmann::json::parse(j.dump()); }
+
+// RFC 7386's merge, except that null replaces a value instead of removing it: a number the page
+// could not read arrives as null and must be an error, not a silent return to the loaded value.
+void merge(nlohmann::json& target, const nlohmann::json& patch) {
+    if (!patch.is_object() || !target.is_object()) {
+        target = patch;
+        return;
+    }
+    for (const auto& [key, value] : patch.items()) merge(target[key], value);
+}
+
+}  // namespace
+
+PreviewSettings::PreviewSettings(const SceneDesc& loaded) : loaded_(loaded), scene_(loaded) {
+    settings_["integrator"] = unordered(integratorJson(loaded.integrator));
+    settings_["media"] = nlohmann::json::array();
+    for (const MediumDesc& m : loaded.media) {
+        nlohmann::json medium = unordered(mediumCoefficientsJson(m));
+        medium["scale"] = 1;  // sigma_a and sigma_s are the loaded ones, "scale" already applied
+        settings_["media"].push_back(medium);
+    }
+    settings_["resolution_scale"] = 1;
+}
+
+void PreviewSettings::apply(const std::string& text) {
+    const nlohmann::json patch = parseJson(text, kSource);
+    if (!patch.is_object()) JsonValue(&patch, nlohmann::json::json_pointer(), kSource).fail("an object");
+    nlohmann::json next = settings_;
+    for (const auto& [key, value] : patch.items()) {
+        nlohmann::json& target = next[key];
+        if (key == "media" && value.is_array() && target.is_array() && value.size() <= target.size())
+            for (size_t i = 0; i < value.size(); ++i) merge(target[i], value[i]);
+        else
+            merge(target, value);  // an unknown key lands here and read() names it
+    }
+    // "radius": null goes back to k neighbours (the one tuned key a scene file may leave out).
+    nlohmann::json& integrator = next["integrator"];
+    if (integrator.is_object() && integrator.contains("radius") && integrator["radius"].is_null()) integrator.erase("radius");
+    scene_ = read(next);
+    settings_ = std::move(next);
+}
+
+SceneDesc PreviewSettings::read(const nlohmann::json& settings) const {
+    SceneDesc s = loaded_;
+    JsonValue(&settings, nlohmann::json::json_pointer(), kSource).readObject([&](JsonObject& o) {
+        s.integrator = o["integrator"].readObject(readIntegrator);
+        const JsonValue media = o["media"];
+        const std::vector<JsonValue> items = media.array();
+        if (items.size() != s.media.size())
+            media.fail("an array of at most " + std::to_string(s.media.size()) + " media, one per medium of the scene");
+        for (size_t i = 0; i < items.size(); ++i) items[i].readObject([&](JsonObject& m) { return readMediumCoefficients(m, s.media[i]), 0; });
+        const double scale = o["resolution_scale"].number(kResolutionScale);
+        s.camera.width = std::max(1, int(std::lround(loaded_.camera.width * scale)));
+        s.camera.height = std::max(1, int(std::lround(loaded_.camera.height * scale)));
+        return 0;
+    });
+    if (!emitsLight(s))
+        throw InputError(kSource + ": nothing emits light: give a medium an \"emission\" (the scene has no other light)");
+    return s;
+}
+
+}  // namespace tetglow::cli

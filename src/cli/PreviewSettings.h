@@ -1,0 +1,35 @@
+// What `tetglow preview` tunes, kept under the scene file's own keys:
+//   {"integrator": {...}, "media": [{"scale", "sigma_a", "sigma_s", "g", "emission", "density"}, ...],
+//    "resolution_scale": s}
+// The page changes them with a JSON merge patch (RFC 7386, but media merge entry by entry and null
+// is a value, so an error, except for integrator "radius": null, back to k neighbours), and the
+// patched settings are read by the scene loader's own functions, so a bad value gets the
+// loader's one-line error and no key the loader does not know (a mesh file, say) gets through.
+#pragma once
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "scene/SceneDescription.h"
+
+namespace tetglow::cli {
+
+class PreviewSettings {
+public:
+    explicit PreviewSettings(const SceneDesc& loaded);
+    // Throws InputError ("request: /media/0/g: expected a number in (-1, 1), got 1.5") and keeps
+    // the settings as they were.
+    void apply(const std::string& patch);
+    const nlohmann::json& json() const { return settings_; }
+    // The loaded scene with the settings: what is rendered and what a save writes.
+    const SceneDesc& scene() const { return scene_; }
+
+private:
+    SceneDesc read(const nlohmann::json& settings) const;
+
+    SceneDesc loaded_;
+    nlohmann::json settings_;
+    SceneDesc scene_;
+};
+
+}  // namespace tetglow::cli

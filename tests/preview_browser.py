@@ -1,0 +1,239 @@
+#!/usr/bin/env python3
+"""`tetglow preview` in headless Chromium, end to end.
+
+Starts the server on a free port with a small copy of the demo fish, then: other paths get 404;
+malformed and out-of-range requests get the loader's one-line errors and change nothing; the page
+shows the image; dragging the g slider restarts the render (the pass counter starts again) and
+changes the image; a bad value typed into the page shows the error there; a second tab sees the
+same settings and render; the saved scene holds the new values, never overwrites, and renders the
+same through `tetglow render`, bit for bit. A screenshot of the page goes to OUT/preview.png.
+
+  tests/preview_browser.py --tetglow build/tetglow --out build/preview-browser
+
+Exits 77 (CTest: skipped), saying so, when chromium is not installed.
+"""
+import argparse
+import json
+import os
+import select
+import shutil
+import socket
+import subprocess
+import sys
+import tempfile
+import time
+import urllib.error
+import urllib.request
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+PASSES = 40  # the test scene's spp: the preview stops there, as `tetglow render` does
+
+
+def check(condition, message):
+    if not condition:
+        raise AssertionError(message)
+
+
+def wait_for(what, condition, timeout=20):
+    deadline = time.time() + timeout
+    while time.time() < deadline:
+        value = condition()
+        if value:
+            return value
+        time.sleep(0.05)
+    raise AssertionError("timed out waiting for " + what)
+
+
+def free_port():
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def test_scene(folder):
+    with open(os.path.join(ROOT, "scenes", "fish.json")) as f:
+        scene = json.load(f)
+    scene["camera"]["resolution"] = [128, 128]
+    scene["integrator"].update(photons=20000, spp=PASSES)
+    scene["media"][0]["shape"]["file"] = os.path.join(ROOT, "scenes", "meshes", "fish.obj")
+    del scene["output"]
+    path = os.path.join(folder, "fish.json")
+    with open(path, "w") as f:
+        json.dump(scene, f)
+    return path
+
+
+class Server:
+    def __init__(self, tetglow, scene):
+        self.process = subprocess.Popen([tetglow, "preview", scene, "--port", str(free_port())],
+                                        stdout=subprocess.PIPE, text=True)
+        ready, _, _ = select.select([self.process.stdout], [], [], 60)
+        line = self.process.stdout.readline() if ready else ""
+        check(line.startswith("preview: http://127.0.0.1:"), "no URL printed: " + repr(line))
+        self.url = line.split()[1].rstrip("/")
+
+    def request(self, path, body=None):
+        data = None if body is None else body.encode()
+        try:
+            with urllib.request.urlopen(urllib.request.Request(self.url + path, data=data), timeout=10) as r:
+                return r.status, r.read()
+        except urllib.error.HTTPError as e:
+            return e.code, e.read()
+
+    def json(self, path, body=None):
+        status, data = self.request(path, body)
+        return status, json.loads(data)
+
+    def state(self):
+        return self.json("/state")[1]
+
+    def stop(self):
+        self.process.terminate()
+        return self.process.wait(10)
+
+
+def check_requests(server):
+    """Only the page, the image and the API answer; bad requests get one-line errors and change nothing."""
+    for path in ["/nope", "/etc/passwd", "/..%2f..%2fetc%2fpasswd", "/web/preview.js", "/index.html", "/image.exr", "/previewXjs"]:
+        status, body = server.json(path)
+        check(status == 404 and body == {"error": "not found"}, f"GET {path}: {status} {body}")
+    before = server.state()
+    bad = {
+        '{"media": [{"g": 1.5}]}': "request: /media/0/g: expected a number in (-1, 1), got 1.5",
+        '{"media": [{"g": NaN}]}': "request:1:18: /media/0/g: syntax error while parsing value - invalid literal; last read: '\"g\": N'",
+        '{"media": [{"g": null}]}': "request: /media/0/g: expected a number in (-1, 1), got null",
+        '{"integrator": {"photons": -5}}': "request: /integrator/photons: expected an integer in 1..1099511627776, got -5",
+        '{"media": [{"shape": {"type": "mesh", "file": "/etc/passwd"}}]}':
+            "request: /media/0/shape: unknown key; allowed here: scale, sigma_a, sigma_s, g, emission, density",
+        '{"media": [{}, {}]}': "request: /media: expected an array of at most 1 media, one per medium of the scene, got [{...",
+        '{"resolution_scale": 3}': "request: /resolution_scale: expected a number in (0, 1], got 3",
+        '{"path": "/tmp/x"}': "request: /path: unknown key; allowed here: integrator, media, resolution_scale",
+        '[1]': "request: expected an object, got [1]",
+        '{"media": [{"g": 0.5}': "request:1:22: /media/1: syntax error while parsing array - unexpected end of input; expected ']'",
+    }
+    for body, message in bad.items():
+        status, reply = server.json("/settings", body)
+        check(status == 400, f"POST /settings {body}: status {status}")
+        check(reply["error"].startswith(message.split("{...")[0]), f"POST /settings {body}: {reply['error']!r}, expected {message!r}")
+        check("\n" not in reply["error"], "a multi-line error")
+    status, reply = server.json("/settings", '{"media": [{"g": 0.1}], "pad": "' + "x" * 70000 + '"}')
+    check(status == 413 and reply["error"] == "request too large: at most 65536 bytes", f"a 70 kB request: {status} {reply}")
+    status, reply = server.json("/image.png?exposure=abc")
+    check(status == 400 and reply["error"].startswith("request:1:14: /exposure: syntax error"), f"exposure=abc: {reply}")
+    after = server.state()
+    check(after["settings"] == before["settings"] and after["generation"] == before["generation"], "a bad request changed the settings")
+    check(server.request("/")[0] == 200, "the server stopped serving after bad requests")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--tetglow", required=True)
+    parser.add_argument("--out", required=True)
+    a = parser.parse_args()
+    chromium = shutil.which("chromium")
+    if not chromium:
+        print("SKIP: chromium is not installed (./setup.sh test installs chromium, chromium-driver, python3-selenium)")
+        return 77
+    from selenium import webdriver
+    from selenium.webdriver.chrome.service import Service
+    from selenium.webdriver.common.action_chains import ActionChains
+    from selenium.webdriver.common.by import By
+    from selenium.webdriver.common.keys import Keys
+
+    start = time.time()
+    os.makedirs(a.out, exist_ok=True)
+    work = tempfile.mkdtemp(prefix="tetglow-preview-")
+    server = Server(a.tetglow, test_scene(work))
+    options = webdriver.ChromeOptions()
+    options.binary_location = chromium
+    for arg in ["--headless=new", "--no-sandbox", "--disable-gpu", "--window-size=1000,820", f"--user-data-dir={work}/chromium"]:
+        options.add_argument(arg)
+    browser = webdriver.Chrome(service=Service(shutil.which("chromedriver")), options=options)
+    try:
+        check_requests(server)
+
+        browser.get(server.url + "/")
+        js = browser.execute_script
+        progress = lambda: (js("return document.getElementById('progress').dataset.passes"), js("return document.getElementById('progress').dataset.generation"))
+        finished = lambda: server.state()["image"]["passes"] == PASSES
+        wait_for("the first image in the page", lambda: js("return document.getElementById('image').naturalWidth") == 128)
+        wait_for("the first render to finish", finished)
+        _, first = server.request("/image.png")
+        check(server.request("/image.png?exposure=2")[1] != first, "exposure does not change the PNG")
+        exposure = browser.find_element(By.ID, "exposure")
+        exposure.send_keys(Keys.ARROW_RIGHT)  # one step: 0.1 stops
+        wait_for("the page's image at the new exposure", lambda: "exposure=0.1&" in browser.find_element(By.ID, "image").get_attribute("src"))
+        exposure.send_keys(Keys.ARROW_LEFT)
+        first_generation = server.state()["generation"]
+
+        # Drag the g slider: the render starts again from its first pass, and the image changes.
+        slider = browser.find_element(By.CSS_SELECTOR, ".medium .g-slider")
+        ActionChains(browser).drag_and_drop_by_offset(slider, 30, 0).perform()
+        generation = wait_for("the slider's change", lambda: server.state()["generation"] > first_generation and server.state()["generation"])
+        g = server.state()["settings"]["media"][0]["g"]
+        check(abs(g - 0.3) > 0.01, f"the slider left g at {g}")
+        seen = wait_for("the page to show the new render", lambda: progress()[1] == str(server.state()["generation"]) and progress())
+        check(int(seen[0]) < PASSES, f"the pass counter did not start again: {seen}")
+        wait_for("the new render to finish", lambda: finished() and server.state()["image"]["generation"] == server.state()["generation"])
+        _, second = server.request("/image.png")
+        check(second != first, "the image did not change with g")
+
+        # A bad value typed into the page: its error is shown there, and the last good values stay.
+        generation = server.state()["generation"]
+        box = browser.find_element(By.CSS_SELECTOR, ".medium .g")
+        box.send_keys(Keys.CONTROL, "a")  # not clear(): it sends a change of its own
+        box.send_keys("1.5", Keys.TAB)
+        shown = wait_for("the error in the page", lambda: browser.find_element(By.ID, "error").text)
+        check(shown == "request: /media/0/g: expected a number in (-1, 1), got 1.5", "page error: " + shown)
+        wait_for("the good g back in the page", lambda: float(box.get_attribute("value")) == g)
+        check(server.state()["generation"] == generation, "a bad value restarted the render")
+
+        # A second tab sees the same render; a change made there shows in the first.
+        browser.switch_to.new_window("tab")
+        browser.get(server.url + "/")
+        wait_for("the second tab's image", lambda: js("return document.getElementById('image').naturalWidth") == 128)
+        check(float(browser.find_element(By.CSS_SELECTOR, ".medium .g").get_attribute("value")) == g, "the second tab shows another g")
+        photons = browser.find_element(By.CSS_SELECTOR, "[data-key=photons]")
+        photons.send_keys(Keys.CONTROL, "a")
+        photons.send_keys("12000", Keys.TAB)
+        wait_for("the second tab's change", lambda: server.state()["settings"]["integrator"]["photons"] == 12000)
+        browser.close()
+        browser.switch_to.window(browser.window_handles[0])
+        wait_for("the change in the first tab",
+                 lambda: browser.find_element(By.CSS_SELECTOR, "[data-key=photons]").get_attribute("value") == "12000")
+        wait_for("the render to finish", lambda: finished() and server.state()["image"]["generation"] == server.state()["generation"])
+        wait_for("the page to show it", lambda: progress() == (str(PASSES), str(server.state()["generation"])))
+        time.sleep(0.3)  # the last image loads
+        browser.save_screenshot(os.path.join(a.out, "preview.png"))
+
+        # Save the scene twice (a new name each time) and the image; the saved scene renders the same.
+        saved = lambda: browser.find_element(By.ID, "saved").text
+        browser.find_element(By.ID, "save-scene").click()
+        text = wait_for("the scene saved", lambda: saved().startswith("saved ") and saved())
+        scene = text.split(" ", 1)[1]
+        check(scene == os.path.join(work, "fish-tuned-1.json"), "saved as " + scene)
+        browser.find_element(By.ID, "save-scene").click()
+        wait_for("the second save", lambda: saved() == "saved " + os.path.join(work, "fish-tuned-2.json"))
+        with open(scene) as f:
+            tuned = json.load(f)
+        check(tuned["media"][0]["g"] == g and tuned["integrator"]["photons"] == 12000, f"the saved scene holds {tuned['media'][0]}")
+        browser.find_element(By.ID, "save-image").click()
+        wait_for("the image saved", lambda: f"({PASSES} passes)" in saved())
+        exr = os.path.join(work, "fish-image-1.exr")
+        check(os.path.isfile(exr) and os.path.isfile(exr[:-4] + ".png"), "no EXR + PNG saved")
+        rendered = os.path.join(work, "rendered.exr")
+        subprocess.run([a.tetglow, "render", scene, "-o", rendered], check=True, capture_output=True)
+        d = json.loads(subprocess.run([a.tetglow, "diff", exr, rendered, "--json"], check=True, capture_output=True, text=True).stdout)
+        check(d["rmse"] == 0, f"the saved scene renders otherwise through tetglow render: {d}")
+        check(server.request("/")[0] == 200, "the server stopped serving")
+    finally:
+        browser.quit()
+        code = server.stop()
+    check(code == 0, f"tetglow preview exited with {code} on SIGTERM")
+    shutil.rmtree(work)
+    print(f"preview browser test passed in {time.time() - start:.1f} s; screenshot {os.path.join(a.out, 'preview.png')}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
