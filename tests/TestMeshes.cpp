@@ -82,7 +82,10 @@ CommandResult runTetglow(const std::string& args) {
     const std::string dir = std::filesystem::temp_directory_path() / ("tetglow-run-" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir);
     const std::string out = dir + "/out", err = dir + "/err";
-    const std::string cmd = std::string("TETGLOW_CACHE_DIR=") + dir + "/cache " + TETGLOW_BINARY + " " + args + " >" +
+    // TETGLOW_TEST_BINARY runs the command-line tests against another build, e.g. to see a
+    // regression test fail on the code before its fix.
+    const char* binary = std::getenv("TETGLOW_TEST_BINARY") ? std::getenv("TETGLOW_TEST_BINARY") : TETGLOW_BINARY;
+    const std::string cmd = std::string("TETGLOW_CACHE_DIR=") + dir + "/cache " + binary + " " + args + " >" +
                             out + " 2>" + err + " </dev/null";
     const int status = std::system(cmd.c_str());
     auto slurp = [](const std::string& p) {
@@ -93,6 +96,12 @@ CommandResult runTetglow(const std::string& args) {
     };
     const int code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
     return {code, slurp(out), slurp(err)};
+}
+
+void expectOneLineError(const CommandResult& r, int code, const std::string& expected) {
+    EXPECT_EQ(r.exitCode, code) << r.err;
+    EXPECT_NE(r.err.find(expected), std::string::npos) << "expected '" << expected << "' in: " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "one line: " << r.err;
 }
 
 }  // namespace tetglow::test

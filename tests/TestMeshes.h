@@ -36,5 +36,7 @@ struct CommandResult {
 };
 // Runs the tetglow binary with the given arguments (shell-quoted by the caller).
 CommandResult runTetglow(const std::string& args);
+// A failed command: exit code `code` and one line on stderr that contains `expected`.
+void expectOneLineError(const CommandResult& r, int code, const std::string& expected);
 
 }  // namespace tetglow::test

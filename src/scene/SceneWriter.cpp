@@ -2,9 +2,10 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
 
 #include <nlohmann/json.hpp>
+
+#include "tet/OutputFile.h"
 
 namespace tetglow {
 namespace {
@@ -100,6 +101,7 @@ private:
     // A "mesh" shape whose OBJ file holds the world-space triangles as they are.
     Json mesh(const TriangleMesh& m, const std::string& role, size_t index) {
         const std::string file = stem_ + "-" + role + "-" + std::to_string(index) + ".obj";
+        prepareOutput((dir_ / file).string(), {scene_.path});
         writeObj(m, (dir_ / file).string(), "# " + role + " " + std::to_string(index) + " of " + scene_.path + ", world space\n");
         written.push_back((dir_ / file).string());
         return {{"type", "mesh"}, {"file", file}};
@@ -144,12 +146,9 @@ private:
 std::vector<std::string> writeScene(const SceneDesc& scene, const std::string& jsonPath) {
     Writer writer(scene, jsonPath);
     const Json j = writer.scene();
-    std::ofstream out(jsonPath);
-    if (!out) throw InputError(jsonPath + ": cannot write");
     std::string text;
     print(j, "", text);
-    out << text << '\n';
-    if (!out) throw InputError(jsonPath + ": write failed");
+    writeStream(jsonPath, [&](std::ostream& out) { out << text << '\n'; });
     return writer.written;
 }
 
