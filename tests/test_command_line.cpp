@@ -138,6 +138,7 @@ TEST(Outputs, MissingFoldersAreCreatedTheSameWayByEveryCommand) {
 // A write that fails half-way leaves neither the file nor its temporary.
 TEST(Outputs, FailedWriteLeavesNothingBehind) {
     const std::string dir = tempDir() + "/out";
+    fs::create_directories(dir);
     EXPECT_THROW(writeStream(dir + "/x.txt", [](std::ostream& out) {
                      out << "half a file";
                      throw std::runtime_error("disk on fire");

@@ -51,6 +51,7 @@ private:
         std::vector<std::function<std::string()>> arguments;  // as parsed, for the header
 
         void run(const TriangleMesh& mesh) const {
+            prepareOutput(output);
             std::string full = command;
             for (const auto& argument : arguments) full += argument();
             writeObj(mesh, output,

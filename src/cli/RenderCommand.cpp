@@ -60,7 +60,7 @@ void applyOverrides(const Options& o, SceneDesc& scene) {
     if (o.radius > 0) integ.radius = o.radius;
     if (const auto v = valueOf(kEstimateNames, o.estimate)) integ.estimate = *v;
     if (!o.boundaryCorrection.empty()) integ.boundaryCorrection = o.boundaryCorrection == "on";
-    if (o.time > 0) integ.timeLimit = o.time, integ.spp = o.spp ? o.spp : 1 << 20;
+    if (o.time > 0) integ.timeLimit = o.time, integ.spp = o.spp ? o.spp : kMaxSpp;
     if (!o.resolution.empty()) {
         // from_chars, not sscanf: "4294967297x8" must not wrap to 1x8.
         int w = 0, h = 0;
@@ -138,15 +138,15 @@ void addRenderCommand(CLI::App& app) {
     cmd->add_option("-o,--output", o->output, "Output .exr (a .png preview is written beside it)")->check(kNonEmpty);
     cmd->add_option("--integrator", o->integrator, "volpath (reference), single (the seed's ray march) or photon")
         ->check(CLI::IsMember(namesOf(kIntegratorNames)));
-    cmd->add_option("--spp", o->spp, "Samples per pixel")->check(CLI::Range(1, 1 << 20));
+    cmd->add_option("--spp", o->spp, "Samples per pixel")->check(CLI::Range(1, kMaxSpp));
     cmd->add_option("--threads", o->threads, "Threads (default: all cores)")->check(CLI::Range(1, 1024));
     cmd->add_option("--seed", o->seed, "Random seed: the same seed gives the same image at any thread count")->check(inRange(kNonNegative));
     cmd->add_option("--resolution", o->resolution, "Image size WxH")->check(kNonEmpty);
     cmd->add_option("--boundary", o->boundary, "single: where the medium is: tet (exact), parity (the seed's test) or bbox")
         ->check(CLI::IsMember(namesOf(kBoundaryNames)));
     cmd->add_option("--step", o->step, "single: ray-march step in world units")->check(inRange(kPositive));
-    cmd->add_option("--max-depth", o->maxDepth, "Events per path")->check(CLI::Range(1, 100000));
-    cmd->add_option("--photons", o->photons, "photon: photon paths per pass")->check(CLI::Range(int64_t(1), int64_t(1) << 40));
+    cmd->add_option("--max-depth", o->maxDepth, "Events per path")->check(CLI::Range(1, kMaxDepth));
+    cmd->add_option("--photons", o->photons, "photon: photon paths per pass")->check(CLI::Range(int64_t(1), kMaxPhotons));
     auto* k = cmd->add_option("--k", o->k, "photon: neighbours that set the radius of each lookup (k-NN) or photon ball (beam)")
                   ->check(CLI::Range(1, 100000));
     cmd->add_option("--radius", o->radius, "photon: a fixed radius (world units) instead of --k")
@@ -157,7 +157,7 @@ void addRenderCommand(CLI::App& app) {
     cmd->add_option("--boundary-correction", o->boundaryCorrection, "photon: divide each kernel by the part of its ball inside the medium (on|off)")
         ->check(CLI::IsMember({"on", "off"}));
     auto* passes = cmd->add_option("--passes", o->spp, "photon: passes, each with fresh photons and one sample per pixel (the same as --spp)")
-                       ->check(CLI::Range(1, 1 << 20));
+                       ->check(CLI::Range(1, kMaxSpp));
     cmd->add_option("--time", o->time, "Render passes until this many seconds have passed (photon: progressive)")
         ->check(inRange(kPositive))
         ->excludes(passes);

@@ -10,7 +10,7 @@
 namespace {
 
 int fail(int code, const std::string& message) {
-    std::fprintf(stderr, "tetglow: error: %s\n", tetglow::shorten(tetglow::oneLine(message), 1000).c_str());
+    std::fprintf(stderr, "tetglow: error: %s\n", tetglow::shorten(tetglow::oneLine(message), 400).c_str());
     return code;
 }
 

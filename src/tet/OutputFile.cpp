@@ -26,9 +26,10 @@ void prepareOutput(const std::string& path, const std::vector<std::string>& inpu
 }
 
 void writeAtomically(const std::string& path, const std::function<void(const std::string& temporary)>& write) {
-    prepareOutput(path);
-    const std::string temporary = path + "." + std::to_string(::getpid()) + ".tmp";
+    const fs::path dir = fs::path(path).parent_path();
     std::error_code ec;
+    if (!dir.empty() && !fs::is_directory(dir, ec)) throw InputError(path + ": the folder " + dir.string() + " does not exist");
+    const std::string temporary = path + "." + std::to_string(::getpid()) + ".tmp";
     try {
         write(temporary);
         fs::rename(temporary, path);

@@ -14,8 +14,9 @@ namespace tetglow {
 // or link: std::filesystem::equivalent); creates the folders it lies in when they are missing.
 void prepareOutput(const std::string& path, const std::vector<std::string>& inputs = {});
 
-// Runs write(temporary) and renames the temporary onto `path`. Any exception becomes an InputError
-// "<path>: cannot write: <why>" on one line; the temporary is removed.
+// Runs write(temporary) and renames the temporary onto `path` (whose folder must exist: commands
+// create it with prepareOutput). Any exception becomes an InputError "<path>: cannot write:
+// <why>" on one line; the temporary is removed.
 void writeAtomically(const std::string& path, const std::function<void(const std::string& temporary)>& write);
 // The same for a file written as a stream: write(out) fills it; a failed stream is an error.
 void writeStream(const std::string& path, const std::function<void(std::ostream& out)>& write);
