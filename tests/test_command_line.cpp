@@ -9,6 +9,8 @@
 #include <gtest/gtest.h>
 
 #include "TestMeshes.h"
+#include "scene/SceneLoader.h"
+#include "scene/SceneWriter.h"
 #include "tet/OutputFile.h"
 
 namespace tetglow::test {
@@ -133,6 +135,18 @@ TEST(Outputs, MissingFoldersAreCreatedTheSameWayByEveryCommand) {
         EXPECT_TRUE(fs::is_regular_file(dir + "/" + output));
         expectOneLineError(runTetglow(command + dir + "/plain/" + output), 1, "cannot create the folder " + dir + "/plain/");
     }
+}
+
+// `convert scene.pbrt -o out.json` (no folder in the name) failed with "filesystem error:
+// cannot make absolute path" while writing the scene's output name.
+TEST(Outputs, ConvertWithoutAFolderInTheOutputName) {
+    const std::string dir = tempDir();
+    const fs::path before = fs::current_path();
+    fs::current_path(dir);
+    SceneDesc scene = loadScene(std::string(TETGLOW_SOURCE_DIR) + "/scenes/fog-box.pbrt");
+    EXPECT_NO_THROW(writeScene(scene, "fog-box.json"));
+    fs::current_path(before);
+    EXPECT_EQ(loadScene(dir + "/fog-box.json").output, dir + "/fog-box.exr");
 }
 
 // A write that fails half-way leaves neither the file nor its temporary.

@@ -53,7 +53,9 @@ public:
                        {"handedness", c.handedness == Handedness::Left ? "left" : "right"}};
         j["integrator"] = integrator(scene_.integrator);
         // loadScene takes "output" relative to the scene file's folder.
-        if (!scene_.output.empty()) j["output"] = fs::absolute(scene_.output).lexically_relative(fs::absolute(dir_)).string();
+        // (An output named without a folder lies in the working directory: absolute("") throws.)
+        if (!scene_.output.empty())
+            j["output"] = fs::absolute(scene_.output).lexically_relative(fs::absolute(dir_.empty() ? "." : dir_)).string();
         j["lights"] = Json::array();
         for (size_t i = 0; i < scene_.lights.size(); ++i) j["lights"].push_back(light(scene_.lights[i], i));
         j["surfaces"] = Json::array();
