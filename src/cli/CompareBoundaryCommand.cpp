@@ -2,7 +2,6 @@
 // box on the same points and rays (classification error and time per query, optical-depth error
 // and time per ray), and optionally the seed's red/green debug picture.
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <memory>
 
