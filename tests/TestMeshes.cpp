@@ -78,11 +78,15 @@ std::string writeTemp(const std::string& name, const std::string& contents) {
     return path;
 }
 
-CommandResult runTetglow(const std::string& args) {
+CommandResult runTetglow(const std::string& args, int timeoutSeconds) {
     const std::string dir = std::filesystem::temp_directory_path() / ("tetglow-run-" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir);
     const std::string out = dir + "/out", err = dir + "/err";
-    const std::string cmd = std::string("TETGLOW_CACHE_DIR=") + dir + "/cache " + TETGLOW_BINARY + " " + args + " >" +
+    // TETGLOW_TEST_BINARY runs the command-line tests against another build, e.g. to see a
+    // regression test fail on the code before its fix.
+    const char* binary = std::getenv("TETGLOW_TEST_BINARY") ? std::getenv("TETGLOW_TEST_BINARY") : TETGLOW_BINARY;
+    const std::string limit = timeoutSeconds > 0 ? "timeout -s KILL " + std::to_string(timeoutSeconds) + " " : "";
+    const std::string cmd = std::string("TETGLOW_CACHE_DIR=") + dir + "/cache " + limit + binary + " " + args + " >" +
                             out + " 2>" + err + " </dev/null";
     const int status = std::system(cmd.c_str());
     auto slurp = [](const std::string& p) {
@@ -93,6 +97,17 @@ CommandResult runTetglow(const std::string& args) {
     };
     const int code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
     return {code, slurp(out), slurp(err)};
+}
+
+void expectOneLineError(const CommandResult& r, int code, const std::string& expected) {
+    EXPECT_EQ(r.exitCode, code) << r.err;
+    // The error is the last line; progress lines may come before it.
+    const size_t start = r.err.rfind("tetglow: error: ");
+    ASSERT_NE(start, std::string::npos) << r.err;
+    const std::string error = r.err.substr(start);
+    EXPECT_NE(error.find(expected), std::string::npos) << "expected '" << expected << "' in: " << error;
+    EXPECT_EQ(error.find('\n'), error.size() - 1) << "one line: " << error;
+    EXPECT_EQ(r.err.find("tetglow: error: "), start) << "one error: " << r.err;
 }
 
 }  // namespace tetglow::test

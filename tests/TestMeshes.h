@@ -34,7 +34,10 @@ struct CommandResult {
     int exitCode;
     std::string out, err;
 };
-// Runs the tetglow binary with the given arguments (shell-quoted by the caller).
-CommandResult runTetglow(const std::string& args);
+// Runs the tetglow binary with the given arguments (shell-quoted by the caller); with a timeout,
+// a run that takes longer is killed (exit code 137), so that a test of a hang cannot hang.
+CommandResult runTetglow(const std::string& args, int timeoutSeconds = 0);
+// A failed command: exit code `code` and one line on stderr that contains `expected`.
+void expectOneLineError(const CommandResult& r, int code, const std::string& expected);
 
 }  // namespace tetglow::test

@@ -23,10 +23,7 @@ std::string objText(const TriangleMesh& m) {
 void expectRejected(const std::string& contents, const std::string& expected, const std::string& fileName = "mesh.obj") {
     const std::string path = test::writeTemp(fileName, contents);
     const std::string out = test::tempDir() + "/out.tet";
-    const auto r = test::runTetglow("tetrahedralize " + path + " -o " + out);
-    EXPECT_EQ(r.exitCode, 1) << r.err;
-    EXPECT_NE(r.err.find(expected), std::string::npos) << "stderr: " << r.err;
-    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "one line: " << r.err;
+    test::expectOneLineError(test::runTetglow("tetrahedralize " + path + " -o " + out), 1, expected);
     EXPECT_FALSE(std::filesystem::exists(out));
 }
 

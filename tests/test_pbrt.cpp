@@ -271,7 +271,7 @@ TEST(Pbrt, UnsupportedInputIsAnErrorNamingFileAndLine) {
         {"\"float radius\" 1", "expected a directive, got 'float radius'"},
         {R"(Shape "trianglemesh" "floaty P" [0 0 0])", "Shape \"trianglemesh\": unknown parameter type \"floaty\""},
         {R"(Shape "trianglemesh" "point P" [0 0 0 1 0])", "parameter \"point P\": expected a multiple of 3 numbers, got 5"},
-        {R"(Shape "trianglemesh" "point P" [0 0 x])", "parameter \"point P\": expected a finite number, got 'x'"},
+        {R"(Shape "trianglemesh" "point P" [0 0 x])", "parameter \"point P\": expected a finite number of float range (|x| <= 3.40282e38), got 'x'"},
         {R"(LightSource "point" "bool twosided" "yes")", "parameter \"bool twosided\": expected \"true\" or \"false\", got \"yes\""},
         {"LightSource \"point\" \"string name\" \"unterminated", "unterminated string"},
         {"WorldEnd\nWorldBegin", "WorldBegin after WorldEnd"},

@@ -1,10 +1,11 @@
 // Each `tetglow` subcommand lives in its own file and registers itself here.
 #pragma once
-#include <cmath>
-#include <filesystem>
 #include <string>
 
 #include <CLI/CLI.hpp>
+
+#include "scene/JsonReader.h"  // Range
+#include "tet/OutputFile.h"   // prepareOutput: every command checks its outputs with it
 
 namespace tetglow::cli {
 
@@ -17,19 +18,26 @@ void addCompareBoundaryCommand(CLI::App& app);
 void addConvertCommand(CLI::App& app);
 void addPreviewCommand(CLI::App& app);
 
-// Creates the folder an output file goes into, if it names one.
-inline void createParentFolder(const std::string& path) {
-    const auto parent = std::filesystem::path(path).parent_path();
-    if (!parent.empty()) std::filesystem::create_directories(parent);
-}
+// The first argument CLI11 would report badly, as a one-line message ("" when there is none): an
+// unknown subcommand (CLI11 says only "A subcommand is required") or an unknown option (CLI11
+// checks the other arguments first, so `render --frob x` was reported as a missing file "x").
+std::string unknownArgument(CLI::App& app, int argc, char** argv);
 
-// CLI11's range checks let NaN through (every comparison with NaN is false).
-inline const CLI::Validator kFinite{[](std::string& s) -> std::string {
-                                        double v = 0;
-                                        if (!CLI::detail::lexical_cast(s, v) || !std::isfinite(v))
-                                            return "value must be a finite number, got '" + s + "'";
-                                        return {};
-                                    },
-                                    "FINITE"};
+// A number in `range` (the ranges scene files use), said in plain numbers:
+//   --step: expected a finite positive number, got '-1'
+// CLI11's own range checks let NaN through and print the largest double in full.
+inline CLI::Validator inRange(const Range& range) {
+    return {[range](std::string& s) -> std::string {
+                double v = 0;
+                if (!CLI::detail::lexical_cast(s, v) || !range.contains(v)) return "expected a " + range.describe() + ", got '" + shorten(s) + "'";
+                return {};
+            },
+            range.describe()};
+}
+inline const CLI::Validator kFinite = inRange({});
+
+// An empty value would read as "not given" and be ignored.
+inline const CLI::Validator kNonEmpty{[](std::string& s) { return s.empty() ? std::string("expected a value, got ''") : std::string(); },
+                                      "NONEMPTY"};
 
 }  // namespace tetglow::cli

@@ -2,7 +2,6 @@
 // box on the same points and rays (classification error and time per query, optical-depth error
 // and time per ray), and optionally the seed's red/green debug picture.
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <memory>
 
@@ -101,15 +100,16 @@ void writePicture(const Options& o, Subject& s) {
 void run(const Options& o) {
     if (!o.picture.empty() && std::filesystem::path(o.picture).extension() != ".exr")
         throw InputError(o.picture + ": the picture must be an .exr file");
-    for (const auto& path : {o.picture, o.csv}) createParentFolder(path);
+    for (const auto& path : {o.picture, o.picture.empty() ? "" : previewPath(o.picture), o.csv})
+        if (!path.empty()) prepareOutput(path, {o.input});
     Subject s = std::filesystem::path(o.input).extension() == ".json" ? loadSceneSubject(o.input) : loadMeshSubject(o.input);
     for (size_t m = 0; m < s.volumes.size(); ++m) s.reports[m].comparison = compareBoundary(*s.volumes[m], o.comparison);
     if (!o.picture.empty()) writePicture(o, s);
     if (!o.csv.empty()) {
-        std::ofstream csv(o.csv);
-        csv << csvHeader();
-        for (const auto& r : s.reports) csv << csvRows(r);
-        if (!csv) throw InputError(o.csv + ": cannot write");
+        writeStream(o.csv, [&](std::ostream& csv) {
+            csv << csvHeader();
+            for (const auto& r : s.reports) csv << csvRows(r);
+        });
     }
     if (o.json) {
         nlohmann::json media = nlohmann::json::array();
@@ -136,15 +136,16 @@ void addCompareBoundaryCommand(CLI::App& app) {
         ->check(CLI::Range(size_t(1), size_t(100000000)));
     cmd->add_option("--rays", o->comparison.rays, "Random lines across the bounding box")->check(CLI::Range(size_t(1), size_t(100000000)));
     cmd->add_option("--shells", o->comparison.shells, "Shell offsets from the surface in diagonals (default: 1e-2 to 1e-7)")
-        ->check(kFinite & CLI::PositiveNumber);
+        ->check(inRange(kPositive));
     cmd->add_option("--steps", o->comparison.steps, "March steps in world units (default: the diagonal / 20, / 100, / 500)")
-        ->check(kFinite & CLI::PositiveNumber);
-    cmd->add_option("--seed", o->comparison.seed, "Random seed");
+        ->check(inRange(kPositive));
+    cmd->add_option("--seed", o->comparison.seed, "Random seed")->check(inRange(kNonNegative));
     cmd->add_flag("--json", o->json, "Print one JSON object instead of the tables");
-    cmd->add_option("--csv", o->csv, "Also write every row to this CSV file");
+    cmd->add_option("--csv", o->csv, "Also write every row to this CSV file")->check(kNonEmpty);
     cmd->add_option("--picture", o->picture,
                     "Also write the debug picture (.exr, with a .png beside it): green inside by both tests, "
-                    "dim red in the bounding box only, magenta where tets and parity disagree");
+                    "dim red in the bounding box only, magenta where tets and parity disagree")
+        ->check(kNonEmpty);
     cmd->add_option("--picture-width", o->pictureWidth, "Width of the picture (default: the scene's; 320 for a mesh)")
         ->check(CLI::Range(1, kMaxResolution));
     cmd->callback([o] { run(*o); });

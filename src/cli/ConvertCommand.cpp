@@ -17,10 +17,8 @@ struct Options {
 void run(const Options& o) {
     namespace fs = std::filesystem;
     if (fs::path(o.output).extension() != ".json") throw InputError(o.output + ": the output must be a .json file");
-    std::error_code ec;
-    if (fs::equivalent(o.scene, o.output, ec)) throw InputError(o.output + ": is the scene being converted");
+    prepareOutput(o.output, {o.scene});
     const SceneDesc scene = loadScene(o.scene);
-    createParentFolder(o.output);
     const auto meshes = writeScene(scene, o.output);
     std::printf("%s and %zu mesh files: %zu lights, %zu surfaces, %zu media\n", o.output.c_str(), meshes.size(), scene.lights.size(),
                 scene.surfaces.size(), scene.media.size());
@@ -32,7 +30,7 @@ void addConvertCommand(CLI::App& app) {
     auto o = std::make_shared<Options>();
     auto* cmd = app.add_subcommand("convert", "Write a scene (pbrt-v3 or JSON) as a tetglow JSON scene with OBJ meshes beside it");
     cmd->add_option("scene", o->scene, "Scene file (pbrt-v3 or JSON, see docs/FORMAT.md)")->required()->check(CLI::ExistingFile);
-    cmd->add_option("-o,--output", o->output, "The JSON scene to write")->required();
+    cmd->add_option("-o,--output", o->output, "The JSON scene to write")->required()->check(kNonEmpty);
     cmd->callback([o] { run(*o); });
 }
 

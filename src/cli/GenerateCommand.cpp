@@ -31,7 +31,8 @@ public:
         state_->command = "tetglow generate " + name;
         state_->output = name + ".obj";
         app_->add_option("-o,--output", state_->output,
-                         "OBJ file to write (default: " + state_->output + " in the current directory)");
+                         "OBJ file to write (default: " + state_->output + " in the current directory)")
+            ->check(kNonEmpty);
         app_->callback([state = state_, make] { state->run(make(state->params)); });
     }
 
@@ -50,6 +51,7 @@ private:
         std::vector<std::function<std::string()>> arguments;  // as parsed, for the header
 
         void run(const TriangleMesh& mesh) const {
+            prepareOutput(output);
             std::string full = command;
             for (const auto& argument : arguments) full += argument();
             writeObj(mesh, output,

@@ -1,6 +1,7 @@
 // tetglow render SCENE: tetrahedralize every medium the scene names (cached), then render.
 // SCENE is a JSON scene or a pbrt-v3 one (docs/FORMAT.md).
 #include <atomic>
+#include <charconv>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
@@ -59,13 +60,16 @@ void applyOverrides(const Options& o, SceneDesc& scene) {
     if (o.radius > 0) integ.radius = o.radius;
     if (const auto v = valueOf(kEstimateNames, o.estimate)) integ.estimate = *v;
     if (!o.boundaryCorrection.empty()) integ.boundaryCorrection = o.boundaryCorrection == "on";
-    if (o.time > 0) integ.timeLimit = o.time, integ.spp = o.spp ? o.spp : 1 << 20;
+    if (o.time > 0) integ.timeLimit = o.time, integ.spp = o.spp ? o.spp : kMaxSpp;
     if (!o.resolution.empty()) {
+        // from_chars, not sscanf: "4294967297x8" must not wrap to 1x8.
         int w = 0, h = 0;
-        char end = 0;
-        if (std::sscanf(o.resolution.c_str(), "%dx%d%c", &w, &h, &end) != 2 || w < 1 || h < 1 || w > kMaxResolution || h > kMaxResolution)
-            throw CLI::ValidationError("--resolution", "expected WxH with 1 <= W, H <= " + std::to_string(kMaxResolution) +
-                                                           ", got '" + o.resolution + "'");
+        const char *begin = o.resolution.data(), *end = begin + o.resolution.size();
+        const auto x = std::from_chars(begin, end, w);
+        const auto y = x.ec == std::errc() && x.ptr != end && *x.ptr == 'x' ? std::from_chars(x.ptr + 1, end, h) : x;
+        if (y.ec != std::errc() || y.ptr != end || x.ptr == begin || w < 1 || h < 1 || w > kMaxResolution || h > kMaxResolution)
+            throw CLI::ValidationError("--resolution", "expected WxH with W and H in 1.." + std::to_string(kMaxResolution) + ", got '" +
+                                                           shorten(o.resolution) + "'");
         scene.camera.width = w, scene.camera.height = h;
     }
 }
@@ -81,7 +85,7 @@ void run(const Options& o) {
     applyOverrides(o, desc);
     const std::string output = outputPath(o, desc);
     if (std::filesystem::path(output).extension() != ".exr") throw InputError(output + ": the output must be an .exr file");
-    createParentFolder(output);
+    for (const auto& path : {output, previewPath(output)}) prepareOutput(path, {o.scene});
 
     const Scene scene(desc);
     for (const auto& m : scene.media())
@@ -131,31 +135,31 @@ void addRenderCommand(CLI::App& app) {
     auto o = std::make_shared<Options>();
     auto* cmd = app.add_subcommand("render", "Tetrahedralize the scene's media (cached) and render it to OpenEXR and a PNG preview");
     cmd->add_option("scene", o->scene, "Scene file: JSON, or pbrt-v3 (.pbrt); see docs/FORMAT.md")->required()->check(CLI::ExistingFile);
-    cmd->add_option("-o,--output", o->output, "Output .exr (a .png preview is written beside it)");
+    cmd->add_option("-o,--output", o->output, "Output .exr (a .png preview is written beside it)")->check(kNonEmpty);
     cmd->add_option("--integrator", o->integrator, "volpath (reference), single (the seed's ray march) or photon")
         ->check(CLI::IsMember(namesOf(kIntegratorNames)));
-    cmd->add_option("--spp", o->spp, "Samples per pixel")->check(CLI::Range(1, 1 << 20));
+    cmd->add_option("--spp", o->spp, "Samples per pixel")->check(CLI::Range(1, kMaxSpp));
     cmd->add_option("--threads", o->threads, "Threads (default: all cores)")->check(CLI::Range(1, 1024));
-    cmd->add_option("--seed", o->seed, "Random seed: the same seed gives the same image at any thread count")->check(CLI::NonNegativeNumber);
-    cmd->add_option("--resolution", o->resolution, "Image size WxH");
+    cmd->add_option("--seed", o->seed, "Random seed: the same seed gives the same image at any thread count")->check(inRange(kNonNegative));
+    cmd->add_option("--resolution", o->resolution, "Image size WxH")->check(kNonEmpty);
     cmd->add_option("--boundary", o->boundary, "single: where the medium is: tet (exact), parity (the seed's test) or bbox")
         ->check(CLI::IsMember(namesOf(kBoundaryNames)));
-    cmd->add_option("--step", o->step, "single: ray-march step in world units")->check(kFinite & CLI::PositiveNumber);
-    cmd->add_option("--max-depth", o->maxDepth, "Events per path")->check(CLI::Range(1, 100000));
-    cmd->add_option("--photons", o->photons, "photon: photon paths per pass")->check(CLI::Range(int64_t(1), int64_t(1) << 40));
+    cmd->add_option("--step", o->step, "single: ray-march step in world units")->check(inRange(kPositive));
+    cmd->add_option("--max-depth", o->maxDepth, "Events per path")->check(CLI::Range(1, kMaxDepth));
+    cmd->add_option("--photons", o->photons, "photon: photon paths per pass")->check(CLI::Range(int64_t(1), kMaxPhotons));
     auto* k = cmd->add_option("--k", o->k, "photon: neighbours that set the radius of each lookup (k-NN) or photon ball (beam)")
                   ->check(CLI::Range(1, 100000));
     cmd->add_option("--radius", o->radius, "photon: a fixed radius (world units) instead of --k")
-        ->check(kFinite & CLI::PositiveNumber)
+        ->check(inRange(kPositive))
         ->excludes(k);
     cmd->add_option("--estimate", o->estimate, "photon: knn-march (the seed's march with a k-NN lookup per step) or beam")
         ->check(CLI::IsMember(namesOf(kEstimateNames)));
     cmd->add_option("--boundary-correction", o->boundaryCorrection, "photon: divide each kernel by the part of its ball inside the medium (on|off)")
         ->check(CLI::IsMember({"on", "off"}));
     auto* passes = cmd->add_option("--passes", o->spp, "photon: passes, each with fresh photons and one sample per pixel (the same as --spp)")
-                       ->check(CLI::Range(1, 1 << 20));
+                       ->check(CLI::Range(1, kMaxSpp));
     cmd->add_option("--time", o->time, "Render passes until this many seconds have passed (photon: progressive)")
-        ->check(kFinite & CLI::PositiveNumber)
+        ->check(inRange(kPositive))
         ->excludes(passes);
     cmd->add_option("--exposure", o->exposure, "PNG preview exposure in stops")->check(kFinite);
     cmd->callback([o] { run(*o); });

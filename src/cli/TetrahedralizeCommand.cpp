@@ -2,7 +2,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 
 #include <nlohmann/json.hpp>
@@ -19,9 +18,7 @@ struct Options {
     TetOptions tet;
 };
 
-void writeVtk(const TetMesh& m, const std::string& path) {
-    std::ofstream out(path);
-    if (!out) throw InputError(path + ": cannot write");
+void writeVtk(const TetMesh& m, std::ostream& out) {
     out.precision(9);
     out << "# vtk DataFile Version 3.0\ntetglow tetrahedral mesh\nASCII\nDATASET UNSTRUCTURED_GRID\n";
     out << "POINTS " << m.vertices.size() << " double\n";
@@ -30,10 +27,10 @@ void writeVtk(const TetMesh& m, const std::string& path) {
     for (const auto& t : m.tets) out << "4 " << t[0] << ' ' << t[1] << ' ' << t[2] << ' ' << t[3] << '\n';
     out << "CELL_TYPES " << m.tets.size() << '\n';
     for (size_t i = 0; i < m.tets.size(); ++i) out << "10\n";
-    if (!out) throw InputError(path + ": write failed");
 }
 
 void run(const Options& o) {
+    if (!o.output.empty()) prepareOutput(o.output, {o.mesh});
     std::vector<std::string> warnings;
     TriangleMesh surface = readMesh(o.mesh, &warnings);
     for (const auto& w : warnings) std::fprintf(stderr, "tetglow: warning: %s\n", w.c_str());
@@ -47,9 +44,9 @@ void run(const Options& o) {
     if (!o.output.empty()) {
         const std::string ext = std::filesystem::path(o.output).extension().string();
         if (ext == ".vtk")
-            writeVtk(mesh, o.output);
+            writeStream(o.output, [&](std::ostream& out) { writeVtk(mesh, out); });
         else
-            writeTetMesh(mesh, 0, o.output);
+            writeAtomically(o.output, [&](const std::string& temporary) { writeTetMesh(mesh, 0, temporary); });
     }
     const size_t steiner = mesh.vertices.size() - mesh.surfaceVertexCount;
     if (o.json) {
@@ -87,12 +84,12 @@ void addTetrahedralizeCommand(CLI::App& app) {
     auto o = std::make_shared<Options>();
     CLI::App* cmd = app.add_subcommand("tetrahedralize", "Validate a closed mesh and tetrahedralize its interior");
     cmd->add_option("mesh", o->mesh, "Closed triangle mesh (OBJ or OFF)")->required();
-    cmd->add_option("-o,--output", o->output, "Write the tet mesh (.vtk: legacy VTK for ParaView; else tetglow's binary)");
+    cmd->add_option("-o,--output", o->output, "Write the tet mesh (.vtk: legacy VTK for ParaView; else tetglow's binary)")->check(kNonEmpty);
     cmd->add_flag("--json", o->json, "Print the report as one JSON object");
     cmd->add_option("--quality", o->tet.radiusEdgeRatio, "Radius-edge ratio bound (TetGen -q); adds Steiner points")
-        ->check(kFinite & CLI::Range(1.0, 1e9));
+        ->check(inRange({.lo = 1, .hi = 1e9}));
     cmd->add_option("--max-volume", o->tet.maxVolume, "Largest tet volume (TetGen -a); adds Steiner points")
-        ->check(kFinite & CLI::PositiveNumber);
+        ->check(inRange(kPositive));
     cmd->add_flag("--no-cache", o->noCache, "Always run TetGen, do not read or write the cache");
     cmd->callback([o] { run(*o); });
 }

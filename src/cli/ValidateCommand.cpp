@@ -42,11 +42,11 @@ void addValidateCommand(CLI::App& app) {
     auto* cmd = app.add_subcommand("validate", "Check the light transport against published values");
     cmd->require_subcommand(1);
     auto* slab = cmd->add_subcommand("slab", "Slab with matched boundaries under collimated normal incidence: Rd and Tt");
-    slab->add_option("--tau", o->slab.tau, "Optical thickness")->check(kFinite & CLI::PositiveNumber);
-    slab->add_option("--albedo", o->slab.albedo, "Single-scattering albedo")->check(kFinite & CLI::Range(0.0, 1.0));
-    slab->add_option("--g", o->slab.g, "Henyey-Greenstein asymmetry, in (-1, 1)")->check(kFinite & CLI::Range(-0.999999, 0.999999));
+    slab->add_option("--tau", o->slab.tau, "Optical thickness")->check(inRange(kPositive));
+    slab->add_option("--albedo", o->slab.albedo, "Single-scattering albedo")->check(inRange({.lo = 0, .hi = 1}));
+    slab->add_option("--g", o->slab.g, "Henyey-Greenstein asymmetry, in (-1, 1)")->check(inRange({.lo = -0.999999, .hi = 0.999999}));
     slab->add_option("--photons", o->slab.photons, "Photons traced")->check(CLI::Range(uint64_t(2), uint64_t(1) << 40));
-    slab->add_option("--seed", o->slab.seed, "Random seed");
+    slab->add_option("--seed", o->slab.seed, "Random seed")->check(inRange(kNonNegative));
     slab->add_option("--threads", o->slab.threads, "Threads (default: all cores)")->check(CLI::Range(1, 1024));
     slab->add_flag("--json", o->json, "Print one JSON object");
     slab->callback([o] { run(*o); });

@@ -85,12 +85,14 @@ FreeFlight Medium::sampleFlight(const Ray& ray, WalkStart start, double tMax, in
             flight.tet = s.tet;
             flight.density = density(s.tet, ray.at(flight.t));
             flight.transmittance = exp(-sigmaT_ * target);
+            flight.column = target;
             return flight;
         }
         column += piece;
         if (s.tOut >= tMax) break;
     }
     flight.transmittance = exp(-sigmaT_ * column);
+    flight.column = column;
     if (walk.exited() && walk.exitT() < tMax) flight.left = true, flight.exitTriangle = walk.exitTriangle(), flight.exitT = walk.exitT();
     return flight;
 }

@@ -33,6 +33,7 @@ struct FreeFlight {
     uint32_t tet = 0;
     double density = 1;      // at the interaction
     RGB transmittance{1};    // from the start to the interaction, or to where the flight ended
+    double column = 0;       // density integrated over the same stretch
     // Without an interaction: the walk left the medium before tMax, through surface triangle
     // exitTriangle at exitT.
     bool left = false;

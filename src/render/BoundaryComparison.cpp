@@ -6,6 +6,7 @@
 
 #include "photon/Rng.h"
 #include "photon/Sampling.h"
+#include "render/MarchStep.h"
 
 namespace tetglow {
 
@@ -160,6 +161,7 @@ BoundaryComparison compareBoundary(const TetVolume& volume, const ComparisonOpti
     std::vector<double> steps = options.steps;
     if (steps.empty())
         for (double fraction : {1.0 / 20, 1.0 / 100, 1.0 / 500}) steps.push_back(fraction * box.diagonal());
+    for (double h : steps) checkMarchStep("--steps", h, box.diagonal(), resolutionOf(box, box.lo));  // lines within the box
     result.chords = compareChords(sampleLines(box, options.rays, options.seed), chordTests(&volume, volume.bvh(), steps),
                                   [&](const Line& line) { return tetChord(volume, line); });
     return result;

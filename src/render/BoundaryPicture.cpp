@@ -4,6 +4,8 @@
 
 #include <tbb/parallel_for.h>
 
+#include "render/MarchStep.h"
+
 namespace tetglow {
 
 BoundaryPicture renderBoundaryPicture(const Camera& camera, const std::vector<const TetVolume*>& media, double step,
@@ -16,6 +18,7 @@ BoundaryPicture renderBoundaryPicture(const Camera& camera, const std::vector<co
     for (const TetVolume* v : media) boxes.push_back(v->bounds()), all.extend(boxes.back());
     // Lengths shade by 1 - exp(-length / scale): a chord of a tenth of the scene's diagonal is clearly lit.
     const double scale = 0.1 * all.diagonal();
+    checkMarchStep("the scene's step (/integrator/step)", step, all.diagonal(), resolutionOf(all, camera.position()));
     BoundaryPicture picture;
     picture.image = Image(camera.width(), camera.height());
     std::vector<Counts> rows(camera.height());

@@ -1,7 +1,5 @@
 #include "render/ImageIO.h"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -19,35 +17,13 @@
 #include <OpenEXR/ImfTestFile.h>
 #include <png.h>
 
+#include "tet/OutputFile.h"
 #include "tet/TriangleMesh.h"
 
 namespace tetglow {
 namespace {
 
 namespace fs = std::filesystem;
-
-// Library messages can span lines; ours are one line.
-std::string oneLine(std::string s) {
-    std::replace(s.begin(), s.end(), '\n', ' ');
-    return s;
-}
-
-// Runs write(temporary path) and renames the result onto path; on failure the temporary is removed.
-template <class Write>
-void writeAtomically(const std::string& path, Write&& write) {
-    const fs::path target(path);
-    const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
-    std::error_code ec;
-    if (!fs::is_directory(dir, ec)) throw InputError(path + ": directory " + dir.string() + " does not exist");
-    const fs::path temporary = path + "." + std::to_string(::getpid()) + ".tmp";
-    try {
-        write(temporary.string());
-        fs::rename(temporary, target);
-    } catch (const std::exception& e) {
-        fs::remove(temporary, ec);
-        throw InputError(path + ": cannot write: " + oneLine(e.what()));
-    }
-}
 
 // The channel names of a layer: R, G, B for the default layer, else name.R, name.G, name.B.
 std::array<std::string, 3> channelNames(const std::string& layer) {

@@ -1,5 +1,8 @@
 #include "render/Integrator.h"
 
+#include <algorithm>
+
+#include "render/MarchStep.h"
 #include "render/PhotonIntegrator.h"
 #include "render/SingleScatterIntegrator.h"
 #include "render/VolPathIntegrator.h"
@@ -7,6 +10,12 @@
 namespace tetglow {
 
 std::unique_ptr<Integrator> makeIntegrator(const Scene& scene, const IntegratorDesc& desc) {
+    if (desc.type == IntegratorType::Single || (desc.type == IntegratorType::Photon && desc.estimate == PhotonEstimate::KnnMarch)) {
+        double diagonal = 0;
+        for (const auto& m : scene.media()) diagonal = std::max(diagonal, m.medium->volume().bounds().diagonal());
+        // Rays start anywhere in the scene: the coordinates resolve what the scene's ray offset does.
+        checkMarchStep("step (/integrator/step or --step)", desc.stepSize, diagonal, scene.rayEpsilon());
+    }
     switch (desc.type) {
         case IntegratorType::VolPath:
             return std::make_unique<VolPathIntegrator>(scene, desc.maxDepth);

@@ -9,6 +9,7 @@
 #include "photon/OctahedralDirection.h"
 #include "render/DirectLighting.h"
 #include "render/Material.h"
+#include "tet/Memory.h"
 
 namespace tetglow {
 
@@ -22,6 +23,8 @@ constexpr double kMaxRadiusFraction = 0.2;  // of the medium's (or the scene's) 
 
 PhotonIntegrator::PhotonIntegrator(const Scene& scene, const IntegratorDesc& desc)
     : scene_(scene), desc_(desc), cameraMedium_(scene.mediumAt(scene.camera().position())), source_(scene) {
+    // A pass stores about one photon per path: whether the machine holds them is known now.
+    checkMemory(double(desc.photons) * sizeof(Photon), std::to_string(desc.photons) + " photon paths per pass (a 32-byte photon each)");
     Bounds3 all;
     for (const auto& m : scene.media()) {
         balls_.emplace_back(m.medium->volume().bvh());

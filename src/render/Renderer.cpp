@@ -7,11 +7,16 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include "tet/Memory.h"
+
 namespace tetglow {
 
 RenderResult render(const Scene& scene, Integrator& integrator, const RenderOptions& options) {
     const auto start = std::chrono::steady_clock::now();
     const Camera& camera = scene.camera();
+    // The film, the image made from it and the PNG preview's bytes.
+    checkMemory(double(camera.width()) * camera.height() * (sizeof(RGB) + 2 * sizeof(uint32_t) + sizeof(glm::vec3) + 3),
+                "an image of " + std::to_string(camera.width()) + "x" + std::to_string(camera.height()) + " pixels");
     Film film(camera.width(), camera.height());
     RenderResult result;
     std::mutex progressMutex;

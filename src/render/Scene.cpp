@@ -70,9 +70,15 @@ Scene::Scene(const SceneDesc& desc) : desc_(desc), camera_(desc.camera) {
     for (const auto& surface : desc.surfaces) geometry.extend(bounds(surface.mesh));
     for (const auto& m : media_) geometry.extend(m.medium->volume().bounds());
     if (geometry.empty()) geometry.extend(desc.camera.position);  // nothing but lights
+    // Constant environments add up: they become one light with the summed radiance, in the
+    // place of the first, so that rays escaping and light samples see the same sky.
+    LightDesc sky;
+    sky.type = LightType::Environment;
+    for (const auto& l : desc.lights)
+        if (l.type == LightType::Environment) sky.radiance += l.radiance;
     for (const auto& l : desc.lights) {
-        lights_.push_back(makeLight(l, geometry));
-        if (lights_.back()->isEnvironment()) environment_ = lights_.back().get();
+        if (l.type != LightType::Environment) lights_.push_back(makeLight(l, geometry));
+        else if (!environment_) lights_.push_back(makeLight(sky, geometry)), environment_ = lights_.back().get();
     }
 
     scene_ = rtcNewScene(embreeDevice());

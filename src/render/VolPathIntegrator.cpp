@@ -50,6 +50,9 @@ RGB VolPathIntegrator::radiance(const Ray& cameraRay, Rng& rng) const {
                 const FreeFlight flight = medium.sampleFlight(ray, state.start, tMax, path.hero, rng.uniform());
                 if (!flight.scattered) {
                     path.pass(flight.transmittance);
+                    // Without extinction nothing collides, so the emission is collected here,
+                    // exactly: emission times the density along the stretch.
+                    if (isBlack(medium.sigmaT())) L += path.weight() * flight.column * medium.params().emission;
                 } else {
                     path.interact(flight.transmittance, medium.sigmaT() * flight.density);
                     if (medium.emissive()) L += path.weight() * flight.density * medium.params().emission;

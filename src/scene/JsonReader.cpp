@@ -102,10 +102,15 @@ private:
     std::vector<Level> levels_;
 };
 
+// Plain and short: 1e12, 3.40282e38, 0.5.
 std::string formatNumber(double x) {
     char buf[32];
-    std::snprintf(buf, sizeof buf, "%g", x);
-    return buf;
+    std::snprintf(buf, sizeof buf, "%.6g", x);
+    std::string s = buf;
+    if (const size_t e = s.find("e+"); e != std::string::npos) s.erase(e + 1, 1);
+    if (const size_t e = s.find_first_of('e'); e != std::string::npos && s[e + 1 + (s[e + 1] == '-')] == '0')
+        s.erase(e + 1 + (s[e + 1] == '-'), 1);
+    return s;
 }
 
 // The offending value as JSON, cut short so that the error stays one readable line.
@@ -148,7 +153,7 @@ JsonValue::JsonValue(const Json* json, Pointer pointer, std::string file)
 JsonValue JsonValue::child(const Json* json, const Pointer& pointer) const { return {json, pointer, file_}; }
 
 std::string JsonValue::where() const {
-    const std::string p = path();
+    const std::string p = shorten(path(), 120);  // a 100 kB key stays readable
     return p.empty() ? file_ : file_ + ": " + p;
 }
 

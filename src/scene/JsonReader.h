@@ -31,6 +31,12 @@ struct Range {
     std::string describe(bool plural = false) const;
 };
 inline constexpr Range kNonNegative{.lo = 0}, kPositive{.lo = 0, .loOpen = true};
+// Every coordinate and vector component in a scene: well inside what Embree accepts in a ray
+// (its floats stop at 1.8e19), and any product of two is still finite.
+inline constexpr double kMaxCoordinate = 1e12;
+inline constexpr Range kCoordinate{.lo = -kMaxCoordinate, .hi = kMaxCoordinate};
+// Colours (radiance, intensity, coefficients) end in the image's 32-bit floats.
+inline constexpr Range kColour{.lo = 0, .hi = std::numeric_limits<float>::max()};
 
 class JsonObject;
 
@@ -54,8 +60,8 @@ public:
     bool boolean() const;
     std::string string() const;  // non-empty
     std::vector<double> numbers(size_t count, const Range& range = {}) const;
-    glm::dvec3 vec3(const Range& range = {}) const;
-    glm::dvec3 vec3OrScalar(const Range& range = {}) const;  // one number x stands for (x, x, x)
+    glm::dvec3 vec3(const Range& range = kCoordinate) const;
+    glm::dvec3 vec3OrScalar(const Range& range = kCoordinate) const;  // one number x stands for (x, x, x)
     std::vector<JsonValue> array() const;
 
     // The value for the string this value names, e.g. choice<LightType>({{"point", LightType::Point}, ...}),

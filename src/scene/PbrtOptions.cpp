@@ -76,13 +76,14 @@ CameraDesc readCamera(PbrtCall* call, const glm::dmat4& cameraToWorld, const Fil
 int samplesPerPixel(PbrtCall& call) {
     PbrtParams& p = call.params;
     p.find("dimensions", Class::Integer), p.find("jitter", Class::Bool);
-    if (call.type == "stratified") return p.getInt("xsamples", 4) * p.getInt("ysamples", 4);
+    // In 64 bits: 65536 x 65537 samples must not wrap.
+    if (call.type == "stratified") return int(std::min<int64_t>(int64_t(p.getInt("xsamples", 4)) * p.getInt("ysamples", 4), kMaxSpp + 1));
     if (call.type == "random") return p.getInt("pixelsamples", 4);
     const int n = p.getInt("pixelsamples", 16);
     if (call.type == "halton") return n;
     // These round up to a power of two (samplers/sobol.cpp, zerotwosequence.cpp, maxmin.cpp).
     if (call.type == "sobol" || call.type == "02sequence" || call.type == "lowdiscrepancy" || call.type == "maxmindist")
-        return n > 0 ? int(std::bit_ceil(unsigned(n))) : n;
+        return n > 0 && n <= kMaxSpp ? int(std::bit_ceil(unsigned(n))) : n;
     pbrtError(call.where, "Sampler \"" + call.type + "\" is not supported (supported: halton, sobol, random, stratified, 02sequence, maxmindist)");
 }
 
@@ -92,8 +93,11 @@ IntegratorDesc readIntegrator(PbrtCall* sampler, PbrtCall* integrator, std::vect
     d.spp = 16;  // pbrt-v3's default sampler: "halton", 16 per pixel
     if (sampler) {
         d.spp = samplesPerPixel(*sampler);
-        if (d.spp < 1) pbrtError(sampler->where, "Sampler: the number of samples per pixel must be at least 1");
-        if (const int seed = sampler->params.getInt("seed", 0); seed > 0) d.seed = uint64_t(seed);
+        if (d.spp < 1 || d.spp > kMaxSpp)
+            pbrtError(sampler->where, "Sampler: the number of samples per pixel must be in 1.." + std::to_string(kMaxSpp) + ", got " + std::to_string(d.spp));
+        const int seed = sampler->params.getInt("seed", 0);
+        if (seed < 0) sampler->params.fail(*sampler->params.find("seed", Class::Integer), "must not be negative");
+        d.seed = uint64_t(seed);
         sampler->params.reportUnused(warnings);
         pbrtWarn(warnings, sampler->where,
                  "Sampler \"" + sampler->type + "\": tetglow draws its own random numbers; only the count, " + std::to_string(d.spp) +
@@ -106,7 +110,9 @@ IntegratorDesc readIntegrator(PbrtCall* sampler, PbrtCall* integrator, std::vect
             pbrtError(integrator->where, "Integrator \"" + integrator->type + "\" is not supported (supported: volpath, path)");
         PbrtParams& p = integrator->params;
         maxDepth = p.getInt("maxdepth", maxDepth);
-        if (maxDepth < 0) p.fail(*p.find("maxdepth", Class::Integer), "must not be negative");
+        // tetglow counts one more event than pbrt-v3 (below): the top of int's range would wrap.
+        if (maxDepth < 0 || maxDepth >= kMaxDepth)
+            p.fail(*p.find("maxdepth", Class::Integer), "must be in 0.." + std::to_string(kMaxDepth - 1));
         reject(p, "pixelbounds", Class::Integer, "cropping is not supported");
         p.find("rrthreshold", Class::Float), p.find("lightsamplestrategy", Class::String);  // only the noise
         p.reportUnused(warnings);

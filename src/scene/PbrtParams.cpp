@@ -2,7 +2,10 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <limits>
 #include <utility>
+
+#include "tet/TriangleMesh.h"  // shorten
 
 namespace tetglow {
 namespace {
@@ -42,7 +45,9 @@ void addValue(PbrtParam& p, const PbrtToken& t, const PbrtParams& owner) {
     if (t.kind != PbrtToken::Kind::Word) owner.fail(p, "unexpected '" + t.text + "' among the values");
     char* end = nullptr;
     const double x = std::strtod(t.text.c_str(), &end);
-    if (t.text.empty() || *end != '\0' || !std::isfinite(x)) owner.fail(p, "expected a finite number, got '" + t.text + "'");
+    // pbrt-v3 stores its numbers as floats: a larger double is not a number it can read.
+    if (t.text.empty() || *end != '\0' || !(std::abs(x) <= std::numeric_limits<float>::max()))
+        owner.fail(p, "expected a finite number of float range (|x| <= 3.40282e38), got '" + shorten(t.text) + "'");
     p.numbers.push_back(x);
 }
 

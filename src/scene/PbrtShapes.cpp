@@ -85,7 +85,7 @@ PbrtMesh readPbrtMesh(const std::string& type, PbrtParams& params, const PbrtLoc
     out.swapsHandedness = det < 0;
     out.mesh.positions = object.mesh.positions;
     if (placePositions(out.mesh.positions, objectToWorld) != SIZE_MAX)
-        pbrtError(where, params.directive() + ": a vertex is not a finite float once transformed");
+        pbrtError(where, params.directive() + ": a vertex has a coordinate outside [-1e12, 1e12] once transformed");
     // pbrt-v3 (Triangle::Intersect): the normal is cross(p1 - p0, p2 - p0) of the world-space
     // points, negated when ReverseOrientation and a mirroring transform disagree; with "N" it is
     // instead turned to the side of the (likewise negated) interpolated shading normal.

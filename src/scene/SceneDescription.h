@@ -22,6 +22,10 @@ namespace tetglow {
 enum class Handedness { Right, Left };
 
 inline constexpr int kMaxResolution = 16384;  // pixels along either image axis, in every front end
+// The other counts every front end bounds the same way: samples (passes) per pixel, events per
+// path, photon paths per pass (these also checked against the machine's memory).
+inline constexpr int kMaxSpp = 1 << 20, kMaxDepth = 1 << 20;
+inline constexpr int64_t kMaxPhotons = int64_t(1) << 40;
 
 struct CameraDesc {
     glm::dvec3 position{0, 0, 5}, lookAt{0}, up{0, 1, 0};

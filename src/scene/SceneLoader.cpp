@@ -1,6 +1,7 @@
 #include "scene/SceneLoader.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <limits>
 
@@ -19,11 +20,17 @@ namespace fs = std::filesystem;
 constexpr int kMaxParityRays = 15;
 constexpr Range kUnitInterval{.lo = 0, .hi = 1};
 
-RGB rgb(const JsonValue& v) { return v.vec3OrScalar(kNonNegative); }
+RGB rgb(const JsonValue& v) { return v.vec3OrScalar(kColour); }
 
 double scaleOf(JsonObject& o) {
     const JsonValue scale = o["scale"];
-    return scale ? scale.number(kNonNegative) : 1.0;
+    return scale ? scale.number(kColour) : 1.0;
+}
+
+// A direction the renderer normalises: its length squared must not underflow.
+constexpr double kMinDirection = 1e-12;
+void checkDirection(const JsonValue& v, const glm::dvec3& d, const std::string& expected) {
+    if (!(glm::length(d) >= kMinDirection)) v.fail(expected);
 }
 
 bool parallel(const glm::dvec3& a, const glm::dvec3& b) {
@@ -42,7 +49,7 @@ CameraDesc readCamera(JsonObject& o) {
     c.position = o["position"].vec3();
     const JsonValue lookAt = o["look_at"];
     c.lookAt = lookAt.vec3();
-    if (c.lookAt == c.position) lookAt.fail("a point other than \"position\"");
+    checkDirection(lookAt, c.lookAt - c.position, "a point at least 1e-12 from \"position\"");
     const JsonValue up = o["up"];
     if (up) c.up = up.vec3();
     if (parallel(c.up, c.lookAt - c.position))
@@ -61,7 +68,7 @@ CameraDesc readCamera(JsonObject& o) {
 void readSpotCone(JsonObject& o, LightDesc& l) {
     const JsonValue lookAt = o["look_at"];
     l.lookAt = lookAt.vec3();
-    if (l.lookAt == l.position) lookAt.fail("a point other than \"position\"");
+    checkDirection(lookAt, l.lookAt - l.position, "a point at least 1e-12 from \"position\"");
     if (auto f = o["cone_angle"]) l.coneAngle = f.number({.lo = 0, .hi = 90, .loOpen = true});
     // The default falloff band narrows with a cone narrower than itself.
     l.coneDelta = std::min(l.coneDelta, l.coneAngle);
@@ -86,7 +93,7 @@ LightDesc readLight(JsonObject& o, const fs::path& dir) {
     if (l.type == LightType::Distant) {
         const JsonValue direction = o["direction"];
         l.direction = direction.vec3();
-        if (l.direction == glm::dvec3(0)) direction.fail("a non-zero vector");
+        checkDirection(direction, l.direction, "a vector of length >= 1e-12");
         l.irradiance = scale * rgb(o["irradiance"]);
     }
     if (l.type == LightType::Quad) {
@@ -194,15 +201,48 @@ SceneDesc readScene(JsonObject& o, const std::string& path) {
     return s;
 }
 
+// The bounds of the JSON keys again, once the scene is built: the pbrt-v3 reader makes positions,
+// directions and colours through transforms and products.
+void checkLimits(const SceneDesc& s) {
+    auto fail = [&](const std::string& what, const glm::dvec3& v, const std::string& allowed) {
+        char value[96];
+        std::snprintf(value, sizeof value, "(%.6g, %.6g, %.6g)", v.x, v.y, v.z);
+        throw InputError(s.path + ": " + what + " " + value + " is out of range: " + allowed);
+    };
+    auto point = [&](const glm::dvec3& p, const std::string& what) {
+        for (int k = 0; k < 3; ++k)
+            if (!kCoordinate.contains(p[k])) fail(what, p, "every coordinate in [-1e12, 1e12]");
+    };
+    auto direction = [&](const glm::dvec3& d, const std::string& what) {
+        if (!(glm::length(d) >= kMinDirection)) fail(what, d, "a length >= 1e-12");
+    };
+    auto colour = [&](const RGB& c, const std::string& what) {
+        for (int k = 0; k < 3; ++k)
+            if (!kColour.contains(c[k])) fail(what, c, "every channel in [0, 3.40282e38]");
+    };
+    point(s.camera.position, "the camera position");
+    point(s.camera.lookAt, "the camera's look-at point");
+    direction(s.camera.lookAt - s.camera.position, "the camera's view direction");
+    direction(s.camera.up, "the camera's up direction");
+    for (size_t i = 0; i < s.lights.size(); ++i) {
+        const LightDesc& l = s.lights[i];
+        const std::string name = "light " + std::to_string(i);
+        if (l.type == LightType::Point || l.type == LightType::Spot) point(l.position, name + " position");
+        if (l.type == LightType::Spot) point(l.lookAt, name + " look-at point"), direction(l.lookAt - l.position, name + " axis");
+        if (l.type == LightType::Distant) point(l.direction, name + " direction"), direction(l.direction, name + " direction");
+        colour(l.intensity, name + " intensity"), colour(l.irradiance, name + " irradiance"), colour(l.radiance, name + " radiance");
+    }
+    for (const MediumDesc& m : s.media) colour(m.emission, m.name + " emission");
+}
+
 }  // namespace
 
 IntegratorDesc readIntegrator(JsonObject& o) {
     IntegratorDesc d;
-    constexpr int64_t kMaxInt = std::numeric_limits<int>::max();
     if (auto f = o["type"])
         d.type = f.choice<IntegratorType>(kIntegratorNames);
-    if (auto f = o["spp"]) d.spp = int(f.integer(1, kMaxInt));
-    if (auto f = o["max_depth"]) d.maxDepth = int(f.integer(1, kMaxInt));
+    if (auto f = o["spp"]) d.spp = int(f.integer(1, kMaxSpp));
+    if (auto f = o["max_depth"]) d.maxDepth = int(f.integer(1, kMaxDepth));
     if (auto f = o["seed"]) d.seed = uint64_t(f.integer(0));
     if (auto f = o["boundary"])
         d.boundary = f.choice<BoundaryMode>(kBoundaryNames);
@@ -212,7 +252,7 @@ IntegratorDesc readIntegrator(JsonObject& o) {
         // A majority vote needs an odd count.
         if (d.parityRays % 2 == 0) f.fail("an odd integer in 1.." + std::to_string(kMaxParityRays));
     }
-    if (auto f = o["photons"]) d.photons = uint64_t(f.integer(1, int64_t(1) << 40));
+    if (auto f = o["photons"]) d.photons = uint64_t(f.integer(1, kMaxPhotons));
     if (auto f = o["k"]) d.k = int(f.integer(1, 100000));
     if (auto f = o["radius"]) d.radius = f.number(kPositive);
     if (auto f = o["estimate"]) d.estimate = f.choice<PhotonEstimate>(kEstimateNames);
@@ -242,9 +282,14 @@ bool emitsLight(const SceneDesc& s) {
 }
 
 SceneDesc loadScene(const std::string& path) {
-    if (fs::path(path).extension() == ".pbrt") return loadPbrtScene(path);  // without reading the file here too
+    auto pbrt = [&] {
+        SceneDesc s = loadPbrtScene(path);
+        checkLimits(s);
+        return s;
+    };
+    if (fs::path(path).extension() == ".pbrt") return pbrt();  // without reading the file here too
     const std::string text = readTextFile(path);
-    if (looksLikePbrt(text)) return loadPbrtScene(path);
+    if (looksLikePbrt(text)) return pbrt();
     const nlohmann::json doc = parseJson(text, path);
     return JsonValue(&doc, nlohmann::json::json_pointer(), path).readObject([&](JsonObject& o) { return readScene(o, path); });
 }

@@ -55,7 +55,7 @@ glm::dmat4 readTransform(const JsonValue& v) {
 // outward stays outward.
 void place(const JsonValue& shape, TriangleMesh& mesh, const glm::dmat4& m) {
     if (const size_t bad = placePositions(mesh.positions, m); bad != SIZE_MAX)
-        shape.error("vertex " + std::to_string(bad) + " is not a finite float once placed");
+        shape.error("vertex " + std::to_string(bad) + " has a coordinate outside [-1e12, 1e12] once placed");
     if (glm::determinant(glm::dmat3(m)) < 0)
         for (auto& t : mesh.triangles) std::swap(t[1], t[2]);
 }
@@ -105,7 +105,7 @@ size_t placePositions(std::vector<glm::dvec3>& positions, const glm::dmat4& m) {
     for (size_t i = 0; i < positions.size(); ++i) {
         const glm::dvec3 q(m * glm::dvec4(positions[i], 1));
         const glm::dvec3 p(roundToFloat(q.x), roundToFloat(q.y), roundToFloat(q.z));
-        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) return i;
+        if (!kCoordinate.contains(p.x) || !kCoordinate.contains(p.y) || !kCoordinate.contains(p.z)) return i;
         positions[i] = p;
     }
     return SIZE_MAX;

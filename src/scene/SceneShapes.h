@@ -24,8 +24,8 @@ struct Shape {
 Shape readShape(JsonObject& o, const std::filesystem::path& dir, bool closed);
 
 // Positions through the affine transform m, each coordinate rounded to float so that every
-// consumer sees the same vertices. Returns the index of the first position that is not a finite
-// float afterwards (the positions from there on are left as they were), or SIZE_MAX.
+// consumer sees the same vertices. Returns the index of the first position with a coordinate
+// outside kCoordinate afterwards (the positions from there on are left as they were), or SIZE_MAX.
 size_t placePositions(std::vector<glm::dvec3>& positions, const glm::dmat4& m);
 
 struct Parallelogram {

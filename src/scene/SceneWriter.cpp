@@ -2,9 +2,10 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
 
 #include <nlohmann/json.hpp>
+
+#include "tet/OutputFile.h"
 
 namespace tetglow {
 namespace {
@@ -61,7 +62,9 @@ public:
                        {"handedness", c.handedness == Handedness::Left ? "left" : "right"}};
         j["integrator"] = integratorJson(scene_.integrator);
         // loadScene takes "output" relative to the scene file's folder.
-        if (!scene_.output.empty()) j["output"] = fs::absolute(scene_.output).lexically_relative(fs::absolute(dir_)).string();
+        // (An output named without a folder lies in the working directory: absolute("") throws.)
+        if (!scene_.output.empty())
+            j["output"] = fs::absolute(scene_.output).lexically_relative(fs::absolute(dir_.empty() ? "." : dir_)).string();
         j["lights"] = Json::array();
         for (size_t i = 0; i < scene_.lights.size(); ++i) j["lights"].push_back(light(scene_.lights[i], i));
         j["surfaces"] = Json::array();
@@ -87,6 +90,7 @@ private:
     // A "mesh" shape whose OBJ file holds the world-space triangles as they are.
     Json mesh(const TriangleMesh& m, const std::string& role, size_t index) {
         const std::string file = stem_ + "-" + role + "-" + std::to_string(index) + ".obj";
+        prepareOutput((dir_ / file).string(), {scene_.path});
         writeObj(m, (dir_ / file).string(), "# " + role + " " + std::to_string(index) + " of " + scene_.path + ", world space\n");
         written.push_back((dir_ / file).string());
         return {{"type", "mesh"}, {"file", file}};
@@ -145,12 +149,9 @@ Json mediumCoefficientsJson(const MediumDesc& m) {
 std::vector<std::string> writeScene(const SceneDesc& scene, const std::string& jsonPath) {
     Writer writer(scene, jsonPath);
     const Json j = writer.scene();
-    std::ofstream out(jsonPath);
-    if (!out) throw InputError(jsonPath + ": cannot write");
     std::string text;
     print(j, "", text);
-    out << text << '\n';
-    if (!out) throw InputError(jsonPath + ": write failed");
+    writeStream(jsonPath, [&](std::ostream& out) { out << text << '\n'; });
     return writer.written;
 }
 

@@ -304,6 +304,17 @@ std::filesystem::path cacheDirectory(const TetOptions& options) {
 
 }  // namespace
 
+void checkTetCount(double volume, double maxVolume) {
+    // Every tet is at most maxVolume, so there are at least volume / maxVolume of them.
+    if (!(maxVolume > 0) || volume / maxVolume <= kMaxTets) return;
+    char text[256];
+    std::snprintf(text, sizeof text,
+                  "max volume %.6g (TetGen -a) would make at least %.3g tets of this mesh (volume %.6g), more than %.0f: "
+                  "use a max volume >= %.6g, or 0 for none",
+                  maxVolume, volume / maxVolume, volume, kMaxTets, volume / kMaxTets);
+    throw InputError(text);
+}
+
 TetMesh tetrahedralizeUnchecked(const TriangleMesh& surface, const std::string& switches) {
     return assemble(surface, runIsolated(surface, switches));
 }
@@ -312,6 +323,7 @@ TetMesh tetrahedralize(TriangleMesh surface, const TetOptions& options, TetStats
     const auto start = std::chrono::steady_clock::now();
     ValidationReport validation = validateAndRepair(surface);
     if (report) *report = validation;
+    checkTetCount(validation.volume, options.maxVolume);
     const std::string switches = options.switches();
     const uint64_t key = cacheKey(surface, switches);
     TetStats local;

@@ -23,6 +23,11 @@ struct TetStats {
     std::string cacheFile;   // "" when caching is off or the directory is not writable
 };
 
+// The most tets a tetrahedralization may have (about 3 GB with TetGen's own data): a max volume
+// that asks for more is an InputError before TetGen starts, instead of hours of refinement.
+inline constexpr double kMaxTets = 1e7;
+void checkTetCount(double volume, double maxVolume);
+
 // Validates and repairs `surface` (see validateAndRepair), then tetrahedralizes its interior.
 // TetGen runs in a child process, so its crashes and thrown ints become InputErrors here.
 TetMesh tetrahedralize(TriangleMesh surface, const TetOptions& options = {}, TetStats* stats = nullptr,

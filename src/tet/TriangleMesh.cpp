@@ -8,6 +8,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "tet/OutputFile.h"
+
 namespace tetglow {
 
 void Bounds3::extend(const glm::dvec3& p) {
@@ -186,13 +188,12 @@ TriangleMesh readMesh(const std::string& path, std::vector<std::string>* warning
 }
 
 void writeObj(const TriangleMesh& mesh, const std::string& path, const std::string& header) {
-    std::ofstream out(path);
-    if (!out) throw InputError(path + ": cannot write");
-    if (!header.empty()) out << header;
-    out.precision(9);  // enough to round-trip float positions exactly (validation snaps to float)
-    for (const auto& p : mesh.positions) out << "v " << p.x << ' ' << p.y << ' ' << p.z << '\n';
-    for (const auto& t : mesh.triangles) out << "f " << t[0] + 1 << ' ' << t[1] + 1 << ' ' << t[2] + 1 << '\n';
-    if (!out) throw InputError(path + ": write failed");
+    writeStream(path, [&](std::ostream& out) {
+        if (!header.empty()) out << header;
+        out.precision(9);  // enough to round-trip float positions exactly (validation snaps to float)
+        for (const auto& p : mesh.positions) out << "v " << p.x << ' ' << p.y << ' ' << p.z << '\n';
+        for (const auto& t : mesh.triangles) out << "f " << t[0] + 1 << ' ' << t[1] + 1 << ' ' << t[2] + 1 << '\n';
+    });
 }
 
 }  // namespace tetglow

@@ -17,6 +17,20 @@ struct InputError : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
+// Library messages can span lines; ours are one line.
+inline std::string oneLine(std::string s) {
+    for (char& c : s)
+        if (c == '\n' || c == '\r') c = ' ';
+    return s;
+}
+
+// An input echoed in a message, cut in the middle when longer than `max` characters, so that a
+// 100 kB key or value still gives a readable line.
+inline std::string shorten(const std::string& s, size_t max = 80) {
+    if (s.size() <= max) return s;
+    return s.substr(0, max / 2) + "...(" + std::to_string(s.size()) + " characters)..." + s.substr(s.size() - max / 4);
+}
+
 // x rounded to float precision. Through a volatile: GCC 12's SLP vectorizer at -O2 was seen
 // to drop the rounding of (double)(float)x for some vector lanes.
 inline double roundToFloat(double x) {
