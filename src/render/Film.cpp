@@ -2,10 +2,21 @@
 
 namespace tetglow {
 
+bool Film::merge(const Film& other) {
+    if (other.width_ != width_ || other.height_ != height_) return false;
+    for (size_t i = 0; i < sum_.size(); ++i) {
+        for (int c = 0; c < 3; ++c) sum_[i][c] += other.sum_[i][c];
+        count_[i] += other.count_[i];
+        dropped_[i] += other.dropped_[i];
+    }
+    return true;
+}
+
 Image Film::image() const {
     Image image(width_, height_);
     for (size_t i = 0; i < sum_.size(); ++i)
-        if (count_[i]) image.pixels[i] = glm::vec3(sum_[i] / double(count_[i]));
+        if (count_[i])
+            for (int c = 0; c < 3; ++c) image.pixels[i][c] = float(double(sum_[i][c]) / kFixedUnit / double(count_[i]));
     return image;
 }
 

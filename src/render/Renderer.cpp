@@ -16,13 +16,14 @@ RenderResult render(const Scene& scene, Integrator& integrator, const RenderOpti
     RenderResult result;
     std::mutex progressMutex;
     std::atomic<uint64_t> pixelsDone{0};
-    const double totalPixels = double(options.spp) * camera.height() * camera.width();
+    const int endPass = options.endPass > 0 ? options.endPass : options.spp;
+    const double totalPixels = double(endPass - options.firstPass) * camera.height() * camera.width();
     auto cancelled = [&] { return options.cancel && options.cancel->load(std::memory_order_relaxed); };
 
     tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
     auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
-    for (int pass = 0; pass < options.spp && !cancelled(); ++pass) {
-        if (pass > 0 && options.timeLimit > 0 && elapsed() >= options.timeLimit) break;
+    for (int pass = options.firstPass; pass < endPass && !cancelled(); ++pass) {
+        if (pass > options.firstPass && options.timeLimit > 0 && elapsed() >= options.timeLimit) break;
         arena.execute([&] {
             integrator.beginPass(uint64_t(pass));
             tbb::parallel_for(tbb::blocked_range2d<int>(0, camera.height(), 16, 0, camera.width(), 16), [&](const auto& tile) {
@@ -39,11 +40,12 @@ RenderResult render(const Scene& scene, Integrator& integrator, const RenderOpti
                 if (lock) options.progress(options.timeLimit > 0 ? std::min(1.0, elapsed() / options.timeLimit) : double(done) / totalPixels);
             });
         });
-        if (!cancelled()) result.passes = pass + 1;
+        if (!cancelled()) result.passes = pass + 1 - options.firstPass;
     }
     result.cancelled = cancelled();
     result.image = film.image();
     result.droppedSamples = film.droppedSamples();
+    result.film = std::move(film);
     result.seconds = elapsed();
     return result;
 }
