@@ -10,6 +10,9 @@ case "$job" in demo|test|build) ;; *) echo "usage: $0 demo|test|build" >&2; exit
 
 packages=(g++ cmake make libtet1.5-dev libembree-dev libopenexr-dev libglm-dev libtbb-dev nlohmann-json3-dev
           libcli11-dev libnanoflann-dev libpng-dev libgtest-dev libbenchmark-dev gnuplot-nox python3)
+# Only for the test suite: a real Slurm on localhost for the farm test (tests/slurm).
+test_packages=(slurmctld slurmd slurm-client munge)
+if [ "$job" = test ]; then packages+=("${test_packages[@]}"); fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "ok installed" || missing+=("$p")

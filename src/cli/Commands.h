@@ -15,6 +15,8 @@ void addDiffCommand(CLI::App& app);
 void addValidateCommand(CLI::App& app);
 void addCompareBoundaryCommand(CLI::App& app);
 void addConvertCommand(CLI::App& app);
+void addMergeCommand(CLI::App& app);
+void addFarmCommand(CLI::App& app);
 
 // Creates the folder an output file goes into, if it names one.
 inline void createParentFolder(const std::string& path) {

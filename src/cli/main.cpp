@@ -15,6 +15,8 @@ int main(int argc, char** argv) {
     tetglow::cli::addValidateCommand(app);
     tetglow::cli::addCompareBoundaryCommand(app);
     tetglow::cli::addConvertCommand(app);
+    tetglow::cli::addMergeCommand(app);
+    tetglow::cli::addFarmCommand(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

@@ -31,23 +31,6 @@ std::string oneLine(std::string s) {
     return s;
 }
 
-// Runs write(temporary path) and renames the result onto path; on failure the temporary is removed.
-template <class Write>
-void writeAtomically(const std::string& path, Write&& write) {
-    const fs::path target(path);
-    const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
-    std::error_code ec;
-    if (!fs::is_directory(dir, ec)) throw InputError(path + ": directory " + dir.string() + " does not exist");
-    const fs::path temporary = path + "." + std::to_string(::getpid()) + ".tmp";
-    try {
-        write(temporary.string());
-        fs::rename(temporary, target);
-    } catch (const std::exception& e) {
-        fs::remove(temporary, ec);
-        throw InputError(path + ": cannot write: " + oneLine(e.what()));
-    }
-}
-
 // The channel names of a layer: R, G, B for the default layer, else name.R, name.G, name.B.
 std::array<std::string, 3> channelNames(const std::string& layer) {
     const std::string prefix = layer.empty() ? "" : layer + ".";
@@ -89,6 +72,21 @@ std::array<uint8_t, 3> previewPixel(const glm::vec3& linear, double scale) {
 }
 
 }  // namespace
+
+void writeAtomically(const std::string& path, const std::function<void(const std::string& temporary)>& write) {
+    const fs::path target(path);
+    const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
+    std::error_code ec;
+    if (!fs::is_directory(dir, ec)) throw InputError(path + ": directory " + dir.string() + " does not exist");
+    const fs::path temporary = path + "." + std::to_string(::getpid()) + ".tmp";
+    try {
+        write(temporary.string());
+        fs::rename(temporary, target);
+    } catch (const std::exception& e) {
+        fs::remove(temporary, ec);
+        throw InputError(path + ": cannot write: " + oneLine(e.what()));
+    }
+}
 
 void writeExr(const std::string& path, const Image& rgb, const std::vector<ImageLayer>& layers) {
     if (rgb.pixels.empty()) throw InputError(path + ": cannot write an empty image");

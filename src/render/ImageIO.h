@@ -2,12 +2,17 @@
 // Files are written to a temporary name in the same directory and renamed when complete,
 // so an interrupted or failed write never leaves a partial or empty file.
 #pragma once
+#include <functional>
 #include <string>
 #include <vector>
 
 #include "render/Image.h"
 
 namespace tetglow {
+
+// Runs write(temporary path) and renames the result onto path; on failure the temporary is
+// removed and the error is an InputError naming path. Every file writer goes through it.
+void writeAtomically(const std::string& path, const std::function<void(const std::string& temporary)>& write);
 
 // An extra EXR layer, e.g. name "direct" -> channels direct.R, direct.G, direct.B.
 struct ImageLayer {

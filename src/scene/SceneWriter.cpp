@@ -51,6 +51,8 @@ public:
                        {"resolution", {c.width, c.height}},
                        {"handedness", c.handedness == Handedness::Left ? "left" : "right"}};
         j["integrator"] = integrator(scene_.integrator);
+        if (const TurntableDesc& t = scene_.turntable; t.frames > 1)
+            j["turntable"] = {{"frames", t.frames}, {"center", vec(t.center)}, {"axis", vec(t.axis)}, {"degrees", t.degrees}};
         // loadScene takes "output" relative to the scene file's folder.
         if (!scene_.output.empty()) j["output"] = fs::absolute(scene_.output).lexically_relative(fs::absolute(dir_)).string();
         j["lights"] = Json::array();

@@ -1,0 +1,85 @@
+#include "cli/RenderArgs.h"
+
+#include <cstdio>
+
+#include "cli/Commands.h"
+#include "scene/SceneLoader.h"
+
+namespace tetglow::cli {
+namespace {
+
+void applyOverrides(const RenderArgs& o, SceneDesc& scene) {
+    IntegratorDesc& integ = scene.integrator;
+    // The options were checked against the same tables.
+    if (const auto v = valueOf(kIntegratorNames, o.integrator)) integ.type = *v;
+    if (const auto v = valueOf(kBoundaryNames, o.boundary)) integ.boundary = *v;
+    if (o.spp) integ.spp = o.spp;
+    if (o.maxDepth) integ.maxDepth = o.maxDepth;
+    if (o.step > 0) integ.stepSize = o.step;
+    if (o.seed >= 0) integ.seed = uint64_t(o.seed);
+    if (o.photons) integ.photons = uint64_t(o.photons);
+    if (o.k) integ.k = o.k, integ.radius = 0;
+    if (o.radius > 0) integ.radius = o.radius;
+    if (const auto v = valueOf(kEstimateNames, o.estimate)) integ.estimate = *v;
+    if (!o.boundaryCorrection.empty()) integ.boundaryCorrection = o.boundaryCorrection == "on";
+    if (o.time > 0) integ.timeLimit = o.time, integ.spp = o.spp ? o.spp : 1 << 20;
+    if (!o.resolution.empty()) {
+        int w = 0, h = 0;
+        char end = 0;
+        if (std::sscanf(o.resolution.c_str(), "%dx%d%c", &w, &h, &end) != 2 || w < 1 || h < 1 || w > kMaxResolution || h > kMaxResolution)
+            throw CLI::ValidationError("--resolution", "expected WxH with 1 <= W, H <= " + std::to_string(kMaxResolution) +
+                                                           ", got '" + o.resolution + "'");
+        scene.camera.width = w, scene.camera.height = h;
+    }
+}
+
+}  // namespace
+
+std::vector<CLI::Option*> addRenderArgs(CLI::App* cmd, RenderArgs& o) {
+    cmd->add_option("scene", o.scene, "Scene file: JSON, or pbrt-v3 (.pbrt); see docs/FORMAT.md")->required()->check(CLI::ExistingFile);
+    std::vector<CLI::Option*> options;
+    auto add = [&](CLI::Option* option) { return options.push_back(option), option; };
+    add(cmd->add_option("--integrator", o.integrator, "volpath (reference), single (the seed's ray march) or photon")
+            ->check(CLI::IsMember(namesOf(kIntegratorNames))));
+    add(cmd->add_option("--spp", o.spp, "Samples per pixel")->check(CLI::Range(1, 1 << 20)));
+    add(cmd->add_option("--threads", o.threads, "Threads (default: all cores)")->check(CLI::Range(1, 1024)));
+    add(cmd->add_option("--seed", o.seed, "Random seed: the same seed gives the same image at any thread count")->check(CLI::NonNegativeNumber));
+    add(cmd->add_option("--resolution", o.resolution, "Image size WxH"));
+    add(cmd->add_option("--boundary", o.boundary, "single: where the medium is: tet (exact), parity (the seed's test) or bbox")
+            ->check(CLI::IsMember(namesOf(kBoundaryNames))));
+    add(cmd->add_option("--step", o.step, "single: ray-march step in world units")->check(kFinite & CLI::PositiveNumber));
+    add(cmd->add_option("--max-depth", o.maxDepth, "Events per path")->check(CLI::Range(1, 100000)));
+    add(cmd->add_option("--photons", o.photons, "photon: photon paths per pass")->check(CLI::Range(int64_t(1), int64_t(1) << 40)));
+    auto* k = add(cmd->add_option("--k", o.k, "photon: neighbours that set the radius of each lookup (k-NN) or photon ball (beam)")
+                      ->check(CLI::Range(1, 100000)));
+    add(cmd->add_option("--radius", o.radius, "photon: a fixed radius (world units) instead of --k")
+            ->check(kFinite & CLI::PositiveNumber)
+            ->excludes(k));
+    add(cmd->add_option("--estimate", o.estimate, "photon: knn-march (the seed's march with a k-NN lookup per step) or beam")
+            ->check(CLI::IsMember(namesOf(kEstimateNames))));
+    add(cmd->add_option("--boundary-correction", o.boundaryCorrection, "photon: divide each kernel by the part of its ball inside the medium (on|off)")
+            ->check(CLI::IsMember({"on", "off"})));
+    auto* passes = add(cmd->add_option("--passes", o.spp, "photon: passes, each with fresh photons and one sample per pixel (the same as --spp)")
+                           ->check(CLI::Range(1, 1 << 20)));
+    add(cmd->add_option("--time", o.time, "Render passes until this many seconds have passed (photon: progressive)")
+            ->check(kFinite & CLI::PositiveNumber)
+            ->excludes(passes));
+    add(cmd->add_option("--exposure", o.exposure, "PNG preview exposure in stops")->check(kFinite));
+    return options;
+}
+
+SceneDesc loadSceneWith(const RenderArgs& args) {
+    SceneDesc desc = loadScene(args.scene);
+    applyOverrides(args, desc);
+    return desc;
+}
+
+std::pair<int, int> parsePassRange(const std::string& option, const std::string& text, int total) {
+    int a = 0, b = 0;
+    char end = 0;
+    if (std::sscanf(text.c_str(), "%d:%d%c", &a, &b, &end) != 2 || a < 0 || b <= a || b > total)
+        throw CLI::ValidationError(option, "expected A:B with 0 <= A < B <= " + std::to_string(total) + " (the scene's passes), got '" + text + "'");
+    return {a, b};
+}
+
+}  // namespace tetglow::cli
