@@ -1,5 +1,6 @@
 // tetglow farm SCENE --parts N -o OUT.exr: the render split over a Slurm job array and merged
 // (FarmScripts.h). Slurm's sbatch and squeue do all the scheduling.
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -38,12 +39,18 @@ std::pair<std::string, int> capture(const std::string& command) {
 
 std::string firstLine(const std::string& s) { return s.substr(0, s.find('\n')); }
 
+std::string lastLine(std::string s) {
+    while (!s.empty() && s.back() == '\n') s.pop_back();
+    return s.substr(s.rfind('\n') + 1);
+}
+
 // Submits a script; returns the job id.
 std::string submit(const std::string& script, const std::string& sbatchOptions) {
     const auto [out, status] = capture("sbatch --parsable " + sbatchOptions + " " + shellQuote(script));
     if (status == 127) throw InputError("farm: sbatch not found: run farm where Slurm's client commands are installed");
-    if (status != 0) throw InputError("farm: sbatch " + script + " failed: " + firstLine(out));
-    return firstLine(out).substr(0, out.find(';'));  // "id" or "id;cluster"
+    if (status != 0) throw InputError("farm: sbatch " + script + " failed: " + lastLine(out));
+    const std::string id = lastLine(out);  // "id" or "id;cluster", after any warnings
+    return id.substr(0, id.find(';'));
 }
 
 void writeFile(const std::string& path, const std::string& text) {
@@ -81,7 +88,7 @@ FarmPlan plan(const Options& o) {
     p.parts = o.parts;
     p.cpusPerTask = o.args.threads > 0 ? o.args.threads : 1;
     const int frames = desc.turntable.frames;
-    const auto [first, end] = o.frames.empty() ? std::pair{0, frames} : parsePassRange("--frames", o.frames, frames);
+    const auto [first, end] = o.frames.empty() ? std::pair{0, frames} : parseRange("--frames", o.frames, frames, "frames");
     p.firstFrame = first, p.frames = end - first;
     const std::string output = fs::absolute(o.output).string();
     for (int f = first; f < end; ++f) p.outputs.push_back(frameOutput(output, f, frames > 1));

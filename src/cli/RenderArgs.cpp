@@ -74,11 +74,11 @@ SceneDesc loadSceneWith(const RenderArgs& args) {
     return desc;
 }
 
-std::pair<int, int> parsePassRange(const std::string& option, const std::string& text, int total) {
+std::pair<int, int> parseRange(const std::string& option, const std::string& text, int total, const std::string& what) {
     int a = 0, b = 0;
     char end = 0;
     if (std::sscanf(text.c_str(), "%d:%d%c", &a, &b, &end) != 2 || a < 0 || b <= a || b > total)
-        throw CLI::ValidationError(option, "expected A:B with 0 <= A < B <= " + std::to_string(total) + " (the scene's passes), got '" + text + "'");
+        throw CLI::ValidationError(option, "expected A:B with 0 <= A < B <= " + std::to_string(total) + " (the scene's " + what + "), got '" + text + "'");
     return {a, b};
 }
 

@@ -2,6 +2,7 @@
 // the scene is rendered with, as opposed to where the result goes or which part is rendered.
 #pragma once
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <CLI/CLI.hpp>
@@ -24,7 +25,8 @@ std::vector<CLI::Option*> addRenderArgs(CLI::App* cmd, RenderArgs& args);
 // The scene file with the options applied. InputError on a bad scene, CLI::ValidationError on a bad option.
 SceneDesc loadSceneWith(const RenderArgs& args);
 
-// Passes A..B-1 of `total`, from "A:B" with 0 <= A < B <= total; CLI::ValidationError naming `option` otherwise.
-std::pair<int, int> parsePassRange(const std::string& option, const std::string& text, int total);
+// A..B-1 of the scene's `total` passes or frames (`what`), from "A:B" with 0 <= A < B <= total;
+// CLI::ValidationError naming `option` otherwise.
+std::pair<int, int> parseRange(const std::string& option, const std::string& text, int total, const std::string& what);
 
 }  // namespace tetglow::cli

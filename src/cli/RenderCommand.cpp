@@ -60,7 +60,7 @@ void run(const Options& o) {
     SceneDesc desc = loadSceneWith(o.args);
     PartInfo part;
     if (!o.passRange.empty()) {
-        std::tie(part.firstPass, part.endPass) = parsePassRange("--pass-range", o.passRange, desc.integrator.spp);
+        std::tie(part.firstPass, part.endPass) = parseRange("--pass-range", o.passRange, desc.integrator.spp, "passes");
         part.totalPasses = desc.integrator.spp;
         part.scene = o.args.scene;
         part.fingerprint = sceneFingerprint(desc);  // of the whole animation: the frame is checked on its own
