@@ -63,10 +63,11 @@ BatchScripts batchScripts(const FarmPlan& plan) {
     // error instead of leaving the farm waiting or a partial image behind.
     b.merge = header(plan, "tetglow-merge", "merge.log", 1) +
               "status=0\n"
-              "missing() {  # task, its log: the task's own error, else the cache job's\n"
+              "missing() {  # task, its log: the task's own error, else why it did not run\n"
               "  why=$(grep -h error \"$2\" 2>/dev/null | tail -n 1)\n"
-              "  [ -n \"$why\" ] || why=$(grep -h error " + shellQuote(plan.workDir + "/prepare.log") + " 2>/dev/null | tail -n 1)\n"
-              "  echo \"tetglow farm: task $1 wrote no part: ${why:-no error message (cancelled?)}\" >&2\n"
+              "  cache=$(grep -h error " + shellQuote(plan.workDir + "/prepare.log") + " 2>/dev/null | tail -n 1)\n"
+              "  [ -n \"$why\" ] || why=\"it did not run${cache:+: the tet cache job failed: $cache}\"\n"
+              "  echo \"tetglow farm: task $1 wrote no part: $why\" >&2\n"
               "  status=1\n"
               "}\n";
     for (int f = 0; f < plan.frames; ++f) {

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # `tetglow farm` through a real Slurm (a local single-node cluster, tests/slurm/local-cluster.sh):
 # 4 parts give the image `tetglow render` gives, byte for byte; a turntable's frames split the
-# same way; a task that fails fails the merge job with that task's error and leaves no image.
+# same way; a task that fails fails the merge job with that task's error and leaves no image, and
+# so does a failed tet-cache job (whose array then never runs).
 #   tests/slurm/farm_test.sh TETGLOW_BINARY SOURCE_DIR
 # Exit 77 (CTest: skipped) with a message where Slurm or munge is not installed, or not as root.
 set -euo pipefail
@@ -49,4 +50,14 @@ fi
 cat "$dir/bad.err"
 grep -q "task 2 wrote no part: .*part-0000-002.exr: cannot write" "$dir/bad.err" || fail "the error does not name task 2's failure"
 [ ! -e "$dir/bad/sphere.exr" ] || fail "an image was written without task 2's part"
+echo "== a medium TetGen cannot fill: the cache job fails, the array never runs"
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\n' > "$dir/open.obj"  # a tetrahedron without a face
+sed 's|{"type": "sphere", "center": \[0, 0, 0\], "radius": 1, "subdivisions": 4}|{"type": "mesh", "file": "open.obj"}|' "$scene" > "$dir/open.json"
+grep -q open.obj "$dir/open.json" || fail "the open scene was not made"
+if "$tetglow" farm "$dir/open.json" --parts 2 --spp 2 -o "$dir/open/o.exr" --wait 2> "$dir/open.err"; then
+    fail "farm succeeded although the cache job failed"
+fi
+cat "$dir/open.err"
+grep -q "task 0 wrote no part: it did not run: the tet cache job failed: .*mesh is not closed" "$dir/open.err" || fail "the error does not give the cache job's failure"
+[ ! -e "$dir/open/o.exr" ] || fail "an image was written without parts"
 echo "PASS"
