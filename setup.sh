@@ -10,8 +10,9 @@ case "$job" in demo|test|build) ;; *) echo "usage: $0 demo|test|build" >&2; exit
 
 packages=(g++ cmake make pkg-config libtet1.5-dev libembree-dev libopenexr-dev libglm-dev libtbb-dev nlohmann-json3-dev
           libcli11-dev libnanoflann-dev libpng-dev libcpp-httplib-dev libgtest-dev libbenchmark-dev gnuplot-nox python3)
-# Only the tests need these: tetglow preview's page is tested in headless Chromium.
-test_packages=(chromium chromium-driver python3-selenium)
+# Only the tests need these: tetglow preview's page is tested in headless Chromium, tetglow farm
+# through a real Slurm on localhost (tests/slurm).
+test_packages=(chromium chromium-driver python3-selenium slurmctld slurmd slurm-client munge)
 [ "$job" = test ] && packages+=("${test_packages[@]}")
 missing=()
 for p in "${packages[@]}"; do

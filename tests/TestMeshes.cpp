@@ -78,6 +78,13 @@ std::string writeTemp(const std::string& name, const std::string& contents) {
     return path;
 }
 
+std::string readFile(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+}
+
 CommandResult runTetglow(const std::string& args, int timeoutSeconds) {
     const std::string dir = std::filesystem::temp_directory_path() / ("tetglow-run-" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir);
@@ -89,14 +96,8 @@ CommandResult runTetglow(const std::string& args, int timeoutSeconds) {
     const std::string cmd = std::string("TETGLOW_CACHE_DIR=") + dir + "/cache " + limit + binary + " " + args + " >" +
                             out + " 2>" + err + " </dev/null";
     const int status = std::system(cmd.c_str());
-    auto slurp = [](const std::string& p) {
-        std::ifstream in(p);
-        std::stringstream ss;
-        ss << in.rdbuf();
-        return ss.str();
-    };
     const int code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-    return {code, slurp(out), slurp(err)};
+    return {code, readFile(out), readFile(err)};
 }
 
 void expectOneLineError(const CommandResult& r, int code, const std::string& expected) {

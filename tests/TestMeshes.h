@@ -30,6 +30,9 @@ std::string tempDir();
 // Writes `contents` byte for byte to `name` (which may name sub-folders) in tempDir().
 std::string writeTemp(const std::string& name, const std::string& contents);
 
+// The bytes of a file ("" when it cannot be read).
+std::string readFile(const std::string& path);
+
 struct CommandResult {
     int exitCode;
     std::string out, err;

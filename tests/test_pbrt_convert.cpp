@@ -34,6 +34,8 @@ void expectSameScene(const SceneDesc& a, const SceneDesc& b) {
     EXPECT_EQ(a.camera.width, b.camera.width);
     EXPECT_EQ(a.camera.height, b.camera.height);
     EXPECT_EQ(a.camera.handedness, b.camera.handedness);
+    EXPECT_TRUE(a.turntable.frames == b.turntable.frames && a.turntable.center == b.turntable.center && a.turntable.axis == b.turntable.axis &&
+                a.turntable.degrees == b.turntable.degrees);
     const IntegratorDesc &i = a.integrator, &j = b.integrator;
     EXPECT_TRUE(i.type == j.type && i.spp == j.spp && i.maxDepth == j.maxDepth && i.seed == j.seed && i.boundary == j.boundary &&
                 i.stepSize == j.stepSize && i.parityRays == j.parityRays);
@@ -77,6 +79,7 @@ TEST(SceneWriter, EveryJsonFieldReadsBackTheSame) {
     writeObj(icosphere(1, 0.3), test::tempDir() + "/in/meshes/ball.obj");
     const std::string path = test::writeTemp("in/scene.json", R"({
   "camera": {"position": [0.1, 0.2, 5], "look_at": [0, 0.1, 0], "up": [0.1, 1, 0], "fov": 33.3, "resolution": [31, 17], "handedness": "left"},
+  "turntable": {"frames": 12, "center": [0.5, 0, 0.25], "axis": [0.1, 1, 0], "degrees": 90.5},
   "integrator": {"type": "photon", "spp": 3, "max_depth": 9, "seed": 12, "boundary": "parity", "step": 0.013, "parity_rays": 3,
                  "photons": 1234, "k": 7, "radius": 0.05, "estimate": "knn-march", "alpha": 0.5, "boundary_correction": false, "time": 2.5},
   "output": "../out/x.exr",

@@ -56,14 +56,15 @@ TEST(SceneLimits, MeshPlacedBeyondTheBoundIsAnError) {
     expectRefused(renderScene(s), 1, "/media/0/shape: vertex 0 has a coordinate outside [-1e12, 1e12] once placed");
 }
 
-// The image stores 32-bit floats: a finite double beyond their range gave +Inf pixels and exit 0.
+// The image stores 32-bit floats: a finite double beyond their range gave +Inf pixels and exit 0;
+// the film's exact sums hold samples up to 2^32, and one beyond is an error, never dropped unsaid.
 TEST(SceneLimits, ColoursBeyondFloatAreErrors) {
     Json s = scene();
     s["media"][0]["emission"] = 1e39;
     expectRefused(renderScene(s), 1, "/media/0/emission: expected an array of 3 numbers in [0, 3.40282e38] (or one for all 3), got 1e+39");
     s["media"][0]["emission"] = 3e38;  // in range, but times a chord of 2 it is not
     s["media"][0]["sigma_s"] = 0;
-    expectRefused(renderScene(s), 1, "beyond the image's 32-bit float range (at most 3.40282e38)");
+    expectRefused(renderScene(s), 1, "beyond the film's range (at most 4.29497e9 per sample)");
 }
 
 TEST(SceneLimits, PbrtNumbersAndCountsDoNotWrap) {

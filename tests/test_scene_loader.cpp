@@ -9,6 +9,7 @@
 
 #include "TestMeshes.h"
 #include "scene/SceneLoader.h"
+#include "scene/Turntable.h"
 
 namespace tetglow {
 namespace {
@@ -195,6 +196,9 @@ const Broken kBroken[] = {
     {"non-affine matrix", "0, 0, -1, 0,  0, 0, 0, 1]", "0, 0, -1, 0,  0, 0, 1, 1]", "/media/2/shape/transform/0/matrix"},
     {"empty box", R"("max": [3, 1, 1])", R"("max": [3, 0, 1])", "/media/2/shape/max"},
     {"no emitters", R"("intensity": 1)", R"("intensity": 0)", "/lights: nothing emits light", kMinimalScene},
+    {"turntable without frames", R"("camera":)", R"("turntable": {"degrees": 90}, "camera":)", "/turntable/frames: missing"},
+    {"turntable of 0 frames", R"("camera":)", R"("turntable": {"frames": 0}, "camera":)", "/turntable/frames: expected an integer in 1..1000000"},
+    {"turntable about no axis", R"("camera":)", R"("turntable": {"frames": 4, "axis": [0, 0, 0]}, "camera":)", "/turntable/axis: expected a non-zero vector"},
     {"no lights at all", "", R"({"camera": {"position": [0, 0, 5], "look_at": [0, 0, 0]}})", "/lights: nothing emits light"},
     {"no camera", "", R"({"lights": [{"type": "environment", "radiance": 1}]})", "/camera: missing; expected an object"},
     {"top level not an object", "", "[1, 2]", "scene.json: expected an object, got [1,2]"},
@@ -257,6 +261,22 @@ TEST(SceneLoader, ShippedScenesLoad) {
             ADD_FAILURE() << e.what();
         }
     }
+}
+
+// Frame k of n turns the camera by k / n of the turn, right-handed about the axis through the center.
+TEST(Turntable, TurnsTheCameraAboutTheAxis) {
+    SceneDesc scene;
+    scene.camera.position = {0.3, 0.2, 4}, scene.camera.lookAt = {1, 0, 0}, scene.camera.up = {0, 1, 0};
+    scene.turntable = {.frames = 4, .center = {1, 0, 0}, .axis = {0, 2, 0}, .degrees = 360};
+    const CameraDesc still = cameraAtFrame(scene, 0);
+    EXPECT_TRUE(still.position == scene.camera.position && still.lookAt == scene.camera.lookAt && still.up == scene.camera.up);
+    const CameraDesc quarter = cameraAtFrame(scene, 1);  // (x, z) - center -> (z, -x): a quarter turn about +y
+    EXPECT_NEAR(glm::distance(quarter.position, glm::dvec3(1 + 4, 0.2, 0.7)), 0, 1e-12);
+    EXPECT_NEAR(glm::distance(quarter.lookAt, glm::dvec3(1, 0, 0)), 0, 1e-12);
+    EXPECT_NEAR(glm::distance(quarter.up, glm::dvec3(0, 1, 0)), 0, 1e-12);
+    scene.turntable.axis = {1, 0, 0};  // about x, the up vector turns too
+    const CameraDesc tilted = cameraAtFrame(scene, 1);
+    EXPECT_NEAR(glm::distance(tilted.up, glm::dvec3(0, 0, 1)), 0, 1e-12);
 }
 
 }  // namespace

@@ -17,6 +17,8 @@ void addValidateCommand(CLI::App& app);
 void addCompareBoundaryCommand(CLI::App& app);
 void addConvertCommand(CLI::App& app);
 void addPreviewCommand(CLI::App& app);
+void addMergeCommand(CLI::App& app);
+void addFarmCommand(CLI::App& app);
 
 // The first argument CLI11 would report badly, as a one-line message ("" when there is none): an
 // unknown subcommand (CLI11 says only "A subcommand is required") or an unknown option (CLI11

@@ -27,6 +27,8 @@ int main(int argc, char** argv) {
     tetglow::cli::addCompareBoundaryCommand(app);
     tetglow::cli::addConvertCommand(app);
     tetglow::cli::addPreviewCommand(app);
+    tetglow::cli::addMergeCommand(app);
+    tetglow::cli::addFarmCommand(app);
     try {
         if (const std::string unknown = tetglow::cli::unknownArgument(app, argc, argv); !unknown.empty()) return fail(2, unknown);
         app.parse(argc, argv);

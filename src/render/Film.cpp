@@ -1,28 +1,31 @@
 #include "render/Film.h"
 
-#include <cstdio>
-#include <limits>
 #include <string>
-
-#include <glm/common.hpp>
 
 #include "tet/TriangleMesh.h"  // InputError
 
 namespace tetglow {
 
+bool Film::merge(const Film& other) {
+    if (other.width_ != width_ || other.height_ != height_) return false;
+    for (size_t i = 0; i < sum_.size(); ++i) {
+        for (int c = 0; c < 3; ++c) sum_[i][c] += other.sum_[i][c];
+        count_[i] += other.count_[i];
+        dropped_[i] += other.dropped_[i];
+        tooBright_[i] += other.tooBright_[i];
+    }
+    return true;
+}
+
 Image Film::image() const {
     Image image(width_, height_);
     for (size_t i = 0; i < sum_.size(); ++i) {
-        if (!count_[i]) continue;
-        const RGB mean = sum_[i] / double(count_[i]);
-        // The image stores floats: a larger mean would become +Inf without a word.
-        if (maxComponent(glm::abs(mean)) > std::numeric_limits<float>::max()) {
-            char value[32];
-            std::snprintf(value, sizeof value, "%.6g", maxComponent(glm::abs(mean)));
-            throw InputError("pixel (" + std::to_string(i % width_) + ", " + std::to_string(i / width_) + ") is " + value +
-                             ", beyond the image's 32-bit float range (at most 3.40282e38): the lights or the emission are too bright");
-        }
-        image.pixels[i] = glm::vec3(mean);
+        if (tooBright_[i])
+            throw InputError("pixel (" + std::to_string(i % width_) + ", " + std::to_string(i / width_) +
+                             ") received radiance beyond the film's range (at most 4.29497e9 per sample): the lights or the "
+                             "emission are too bright; scale them down");
+        if (count_[i])
+            for (int c = 0; c < 3; ++c) image.pixels[i][c] = float(double(sum_[i][c]) / kFixedUnit / double(count_[i]));
     }
     return image;
 }

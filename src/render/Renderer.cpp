@@ -15,19 +15,20 @@ RenderResult render(const Scene& scene, Integrator& integrator, const RenderOpti
     const auto start = std::chrono::steady_clock::now();
     const Camera& camera = scene.camera();
     // The film, the image made from it and the PNG preview's bytes.
-    checkMemory(double(camera.width()) * camera.height() * (sizeof(RGB) + 2 * sizeof(uint32_t) + sizeof(glm::vec3) + 3),
+    checkMemory(double(camera.width()) * camera.height() * (sizeof(FixedSum) + 3 * sizeof(uint32_t) + sizeof(glm::vec3) + 3),
                 "an image of " + std::to_string(camera.width()) + "x" + std::to_string(camera.height()) + " pixels");
     Film film(camera.width(), camera.height());
     RenderResult result;
     std::mutex progressMutex;
     std::atomic<uint64_t> pixelsDone{0};
-    const double totalPixels = double(options.spp) * camera.height() * camera.width();
+    const int endPass = options.endPass > 0 ? options.endPass : options.spp;
+    const double totalPixels = double(endPass - options.firstPass) * camera.height() * camera.width();
     auto cancelled = [&] { return options.cancel && options.cancel->load(std::memory_order_relaxed); };
 
     tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
     auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
-    for (int pass = 0; pass < options.spp && !cancelled(); ++pass) {
-        if (pass > 0 && options.timeLimit > 0 && elapsed() >= options.timeLimit) break;
+    for (int pass = options.firstPass; pass < endPass && !cancelled(); ++pass) {
+        if (pass > options.firstPass && options.timeLimit > 0 && elapsed() >= options.timeLimit) break;
         arena.execute([&] {
             integrator.beginPass(uint64_t(pass));
             tbb::parallel_for(tbb::blocked_range2d<int>(0, camera.height(), 16, 0, camera.width(), 16), [&](const auto& tile) {
@@ -45,12 +46,13 @@ RenderResult render(const Scene& scene, Integrator& integrator, const RenderOpti
             });
         });
         if (cancelled()) break;
-        result.passes = pass + 1;
+        result.passes = pass + 1 - options.firstPass;
         if (options.passDone) options.passDone(film, result.passes);
     }
     result.cancelled = cancelled();
     result.image = film.image();
     result.droppedSamples = film.droppedSamples();
+    result.film = std::move(film);
     result.seconds = elapsed();
     return result;
 }

@@ -10,6 +10,9 @@ namespace tetglow {
 
 struct RenderOptions {
     int spp = 16;
+    // Passes firstPass .. endPass - 1 of the spp (endPass 0: spp). Each keeps its global index
+    // (its seeds, its photon radius), so parts rendered apart merge into the full render.
+    int firstPass = 0, endPass = 0;
     uint64_t seed = 0;
     int threads = 0;  // 0: all cores
     double timeLimit = 0;  // > 0: no pass starts after this many seconds (at least one runs)
@@ -21,6 +24,7 @@ struct RenderOptions {
 
 struct RenderResult {
     Image image;
+    Film film{0, 0};         // the exact sums behind `image`, for partial renders
     int passes = 0;          // complete passes (samples per pixel)
     bool cancelled = false;
     uint64_t droppedSamples = 0;  // NaN or Inf radiance, discarded

@@ -26,6 +26,7 @@ inline constexpr int kMaxResolution = 16384;  // pixels along either image axis,
 // path, photon paths per pass (these also checked against the machine's memory).
 inline constexpr int kMaxSpp = 1 << 20, kMaxDepth = 1 << 20;
 inline constexpr int64_t kMaxPhotons = int64_t(1) << 40;
+inline constexpr int kMaxFrames = 1000000;     // frames of an animation
 
 struct CameraDesc {
     glm::dvec3 position{0, 0, 5}, lookAt{0}, up{0, 1, 0};
@@ -147,9 +148,18 @@ struct IntegratorDesc {
     double timeLimit = 0;       // > 0: stop starting passes after this many seconds
 };
 
+// An animation of the camera: frame k of `frames` sees the scene with the camera (position,
+// look-at point and up) turned by k / frames of `degrees` about `axis` through `center`.
+struct TurntableDesc {
+    int frames = 1;
+    glm::dvec3 center{0}, axis{0, 1, 0};
+    double degrees = 360;
+};
+
 struct SceneDesc {
     std::string path;  // the scene file
     CameraDesc camera;
+    TurntableDesc turntable;  // frames of the camera; 1 frame: a still
     std::vector<LightDesc> lights;
     std::vector<SurfaceDesc> surfaces;
     std::vector<MediumDesc> media;

@@ -65,6 +65,17 @@ CameraDesc readCamera(JsonObject& o) {
     return c;
 }
 
+TurntableDesc readTurntable(JsonObject& o, const CameraDesc& camera) {
+    TurntableDesc t;
+    t.frames = int(o["frames"].integer(1, kMaxFrames));
+    t.center = camera.lookAt;
+    if (auto f = o["center"]) t.center = f.vec3();
+    if (auto f = o["axis"]) t.axis = f.vec3();
+    if (t.axis == glm::dvec3(0)) o["axis"].fail("a non-zero vector");
+    if (auto f = o["degrees"]) t.degrees = f.number();
+    return t;
+}
+
 void readSpotCone(JsonObject& o, LightDesc& l) {
     const JsonValue lookAt = o["look_at"];
     l.lookAt = lookAt.vec3();
@@ -188,6 +199,7 @@ SceneDesc readScene(JsonObject& o, const std::string& path) {
     SceneDesc s;
     s.path = path;
     s.camera = o["camera"].readObject(readCamera);
+    if (auto f = o["turntable"]) s.turntable = f.readObject([&](JsonObject& t) { return readTurntable(t, s.camera); });
     if (auto f = o["integrator"]) s.integrator = f.readObject(readIntegrator);
     if (auto f = o["output"]) s.output = (dir / f.string()).string();
     for (const JsonValue& v : optionalArray(o["lights"]))

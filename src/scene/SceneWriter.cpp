@@ -61,6 +61,8 @@ public:
                        {"resolution", {c.width, c.height}},
                        {"handedness", c.handedness == Handedness::Left ? "left" : "right"}};
         j["integrator"] = integratorJson(scene_.integrator);
+        if (const TurntableDesc& t = scene_.turntable; t.frames > 1)
+            j["turntable"] = {{"frames", t.frames}, {"center", vec(t.center)}, {"axis", vec(t.axis)}, {"degrees", t.degrees}};
         // loadScene takes "output" relative to the scene file's folder.
         // (An output named without a folder lies in the working directory: absolute("") throws.)
         if (!scene_.output.empty())

@@ -1,0 +1,158 @@
+// tetglow farm SCENE --parts N -o OUT.exr: the render split over a Slurm job array and merged
+// (FarmScripts.h). Slurm's sbatch and squeue do all the scheduling.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <thread>
+
+#include "cli/Commands.h"
+#include "cli/FarmScripts.h"
+#include "cli/RenderArgs.h"
+#include "tet/OutputFile.h"
+#include "tet/TriangleMesh.h"
+
+namespace tetglow::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Options {
+    RenderArgs args;
+    std::vector<CLI::Option*> renderOptions;
+    std::string output, frames, partition;
+    int parts = 0;
+    bool wait = false, dryRun = false;
+};
+
+// stdout of a shell command, and its exit status.
+std::pair<std::string, int> capture(const std::string& command) {
+    FILE* pipe = ::popen((command + " 2>&1").c_str(), "r");
+    if (!pipe) throw InputError("farm: cannot run " + command);
+    std::string out;
+    char buffer[4096];
+    for (size_t n; (n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0;) out.append(buffer, n);
+    const int status = ::pclose(pipe);
+    return {out, WIFEXITED(status) ? WEXITSTATUS(status) : 128};
+}
+
+std::string firstLine(const std::string& s) { return s.substr(0, s.find('\n')); }
+
+std::string lastLine(std::string s) {
+    while (!s.empty() && s.back() == '\n') s.pop_back();
+    return s.substr(s.rfind('\n') + 1);
+}
+
+// Submits a script; returns the job id.
+std::string submit(const std::string& script, const std::string& sbatchOptions) {
+    const auto [out, status] = capture("sbatch --parsable " + sbatchOptions + " " + shellQuote(script));
+    if (status == 127) throw InputError("farm: sbatch not found: run farm where Slurm's client commands are installed");
+    if (status != 0) throw InputError("farm: sbatch " + script + " failed: " + lastLine(out));
+    const std::string id = lastLine(out);  // "id" or "id;cluster", after any warnings
+    return id.substr(0, id.find(';'));
+}
+
+std::string slurp(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), {}};
+}
+
+// Frame outputs: OUT itself for a still, OUT's stem with a 4-digit frame number for an animation.
+std::string frameOutput(const std::string& output, int frame, bool animated) {
+    if (!animated) return output;
+    char number[16];
+    std::snprintf(number, sizeof number, ".%04d", frame);
+    return fs::path(output).replace_extension().string() + number + ".exr";
+}
+
+FarmPlan plan(const Options& o) {
+    const SceneDesc desc = loadSceneWith(o.args);
+    if (o.args.time > 0) throw InputError("farm: --time cannot be split into parts: give --spp or --passes");
+    if (fs::path(o.output).extension() != ".exr") throw InputError(o.output + ": the output must be an .exr file");
+    FarmPlan p;
+    p.binary = fs::read_symlink("/proc/self/exe").string();
+    p.scene = fs::absolute(o.args.scene).string();
+    for (const CLI::Option* option : o.renderOptions)
+        for (const auto& value : option->results())
+            if (option->get_name() != "--threads") p.renderArgs.insert(p.renderArgs.end(), {option->get_name(), value});
+    p.totalPasses = desc.integrator.spp;
+    if (o.parts > p.totalPasses)
+        throw InputError("farm: --parts " + std::to_string(o.parts) + " is more than the " + std::to_string(p.totalPasses) + " passes to split");
+    p.parts = o.parts;
+    p.cpusPerTask = o.args.threads > 0 ? o.args.threads : 1;
+    const int frames = desc.turntable.frames;
+    const auto [first, end] = o.frames.empty() ? std::pair{0, frames} : parseRange("--frames", o.frames, frames, "frames");
+    p.firstFrame = first, p.frames = end - first;
+    const std::string output = fs::absolute(o.output).string();
+    for (int f = first; f < end; ++f) p.outputs.push_back(frameOutput(output, f, frames > 1));
+    p.workDir = fs::path(output).replace_extension(".farm").string();
+    p.partition = o.partition;
+    return p;
+}
+
+// Polls squeue (faster than sbatch --wait) until the job has left the queue or ended.
+void waitFor(const std::string& job) {
+    for (;;) {
+        const auto [out, status] = capture("squeue -h -j " + job + " -o %T");
+        const std::string state = firstLine(out);
+        if (status != 0 || state.empty() || (state != "PENDING" && state != "RUNNING" && state != "CONFIGURING" && state != "COMPLETING"))
+            return;
+        std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    }
+}
+
+void run(const Options& o) {
+    const FarmPlan p = plan(o);
+    const BatchScripts scripts = batchScripts(p);
+    const std::string prepare = p.workDir + "/prepare.sh", render = p.workDir + "/render.sh", merge = p.workDir + "/merge.sh";
+    if (o.dryRun) {
+        std::printf("# %s\n%s\n# %s (after %s)\n%s\n# %s (after every task)\n%s", prepare.c_str(), scripts.prepare.c_str(), render.c_str(),
+                    prepare.c_str(), scripts.render.c_str(), merge.c_str(), scripts.merge.c_str());
+        return;
+    }
+    for (const auto& output : p.outputs) prepareOutput(output, {o.args.scene});
+    for (const auto& script : {prepare, render, merge}) prepareOutput(script, {o.args.scene});
+    // Parts and status of an earlier run must not stand in for this one's.
+    std::error_code ignored;
+    for (int f = 0; f < p.frames; ++f)
+        for (int part = 0; part < p.parts; ++part) fs::remove(p.partPath(p.firstFrame + f, part), ignored);
+    fs::remove(mergeStatusPath(p), ignored);
+    for (const auto& [path, text] : {std::pair{prepare, scripts.prepare}, {render, scripts.render}, {merge, scripts.merge}})
+        writeStream(path, [&](std::ostream& out) { out << text; });
+    const std::string prepareJob = submit(prepare, "");
+    const std::string renderJob = submit(render, "--dependency=afterok:" + prepareJob + " --kill-on-invalid-dep=yes");
+    const std::string mergeJob = submit(merge, "--dependency=afterany:" + prepareJob + ":" + renderJob);
+    std::printf("farm: submitted job %s (tet cache), array %s (%d tasks: %d frame(s) x %d parts), merge %s -> %s%s\n"
+                "farm: scripts and logs in %s; watch with: squeue -j %s,%s,%s\n",
+                prepareJob.c_str(), renderJob.c_str(), p.tasks(), p.frames, p.parts, mergeJob.c_str(), p.outputs.front().c_str(),
+                p.frames > 1 ? " ..." : "", p.workDir.c_str(), prepareJob.c_str(), renderJob.c_str(), mergeJob.c_str());
+    if (!o.wait) return;
+    std::fflush(stdout);
+    waitFor(mergeJob);
+    const std::string status = slurp(mergeStatusPath(p));
+    if (status != "0\n") {
+        const std::string log = slurp(p.workDir + "/merge.log");
+        throw InputError("farm: the merge job " + mergeJob + (status.empty() ? " ended without a status (cancelled?)" : " failed") +
+                         (log.empty() ? std::string() : ": " + firstLine(log)));
+    }
+    std::printf("farm: done: %s\n", p.outputs.back().c_str());
+}
+
+}  // namespace
+
+void addFarmCommand(CLI::App& app) {
+    auto o = std::make_shared<Options>();
+    auto* cmd = app.add_subcommand("farm", "Render on a Slurm cluster: a job array of parts (render --pass-range) and a merge job");
+    o->renderOptions = addRenderArgs(cmd, o->args);
+    cmd->add_option("--parts", o->parts, "Parts to split the passes of each frame into (one array task each)")->required()->check(CLI::Range(1, 100000));
+    cmd->add_option("-o,--output", o->output, "Output .exr (an animation: OUT.0000.exr, OUT.0001.exr, ...)")->required()->check(kNonEmpty);
+    cmd->add_option("--frames", o->frames, "Frames A..B-1 of the scene's turntable (A:B; default: all)");
+    cmd->add_option("--partition", o->partition, "Slurm partition (default: the cluster's)");
+    cmd->add_flag("--wait", o->wait, "Return when the merge is done; exit 1 if any task or the merge failed");
+    cmd->add_flag("--dry-run", o->dryRun, "Print the batch scripts, submit nothing");
+    cmd->callback([o] { run(*o); });
+}
+
+}  // namespace tetglow::cli

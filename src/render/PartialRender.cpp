@@ -1,0 +1,164 @@
+#include "render/PartialRender.h"
+
+#include <algorithm>
+#include <bit>
+#include <filesystem>
+
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfInputFile.h>
+#include <OpenEXR/ImfIntAttribute.h>
+#include <OpenEXR/ImfOutputFile.h>
+#include <OpenEXR/ImfStringAttribute.h>
+#include <OpenEXR/ImfTestFile.h>
+
+#include "render/ImageIO.h"
+#include "tet/OutputFile.h"
+#include "tet/TriangleMesh.h"
+
+namespace tetglow {
+namespace {
+
+// The sum words are sliced straight out of the 128-bit integers, least significant word first.
+static_assert(std::endian::native == std::endian::little, "partial renders assume a little-endian machine");
+static_assert(sizeof(FixedSum) == 3 * 16);
+
+const char* const kRgb[3] = {"R", "G", "B"};
+
+std::string passRange(const PartInfo& info) { return std::to_string(info.firstPass) + ":" + std::to_string(info.endPass); }
+
+std::string wordChannel(int c, int w) { return std::string("sum.") + kRgb[c] + "." + std::to_string(w); }
+
+// Slices over the film's state (and the mean image for R, G, B): reading and writing go through them.
+void insertFilmSlices(Imf::FrameBuffer& fb, Film& film, Image* mean, const Imath::Box2i& window) {
+    const size_t row = size_t(film.width());
+    for (int c = 0; c < 3; ++c) {
+        if (mean) fb.insert(kRgb[c], Imf::Slice::Make(Imf::FLOAT, &mean->pixels[0][c], window, sizeof(glm::vec3), sizeof(glm::vec3) * row));
+        for (int w = 0; w < 4; ++w)
+            fb.insert(wordChannel(c, w), Imf::Slice::Make(Imf::UINT, reinterpret_cast<char*>(&film.sum(0)[c]) + 4 * w, window,
+                                                          sizeof(FixedSum), sizeof(FixedSum) * row));
+    }
+    fb.insert("count", Imf::Slice::Make(Imf::UINT, &film.count(0), window, sizeof(uint32_t), sizeof(uint32_t) * row));
+    fb.insert("dropped", Imf::Slice::Make(Imf::UINT, &film.dropped(0), window, sizeof(uint32_t), sizeof(uint32_t) * row));
+}
+
+template <class Attribute>
+auto attribute(const std::string& path, const Imf::Header& header, const char* name) {
+    const auto* a = header.findTypedAttribute<Attribute>(name);
+    if (!a) throw InputError(path + ": not a partial render (tetglow render --pass-range): no " + name + " attribute");
+    return a->value();
+}
+
+}  // namespace
+
+void writePartial(const std::string& path, const PartialRender& part) {
+    Film& film = const_cast<Film&>(part.film);  // OpenEXR's slices take non-const pointers; writing only reads them
+    if (film.pixelCount() == 0) throw InputError(path + ": cannot write an empty image");
+    Image mean = film.image();
+    writeAtomically(path, [&](const std::string& temporary) {
+        Imf::Header header(film.width(), film.height());
+        for (const char* c : kRgb) header.channels().insert(c, Imf::Channel(Imf::FLOAT));
+        for (int c = 0; c < 3; ++c)
+            for (int w = 0; w < 4; ++w) header.channels().insert(wordChannel(c, w), Imf::Channel(Imf::UINT));
+        header.channels().insert("count", Imf::Channel(Imf::UINT));
+        header.channels().insert("dropped", Imf::Channel(Imf::UINT));
+        header.insert("tetglowFingerprint", Imf::StringAttribute(part.info.fingerprint));
+        header.insert("tetglowScene", Imf::StringAttribute(part.info.scene));
+        header.insert("tetglowFirstPass", Imf::IntAttribute(part.info.firstPass));
+        header.insert("tetglowEndPass", Imf::IntAttribute(part.info.endPass));
+        header.insert("tetglowTotalPasses", Imf::IntAttribute(part.info.totalPasses));
+        header.insert("tetglowFrame", Imf::IntAttribute(part.info.frame));
+        Imf::FrameBuffer fb;
+        insertFilmSlices(fb, film, &mean, header.dataWindow());
+        Imf::OutputFile file(temporary.c_str(), header);
+        file.setFrameBuffer(fb);
+        file.writePixels(film.height());
+    });
+}
+
+PartialRender readPartial(const std::string& path) {
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec)) throw InputError(path + ": no such file");
+    if (!Imf::isOpenExrFile(path.c_str())) throw InputError(path + ": not an OpenEXR file");
+    try {
+        Imf::InputFile file(path.c_str());
+        const Imf::Header& header = file.header();
+        PartialRender part;
+        part.info.fingerprint = attribute<Imf::StringAttribute>(path, header, "tetglowFingerprint");
+        part.info.scene = attribute<Imf::StringAttribute>(path, header, "tetglowScene");
+        part.info.firstPass = attribute<Imf::IntAttribute>(path, header, "tetglowFirstPass");
+        part.info.endPass = attribute<Imf::IntAttribute>(path, header, "tetglowEndPass");
+        part.info.totalPasses = attribute<Imf::IntAttribute>(path, header, "tetglowTotalPasses");
+        part.info.frame = attribute<Imf::IntAttribute>(path, header, "tetglowFrame");
+        if (part.info.firstPass < 0 || part.info.endPass <= part.info.firstPass || part.info.endPass > part.info.totalPasses)
+            throw InputError(path + ": passes " + passRange(part.info) + " are not a range of the render's " +
+                             std::to_string(part.info.totalPasses));
+        for (int c = 0; c < 3; ++c)
+            for (int w = 0; w < 4; ++w)
+                if (header.channels().findChannel(wordChannel(c, w)) == nullptr || header.channels().findChannel(wordChannel(c, w))->type != Imf::UINT)
+                    throw InputError(path + ": not a partial render: no 32-bit integer channel " + wordChannel(c, w));
+        for (const char* name : {"count", "dropped"})
+            if (header.channels().findChannel(name) == nullptr || header.channels().findChannel(name)->type != Imf::UINT)
+                throw InputError(path + ": not a partial render: no 32-bit integer channel " + std::string(name));
+        const Imath::Box2i window = header.dataWindow();
+        part.film = Film(window.max.x - window.min.x + 1, window.max.y - window.min.y + 1);
+        Imf::FrameBuffer fb;
+        insertFilmSlices(fb, part.film, nullptr, window);
+        file.setFrameBuffer(fb);
+        file.readPixels(window.min.y, window.max.y);
+        return part;
+    } catch (const InputError&) {
+        throw;
+    } catch (const std::exception& e) {
+        std::string message = e.what();
+        std::replace(message.begin(), message.end(), '\n', ' ');
+        throw InputError(path + ": cannot read: " + message);
+    }
+}
+
+PartialRender mergeParts(const std::vector<std::string>& paths) {
+    if (paths.empty()) throw InputError("merge: no parts given");
+    struct Loaded {
+        std::string path;
+        PartialRender part;
+    };
+    std::vector<Loaded> parts;
+    for (const auto& path : paths) parts.push_back({path, readPartial(path)});
+    const Loaded& first = parts.front();
+    for (const Loaded& p : parts) {
+        const PartInfo &a = first.part.info, &b = p.part.info;
+        if (b.fingerprint != a.fingerprint || b.totalPasses != a.totalPasses)
+            throw InputError(p.path + ": a different scene or different settings from " + first.path + " (" + b.scene + " vs " +
+                             a.scene + ", fingerprint " + b.fingerprint + " vs " + a.fingerprint + ")");
+        if (b.frame != a.frame)
+            throw InputError(p.path + ": frame " + std::to_string(b.frame) + ", but " + first.path + " is frame " + std::to_string(a.frame));
+    }
+    std::stable_sort(parts.begin(), parts.end(), [](const Loaded& a, const Loaded& b) { return a.part.info.firstPass < b.part.info.firstPass; });
+    int covered = 0;  // passes 0 .. covered - 1 are in the parts merged so far
+    for (size_t i = 0; i < parts.size(); ++i) {
+        const PartInfo& info = parts[i].part.info;
+        if (info.firstPass < covered)
+            throw InputError(parts[i].path + ": passes " + passRange(info) + " overlap passes " + passRange(parts[i - 1].part.info) + " of " +
+                             parts[i - 1].path);
+        if (info.firstPass > covered)
+            throw InputError(parts[i].path + ": passes " + std::to_string(covered) + ":" + std::to_string(info.firstPass) +
+                             " before its " + passRange(info) + " are in no part");
+        covered = info.endPass;
+    }
+    const Loaded& last = parts.back();
+    if (covered < last.part.info.totalPasses)
+        throw InputError(last.path + ": passes " + std::to_string(covered) + ":" + std::to_string(last.part.info.totalPasses) +
+                         " after its " + passRange(last.part.info) + " are in no part");
+    PartialRender whole = std::move(parts.front().part);
+    for (size_t i = 1; i < parts.size(); ++i)
+        if (!whole.film.merge(parts[i].part.film))
+            throw InputError(parts[i].path + ": " + std::to_string(parts[i].part.film.width()) + "x" + std::to_string(parts[i].part.film.height()) +
+                             " pixels, but " + parts.front().path + " has " + std::to_string(whole.film.width()) + "x" +
+                             std::to_string(whole.film.height()));
+    whole.info.firstPass = 0;
+    whole.info.endPass = whole.info.totalPasses;
+    return whole;
+}
+
+}  // namespace tetglow

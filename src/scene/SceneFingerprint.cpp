@@ -1,0 +1,39 @@
+#include "scene/SceneFingerprint.h"
+
+#include <unistd.h>
+
+#include <atomic>
+#include <cstdio>
+#include <filesystem>
+
+#include "scene/SceneWriter.h"
+#include "scene/TextFile.h"
+
+namespace tetglow {
+
+std::string sceneFingerprint(const SceneDesc& scene) {
+    namespace fs = std::filesystem;
+    static std::atomic<int> serial{0};
+    const fs::path dir = fs::temp_directory_path() / ("tetglow-fingerprint-" + std::to_string(::getpid()) + "-" + std::to_string(serial++));
+    fs::create_directories(dir);
+    SceneDesc copy = scene;  // the writer's copy is judged by content only: no paths
+    copy.path.clear();
+    copy.output.clear();
+    uint64_t hash = 0xcbf29ce484222325ull;
+    try {
+        const std::string json = (dir / "scene.json").string();
+        std::vector<std::string> files = writeScene(copy, json);
+        files.insert(files.begin(), json);
+        for (const auto& file : files)
+            for (unsigned char byte : readTextFile(file)) hash = (hash ^ byte) * 0x100000001b3ull;
+    } catch (...) {
+        fs::remove_all(dir);
+        throw;
+    }
+    fs::remove_all(dir);
+    char hex[17];
+    std::snprintf(hex, sizeof hex, "%016llx", (unsigned long long)hash);
+    return hex;
+}
+
+}  // namespace tetglow

@@ -1,0 +1,63 @@
+#!/usr/bin/env bash
+# `tetglow farm` through a real Slurm (a local single-node cluster, tests/slurm/local-cluster.sh):
+# 4 parts give the image `tetglow render` gives, byte for byte; a turntable's frames split the
+# same way; a task that fails fails the merge job with that task's error and leaves no image, and
+# so does a failed tet-cache job (whose array then never runs).
+#   tests/slurm/farm_test.sh TETGLOW_BINARY SOURCE_DIR
+# Exit 77 (CTest: skipped) with a message where Slurm or munge is not installed, or not as root.
+set -euo pipefail
+tetglow=${1:?usage: $0 TETGLOW_BINARY SOURCE_DIR}
+source_dir=${2:?usage: $0 TETGLOW_BINARY SOURCE_DIR}
+for program in munged slurmctld slurmd sbatch squeue scancel sinfo; do
+    if ! command -v "$program" >/dev/null; then
+        echo "SKIP: $program is not installed (./setup.sh test installs slurmctld, slurmd, slurm-client and munge)"
+        exit 77
+    fi
+done
+if [ "$(id -u)" -ne 0 ]; then echo "SKIP: the local Slurm daemons run as root"; exit 77; fi
+
+dir=$(mktemp -d)
+cluster=$source_dir/tests/slurm/local-cluster.sh
+trap '"$cluster" stop "$dir"; rm -rf "$dir"' EXIT
+"$cluster" start "$dir"
+export SLURM_CONF=$dir/slurm.conf TETGLOW_CACHE_DIR=$dir/cache
+fail() { echo "FAIL: $*" >&2; exit 1; }
+scene=$source_dir/scenes/sphere.json
+options=(--resolution 24x20 --spp 10 --seed 4 --integrator photon --photons 2000)
+
+echo "== 4 parts through Slurm against one render"
+"$tetglow" farm "$scene" --parts 4 "${options[@]}" -o "$dir/farm/sphere.exr" --wait
+"$tetglow" render "$scene" "${options[@]}" -o "$dir/single.exr" > /dev/null 2>&1
+cmp "$dir/farm/sphere.exr" "$dir/single.exr" || fail "the farm's image differs from the single render"
+[ "$(ls "$dir"/farm/sphere.farm/task-*.log | wc -l)" -eq 4 ] || fail "expected 4 array tasks"
+grep -q "read from the cache" "$dir"/farm/sphere.farm/task-0.log || fail "task 0 ran TetGen instead of reading the cache"
+
+echo "== a turntable: frames 1 and 2 of 4, 2 parts each"
+sed 's/"camera":/"turntable": {"frames": 4}, "camera":/' "$scene" > "$dir/turntable.json"
+turn=(--resolution 16x12 --spp 4 --integrator volpath)
+"$tetglow" farm "$dir/turntable.json" --parts 2 --frames 1:3 "${turn[@]}" -o "$dir/turn/t.exr" --wait
+for frame in 1 2; do
+    "$tetglow" render "$dir/turntable.json" "${turn[@]}" --frame $frame -o "$dir/t$frame.exr" > /dev/null 2>&1
+    cmp "$dir/turn/t.000$frame.exr" "$dir/t$frame.exr" || fail "frame $frame differs from its single render"
+done
+cmp -s "$dir/t1.exr" "$dir/t2.exr" && fail "frames 1 and 2 are the same image"
+
+echo "== a task that cannot write its part"
+mkdir -p "$dir/bad/sphere.farm/part-0000-002.exr/in-the-way"
+if "$tetglow" farm "$scene" --parts 4 "${options[@]}" -o "$dir/bad/sphere.exr" --wait 2> "$dir/bad.err"; then
+    fail "farm succeeded although task 2 failed"
+fi
+cat "$dir/bad.err"
+grep -q "task 2 wrote no part: .*part-0000-002.exr: cannot write" "$dir/bad.err" || fail "the error does not name task 2's failure"
+[ ! -e "$dir/bad/sphere.exr" ] || fail "an image was written without task 2's part"
+echo "== a medium TetGen cannot fill: the cache job fails, the array never runs"
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\n' > "$dir/open.obj"  # a tetrahedron without a face
+sed 's|{"type": "sphere", "center": \[0, 0, 0\], "radius": 1, "subdivisions": 4}|{"type": "mesh", "file": "open.obj"}|' "$scene" > "$dir/open.json"
+grep -q open.obj "$dir/open.json" || fail "the open scene was not made"
+if "$tetglow" farm "$dir/open.json" --parts 2 --spp 2 -o "$dir/open/o.exr" --wait 2> "$dir/open.err"; then
+    fail "farm succeeded although the cache job failed"
+fi
+cat "$dir/open.err"
+grep -q "task 0 wrote no part: it did not run: the tet cache job failed: .*mesh is not closed" "$dir/open.err" || fail "the error does not give the cache job's failure"
+[ ! -e "$dir/open/o.exr" ] || fail "an image was written without parts"
+echo "PASS"

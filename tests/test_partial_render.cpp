@@ -1,0 +1,165 @@
+// Renders split into parts (render --pass-range) and merged (merge) are the single render, bit
+// for bit, for any split; merge refuses parts that do not make up one render.
+#include <cstring>
+#include <filesystem>
+
+#include <gtest/gtest.h>
+
+#include "TestMeshes.h"
+#include "TestScenes.h"
+#include "render/Integrator.h"
+#include "render/Renderer.h"
+
+namespace tetglow::test {
+namespace {
+
+const std::string kSphere = std::string(TETGLOW_SOURCE_DIR) + "/scenes/sphere.json";
+
+bool sameBits(const Image& a, const Image& b) {
+    return a.width == b.width && a.height == b.height &&
+           std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof a.pixels[0]) == 0;
+}
+
+using Split = std::vector<std::pair<int, int>>;
+const std::vector<Split> kSplits = {
+    {{0, 16}},
+    {{0, 2}, {2, 11}, {11, 16}},
+    {{0, 1}, {1, 2}, {2, 3}, {3, 4}, {4, 5}, {5, 6}, {6, 7}, {7, 8}, {8, 9}, {9, 10}, {10, 11}, {11, 12}, {12, 13}, {13, 14}, {14, 15}, {15, 16}},
+};
+
+// The renderer itself: the films of the parts, merged in any order, are the single render's.
+TEST(PartialRender, MergedFilmsAreTheSingleRenderBitForBit) {
+    SceneDesc desc = sceneWith(sphereMedium(RGB(0.3), RGB(1.5, 2, 2.5), 0.4), 12);
+    desc.lights.push_back(environment(0.5));
+    LightDesc point;
+    point.position = {2, 3, 2}, point.intensity = RGB(20);
+    desc.lights.push_back(point);
+    const Scene scene(desc);
+    for (IntegratorType type : {IntegratorType::VolPath, IntegratorType::Photon}) {
+        desc.integrator.type = type;
+        desc.integrator.photons = 2000;
+        RenderOptions options;
+        options.spp = 16;
+        options.seed = 5;
+        auto integrator = makeIntegrator(scene, desc.integrator);
+        const RenderResult single = render(scene, *integrator, options);
+        ASSERT_EQ(single.passes, 16);
+        for (const Split& split : kSplits) {
+            Film merged(12, 12);
+            // Merged last part first: the order must not matter either.
+            for (auto range = split.rbegin(); range != split.rend(); ++range) {
+                auto partIntegrator = makeIntegrator(scene, desc.integrator);  // a fresh process's
+                options.firstPass = range->first, options.endPass = range->second;
+                const RenderResult part = render(scene, *partIntegrator, options);
+                EXPECT_EQ(part.passes, range->second - range->first);
+                if (split.size() > 1) {
+                    EXPECT_FALSE(sameBits(part.image, single.image));  // a part alone is not the image
+                }
+                ASSERT_TRUE(merged.merge(part.film));
+            }
+            EXPECT_TRUE(sameBits(merged.image(), single.image)) << nameOf(kIntegratorNames, type) << ", " << split.size() << " parts";
+            for (size_t i = 0; i < merged.pixelCount(); ++i) ASSERT_EQ(merged.sum(i), single.film.sum(i)) << i;
+        }
+        float brightest = 0;
+        for (const auto& p : single.image.pixels) brightest = std::max(brightest, p.x);
+        EXPECT_GT(brightest, 0.01f);  // an image, not a black frame that any sum matches
+    }
+}
+
+// The same through the commands: byte-identical EXR files, photon and volpath.
+TEST(PartialRender, MergeOfAnySplitIsTheRenderedFile) {
+    const std::string dir = tempDir();
+    for (const char* integrator : {"volpath", "photon"}) {
+        const std::string common = "render " + kSphere + " --resolution 16x12 --spp 16 --seed 3 --photons 3000 --integrator " + integrator;
+        const auto single = runTetglow(common + " -o " + dir + "/single.exr");
+        ASSERT_EQ(single.exitCode, 0) << single.err;
+        for (const Split& split : kSplits) {
+            std::string parts;
+            for (const auto& [a, b] : split) {
+                const std::string part = dir + "/part-" + std::to_string(a) + ".exr";
+                const auto r = runTetglow(common + " --threads 2 --pass-range " + std::to_string(a) + ":" + std::to_string(b) + " -o " + part);
+                ASSERT_EQ(r.exitCode, 0) << r.err;
+                parts += " " + part;
+            }
+            const auto m = runTetglow("merge" + parts + " -o " + dir + "/merged.exr");
+            ASSERT_EQ(m.exitCode, 0) << m.err;
+            EXPECT_EQ(readFile(dir + "/merged.exr"), readFile(dir + "/single.exr")) << integrator << ", " << split.size() << " parts";
+            EXPECT_TRUE(std::filesystem::exists(dir + "/merged.png"));
+        }
+    }
+}
+
+TEST(PartialRender, MergeRefusesPartsThatAreNotOneRender) {
+    const std::string dir = tempDir();
+    const std::string common = "render " + kSphere + " --resolution 8x6";
+    auto part = [&](const std::string& name, const std::string& range, const std::string& extra = " --spp 6") {
+        const std::string path = dir + "/" + name + ".exr";
+        const auto r = runTetglow(common + extra + " --pass-range " + range + " -o " + path);
+        EXPECT_EQ(r.exitCode, 0) << r.err;
+        return path;
+    };
+    const std::string a = part("a", "0:3"), b = part("b", "3:6"), overlap = part("overlap", "2:5"), tail = part("tail", "5:6");
+    const std::string seed = part("seed", "3:6", " --spp 6 --seed 7"), spp = part("spp", "3:6", " --spp 7");
+    ASSERT_EQ(runTetglow(common + " --spp 6 -o " + dir + "/whole.exr").exitCode, 0);
+    struct Case {
+        std::string parts, file, message;
+    };
+    const std::vector<Case> cases = {
+        {a + " " + seed, seed, "a different scene or different settings"},
+        {a + " " + spp, spp, "a different scene or different settings"},
+        {a + " " + overlap + " " + b, overlap, "passes 2:5 overlap passes 0:3"},
+        {a + " " + tail, tail, "passes 3:5 before its 5:6 are in no part"},
+        {b, b, "passes 0:3 before its 3:6 are in no part"},
+        {a, a, "passes 3:6 after its 0:3 are in no part"},
+        {a + " " + b + " " + b, b, "overlap"},
+        {a + " " + dir + "/whole.exr", dir + "/whole.exr", "not a partial render"},
+        {a + " " + dir + "/none.exr", dir + "/none.exr", "no such file"},
+    };
+    for (const Case& c : cases) {
+        const auto r = runTetglow("merge " + c.parts + " -o " + dir + "/out.exr");
+        EXPECT_EQ(r.exitCode, 1) << c.parts;
+        EXPECT_NE(r.err.find(c.file + ": "), std::string::npos) << r.err;
+        EXPECT_NE(r.err.find(c.message), std::string::npos) << r.err;
+        EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+        EXPECT_FALSE(std::filesystem::exists(dir + "/out.exr")) << c.parts;
+    }
+    EXPECT_EQ(runTetglow("merge " + a + " " + b + " -o " + dir + "/out.exr").exitCode, 0);
+}
+
+TEST(PartialRender, RefusesTimeLimitsAndBadRanges) {
+    const std::string dir = tempDir(), common = "render " + kSphere + " --resolution 8x6 --spp 6 -o " + dir + "/p.exr";
+    for (const char* bad : {" --pass-range 0:3 --time 1", " --pass-range 3:3", " --pass-range 0:7", " --pass-range 2", " --pass-range -1:2"}) {
+        const auto r = runTetglow(common + bad);
+        EXPECT_EQ(r.exitCode, 2) << bad;
+        EXPECT_NE(r.err.find("--"), std::string::npos) << r.err;
+        EXPECT_FALSE(std::filesystem::exists(dir + "/p.exr")) << bad;
+    }
+}
+
+// A turntable: frames differ, frame 0 is the still, and each frame splits and merges alike.
+TEST(PartialRender, TurntableFramesSplitAndMerge) {
+    std::string scene = readFile(kSphere);
+    const std::string camera = "\"camera\":";
+    scene.insert(scene.find(camera), "\"turntable\": {\"frames\": 4, \"axis\": [0, 1, 0]},\n  ");
+    const std::string path = writeTemp("turntable.json", scene), dir = tempDir();
+    const std::string common = " --resolution 12x10 --spp 4";
+    ASSERT_EQ(runTetglow("render " + kSphere + common + " -o " + dir + "/still.exr").exitCode, 0);
+    ASSERT_EQ(runTetglow("render " + path + common + " -o " + dir + "/f0.exr").exitCode, 0);
+    ASSERT_EQ(runTetglow("render " + path + common + " --frame 1 -o " + dir + "/f1.exr").exitCode, 0);
+    EXPECT_EQ(readFile(dir + "/f0.exr"), readFile(dir + "/still.exr"));
+    EXPECT_NE(readFile(dir + "/f1.exr"), readFile(dir + "/f0.exr"));
+    for (const char* range : {"0:1", "1:4"})
+        ASSERT_EQ(runTetglow("render " + path + common + " --frame 1 --pass-range " + range + " -o " + dir + "/p" + range[0] + ".exr").exitCode, 0);
+    ASSERT_EQ(runTetglow("render " + path + common + " --frame 2 --pass-range 1:4 -o " + dir + "/other.exr").exitCode, 0);
+    ASSERT_EQ(runTetglow("merge " + dir + "/p0.exr " + dir + "/p1.exr -o " + dir + "/m1.exr").exitCode, 0);
+    EXPECT_EQ(readFile(dir + "/m1.exr"), readFile(dir + "/f1.exr"));
+    const auto mixed = runTetglow("merge " + dir + "/p0.exr " + dir + "/other.exr -o " + dir + "/bad.exr");
+    EXPECT_EQ(mixed.exitCode, 1);
+    EXPECT_NE(mixed.err.find(dir + "/other.exr: frame 2, but"), std::string::npos) << mixed.err;
+    const auto past = runTetglow("render " + path + common + " --frame 4 -o " + dir + "/f4.exr");
+    EXPECT_EQ(past.exitCode, 1);
+    EXPECT_NE(past.err.find("--frame 4 is past the scene's frames 0..3"), std::string::npos) << past.err;
+}
+
+}  // namespace
+}  // namespace tetglow::test
