@@ -49,6 +49,9 @@ struct TetMesh {
     static uint32_t surfaceTriangle(int32_t adj) { return ~uint32_t(adj); }
 
     size_t regionCount() const { return regionParent.size(); }
+    // The tet face across surface triangle s from tet face `face` (4 * tet + local face), or
+    // UINT32_MAX where no region is on the other side.
+    uint32_t across(uint32_t s, uint32_t face) const { return surfaceFace[s] == face ? surfaceFaceFront[s] : surfaceFace[s]; }
     int32_t region(uint32_t t) const;    // the region owning tet t
     double tetVolume(uint32_t t) const;
     double regionVolume(int32_t r) const;         // sum of its tet volumes
