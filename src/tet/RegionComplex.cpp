@@ -90,7 +90,6 @@ RegionComplex singleRegion(const TriangleMesh& surface) {
     c.sides.assign(surface.triangles.size(), {0, -1});
     for (uint32_t t = 0; t < surface.triangles.size(); ++t) c.source.push_back({0, t});
     c.parent = {-1};
-    c.enclosedVolume = {signedVolume(surface)};
     return c;
 }
 
@@ -141,16 +140,15 @@ RegionComplex buildRegionComplex(const std::vector<TriangleMesh>& surfaces, cons
         for (int32_t p = c.parent[i]; p >= 0; p = c.parent[p]) ++depth[i];
     for (size_t t = 0; t < c.surface.triangles.size(); ++t) c.sides.push_back(sidesOf(holders[t], c.parent, depth));
 
-    std::vector<std::vector<const TriangleMesh*>> children(n);
-    c.enclosedVolume.resize(n);
-    for (size_t i = 0; i < n; ++i) c.enclosedVolume[i] += signedVolume(surfaces[i]);
-    for (size_t i = 0; i < n; ++i)
-        if (c.parent[i] >= 0) {
-            children[c.parent[i]].push_back(&surfaces[i]);
-            c.enclosedVolume[c.parent[i]] -= signedVolume(surfaces[i]);
-        }
-    for (size_t i = 0; i < n; ++i) c.seeds.push_back(placeSeed(surfaces[i], children[i], names[i]));
     return c;
+}
+
+void placeSeeds(RegionComplex& complex, const std::vector<TriangleMesh>& surfaces, const std::vector<std::string>& names) {
+    std::vector<std::vector<const TriangleMesh*>> children(surfaces.size());
+    for (size_t i = 0; i < surfaces.size(); ++i)
+        if (complex.parent[i] >= 0) children[complex.parent[i]].push_back(&surfaces[i]);
+    complex.seeds.clear();
+    for (size_t i = 0; i < surfaces.size(); ++i) complex.seeds.push_back(placeSeed(surfaces[i], children[i], names[i]));
 }
 
 }  // namespace tetglow

@@ -20,8 +20,7 @@ struct RegionComplex {
     // Per triangle: {input surface, triangle index in it} of the winding kept.
     std::vector<std::array<uint32_t, 2>> source;
     std::vector<int32_t> parent;           // per region: the region around it, -1 none
-    std::vector<glm::dvec3> seeds;         // per region: a point strictly inside it (TetGen -A)
-    std::vector<double> enclosedVolume;    // per region: its surface's volume minus its children's
+    std::vector<glm::dvec3> seeds;         // per region: a point strictly inside it (TetGen -A), see placeSeeds
 
     size_t regionCount() const { return parent.size(); }
 };
@@ -29,9 +28,13 @@ struct RegionComplex {
 // One region behind every triangle of one closed surface, no seeds: TetGen's input as it is.
 RegionComplex singleRegion(const TriangleMesh& surface);
 
-// From validated surfaces (validateAndRepair), named in messages by `names`. Throws InputError
-// when two surfaces cross or touch other than along shared triangles (naming both and one pair
-// of triangles), have the same inside, or leave a region no room.
+// From validated surfaces (validateAndRepair), named in messages by `names`, without seeds.
+// Throws InputError when two surfaces cross or touch other than along shared triangles (naming
+// both and one pair of triangles) or have the same inside.
 RegionComplex buildRegionComplex(const std::vector<TriangleMesh>& surfaces, const std::vector<std::string>& names);
+
+// Fills complex.seeds; the surfaces and names are the ones it was built from. Throws InputError
+// naming a region that its children leave no room.
+void placeSeeds(RegionComplex& complex, const std::vector<TriangleMesh>& surfaces, const std::vector<std::string>& names);
 
 }  // namespace tetglow

@@ -376,7 +376,8 @@ TetMesh tetrahedralize(std::vector<TriangleMesh> surfaces, const std::vector<std
             throw InputError(names[i].empty() ? e.what() : names[i] + ": " + e.what());
         }
     }
-    const RegionComplex complex = buildRegionComplex(surfaces, names);
+    RegionComplex complex = buildRegionComplex(surfaces, names);
+    placeSeeds(complex, surfaces, names);
     const std::string switches = options.switches();
     const uint64_t key = cacheKey(complex, switches);
     TetStats local;
