@@ -108,6 +108,18 @@ TEST(Regions, NestedBoxesHaveExactVolumes) {
     expectConsistent(m, meshes);
 }
 
+TEST(Regions, SteinerPointsStayOffTheInterfaces) {
+    // A quality bound adds interior points (heterogeneous media need them); every triangle must
+    // still be tet faces as it is, and every tet in its region.
+    const std::vector<TriangleMesh> meshes{validated(icosphere(2, 1.0)), validated(icosphere(2, 0.5, {0.2, 0, 0})),
+                                           validated(icosphere(1, 0.2, {0.3, 0.1, 0}))};
+    TetOptions o = noCache();
+    o.radiusEdgeRatio = 1.4;
+    const TetMesh m = tetrahedralize(meshes, {"outer", "middle", "inner"}, o);
+    EXPECT_GT(m.vertices.size(), m.surfaceVertexCount + 100);
+    expectConsistent(m, meshes);
+}
+
 TEST(Regions, NestedSpheresThreeLevels) {
     const std::vector<TriangleMesh> meshes{validated(icosphere(2, 1.0)), validated(icosphere(2, 0.6, {0.1, 0, 0})),
                                            validated(icosphere(2, 0.25, {0.2, 0.05, 0}))};
