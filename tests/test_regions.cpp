@@ -70,6 +70,11 @@ void expectConsistent(const TetMesh& m, const std::vector<TriangleMesh>& meshes)
         EXPECT_GT(m.regionTets[r + 1], m.regionTets[r]) << "region " << r << " has no tets";
     }
     for (uint32_t s = 0; s < m.surface.size(); ++s) {
+        // The input triangle it comes from, corner for corner in its winding.
+        const auto [mesh, index] = m.surfaceSource[s];
+        ASSERT_LT(mesh, meshes.size());
+        ASSERT_LT(index, meshes[mesh].triangles.size());
+        for (int k = 0; k < 3; ++k) EXPECT_EQ(m.vertices[m.surface[s][k]], meshes[mesh].corner(index, k)) << "triangle " << s;
         auto tri = m.surface[s];
         std::sort(tri.begin(), tri.end());
         for (int side = 0; side < 2; ++side) {
