@@ -1,5 +1,6 @@
-// tetglow generate fish|cloud [-o FILE.obj] [--PARAMETER VALUE ...]: procedural demo meshes.
+// tetglow generate fish|cloud|sphere [-o FILE.obj] [--PARAMETER VALUE ...]: procedural meshes.
 #include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <functional>
 #include <memory>
@@ -9,6 +10,7 @@
 #include "cli/Commands.h"
 #include "scene/CloudGenerator.h"
 #include "scene/FishGenerator.h"
+#include "tet/Shapes.h"
 
 namespace tetglow::cli {
 namespace {
@@ -67,6 +69,19 @@ private:
     CLI::App* app_;
 };
 
+// An icosphere, for nested test media (`tetrahedralize` of several meshes).
+struct SphereParams {
+    double radius = 1, x = 0, y = 0, z = 0;
+    int subdivisions = 4;
+};
+
+TriangleMesh makeSphere(const SphereParams& p) {
+    if (!(p.radius > 0) || !std::isfinite(p.radius)) throw InputError("--radius must be a finite number > 0");
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) throw InputError("--x, --y, --z must be finite");
+    if (p.subdivisions < 0 || p.subdivisions > 7) throw InputError("--subdivisions must be 0 to 7");
+    return icosphere(p.subdivisions, p.radius, {p.x, p.y, p.z});
+}
+
 }  // namespace
 
 void addGenerateCommand(CLI::App& app) {
@@ -93,6 +108,14 @@ void addGenerateCommand(CLI::App& app) {
         .option("--seed", &CloudParams::seed, "Which cloud: any value from 0 to 4294967295")
         .option("--bumps", &CloudParams::bumps, "Large puffs, 1 to 16")
         .option("--roughness", &CloudParams::roughness, "Height of the small puffs relative to the radius, 0 to 0.15");
+
+    Generator<SphereParams>(*generate, "sphere", "An icosphere of 20 * 4^subdivisions triangles, vertices on the sphere",
+                            makeSphere)
+        .option("--radius", &SphereParams::radius, "Radius, > 0")
+        .option("--x", &SphereParams::x, "Centre x")
+        .option("--y", &SphereParams::y, "Centre y")
+        .option("--z", &SphereParams::z, "Centre z")
+        .option("--subdivisions", &SphereParams::subdivisions, "Subdivision levels, 0 to 7");
 }
 
 }  // namespace tetglow::cli

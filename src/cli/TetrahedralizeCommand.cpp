@@ -1,8 +1,10 @@
-// tetglow tetrahedralize MESH [-o FILE] [--json]: validate, tetrahedralize, report.
+// tetglow tetrahedralize MESH... [-o FILE] [--json]: validate, tetrahedralize (several meshes
+// together, as regions), report.
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -13,7 +15,8 @@ namespace tetglow::cli {
 namespace {
 
 struct Options {
-    std::string mesh, output;
+    std::vector<std::string> meshes;
+    std::string output;
     bool json = false, noCache = false;
     TetOptions tet;
 };
@@ -27,20 +30,58 @@ void writeVtk(const TetMesh& m, std::ostream& out) {
     for (const auto& t : m.tets) out << "4 " << t[0] << ' ' << t[1] << ' ' << t[2] << ' ' << t[3] << '\n';
     out << "CELL_TYPES " << m.tets.size() << '\n';
     for (size_t i = 0; i < m.tets.size(); ++i) out << "10\n";
+    out << "CELL_DATA " << m.tets.size() << "\nSCALARS region int 1\nLOOKUP_TABLE default\n";
+    for (uint32_t t = 0; t < m.tets.size(); ++t) out << m.region(t) << '\n';
+}
+
+// Per region: its tets, their volume against the volume its surfaces enclose (its mesh's
+// minus the meshes nested in it), and the surface triangles on its boundary.
+struct RegionReport {
+    size_t tets = 0, boundaryFaces = 0;
+    double tetVolume = 0, enclosedVolume = 0, relError = 0;
+};
+
+std::vector<RegionReport> regionReports(const TetMesh& mesh) {
+    std::vector<RegionReport> regions(mesh.regionCount());
+    for (int32_t r = 0; r < int32_t(regions.size()); ++r) {
+        RegionReport& g = regions[r];
+        g.tets = mesh.regionTets[r + 1] - mesh.regionTets[r];
+        g.tetVolume = mesh.regionVolume(r);
+        g.enclosedVolume = mesh.regionSurfaceVolume(r);
+        g.relError = std::abs(g.tetVolume - g.enclosedVolume) / g.enclosedVolume;
+    }
+    for (const auto& sides : mesh.surfaceRegions)
+        for (int32_t r : sides)
+            if (r >= 0) ++regions[r].boundaryFaces;
+    return regions;
 }
 
 void run(const Options& o) {
-    if (!o.output.empty()) prepareOutput(o.output, {o.mesh});
-    std::vector<std::string> warnings;
-    TriangleMesh surface = readMesh(o.mesh, &warnings);
-    for (const auto& w : warnings) std::fprintf(stderr, "tetglow: warning: %s\n", w.c_str());
+    if (!o.output.empty()) prepareOutput(o.output, o.meshes);
+    std::vector<TriangleMesh> surfaces;
+    for (const auto& path : o.meshes) {
+        std::vector<std::string> warnings;
+        surfaces.push_back(readMesh(path, &warnings));
+        for (const auto& w : warnings) std::fprintf(stderr, "tetglow: warning: %s\n", w.c_str());
+    }
     TetOptions tetOptions = o.tet;
     tetOptions.useCache = !o.noCache;
     TetStats stats;
-    ValidationReport report;
-    const TetMesh mesh = tetrahedralize(std::move(surface), tetOptions, &stats, &report);
-    const double tetVolume = mesh.volume(), meshVolume = report.volume;
+    std::vector<ValidationReport> reports;
+    // One mesh keeps its messages unprefixed; several name the file.
+    const std::vector<std::string> names = o.meshes.size() == 1 ? std::vector<std::string>{""} : o.meshes;
+    const TetMesh mesh = tetrahedralize(std::move(surfaces), names, tetOptions, &stats, &reports);
+    double meshVolume = 0;
+    size_t components = 0;
+    std::vector<std::string> notes;
+    for (size_t i = 0; i < reports.size(); ++i) {
+        if (mesh.regionParent[i] < 0) meshVolume += reports[i].volume;
+        components += reports[i].components;
+        for (const auto& n : reports[i].notes) notes.push_back(o.meshes.size() == 1 ? n : o.meshes[i] + ": " + n);
+    }
+    const double tetVolume = mesh.volume();
     const double relError = std::abs(tetVolume - meshVolume) / meshVolume;
+    const auto regions = regionReports(mesh);
     if (!o.output.empty()) {
         const std::string ext = std::filesystem::path(o.output).extension().string();
         if (ext == ".vtk")
@@ -50,30 +91,51 @@ void run(const Options& o) {
     }
     const size_t steiner = mesh.vertices.size() - mesh.surfaceVertexCount;
     if (o.json) {
-        nlohmann::json j = {{"mesh", o.mesh},
+        nlohmann::json regionList = nlohmann::json::array();
+        for (size_t r = 0; r < regions.size(); ++r)
+            regionList.push_back({{"mesh", o.meshes[r]},
+                                  {"inside", mesh.regionParent[r] < 0 ? nlohmann::json(nullptr) : nlohmann::json(o.meshes[mesh.regionParent[r]])},
+                                  {"tets", regions[r].tets},
+                                  {"tet_volume", regions[r].tetVolume},
+                                  {"enclosed_volume", regions[r].enclosedVolume},
+                                  {"volume_relative_error", regions[r].relError},
+                                  {"boundary_faces", regions[r].boundaryFaces}});
+        nlohmann::json j = {{"mesh", o.meshes.size() == 1 ? nlohmann::json(o.meshes[0]) : nlohmann::json(o.meshes)},
                             {"switches", tetOptions.switches()},
                             {"tets", mesh.tets.size()},
                             {"vertices", mesh.vertices.size()},
                             {"steiner_points", steiner},
                             {"boundary_faces", mesh.surface.size()},
-                            {"components", report.components},
+                            {"components", components},
                             {"mesh_volume", meshVolume},
                             {"tet_volume", tetVolume},
                             {"volume_relative_error", relError},
                             {"bytes_per_tet", mesh.bytesPerTet()},
+                            {"regions", regionList},
                             {"seconds", stats.seconds},
                             {"from_cache", stats.fromCache},
-                            {"repairs", report.notes},
+                            {"repairs", notes},
                             {"output", o.output}};
         std::cout << j.dump(2) << '\n';
         return;
     }
-    std::printf("mesh             %s\n", o.mesh.c_str());
-    for (const auto& n : report.notes) std::printf("repaired         %s\n", n.c_str());
+    for (const auto& m : o.meshes) std::printf("mesh             %s\n", m.c_str());
+    for (const auto& n : notes) std::printf("repaired         %s\n", n.c_str());
     std::printf("tetrahedra       %zu (%zu bytes each + vertices)\n", mesh.tets.size(), mesh.bytesPerTet());
     std::printf("vertices         %zu (%zu Steiner points)\n", mesh.vertices.size(), steiner);
-    std::printf("boundary faces   %zu (one per input triangle)\n", mesh.surface.size());
+    std::printf("boundary faces   %zu (one per input triangle%s)\n", mesh.surface.size(),
+                o.meshes.size() > 1 ? "; shared triangles once" : "");
     std::printf("volume           mesh %.12g, tets %.12g, relative difference %.2e\n", meshVolume, tetVolume, relError);
+    if (o.meshes.size() > 1) {
+        std::printf("regions          (volume enclosed: the mesh's minus the meshes nested in it)\n");
+        for (size_t r = 0; r < regions.size(); ++r) {
+            const auto& g = regions[r];
+            std::printf("  %s%s%s\n      tets %zu, volume: enclosed %.12g, tets %.12g, relative difference %.2e, boundary faces %zu\n",
+                        o.meshes[r].c_str(), mesh.regionParent[r] < 0 ? "" : " inside ",
+                        mesh.regionParent[r] < 0 ? "" : o.meshes[mesh.regionParent[r]].c_str(), g.tets, g.enclosedVolume,
+                        g.tetVolume, g.relError, g.boundaryFaces);
+        }
+    }
     std::printf("time             %.3f s%s\n", stats.seconds, stats.fromCache ? " (from cache)" : "");
     if (!o.output.empty()) std::printf("written          %s\n", o.output.c_str());
 }
@@ -82,8 +144,8 @@ void run(const Options& o) {
 
 void addTetrahedralizeCommand(CLI::App& app) {
     auto o = std::make_shared<Options>();
-    CLI::App* cmd = app.add_subcommand("tetrahedralize", "Validate a closed mesh and tetrahedralize its interior");
-    cmd->add_option("mesh", o->mesh, "Closed triangle mesh (OBJ or OFF)")->required();
+    CLI::App* cmd = app.add_subcommand("tetrahedralize", "Validate closed meshes and tetrahedralize their interiors as regions");
+    cmd->add_option("mesh", o->meshes, "Closed triangle meshes (OBJ or OFF), nested or touching along shared triangles")->required();
     cmd->add_option("-o,--output", o->output, "Write the tet mesh (.vtk: legacy VTK for ParaView; else tetglow's binary)")->check(kNonEmpty);
     cmd->add_flag("--json", o->json, "Print the report as one JSON object");
     cmd->add_option("--quality", o->tet.radiusEdgeRatio, "Radius-edge ratio bound (TetGen -q); adds Steiner points")

@@ -6,6 +6,8 @@
 #include <glm/geometric.hpp>
 
 #include "scene/DensityField.h"
+#include "tet/MeshValidation.h"
+#include "tet/RegionComplex.h"
 #include "tet/SurfaceBVH.h"
 
 namespace tetglow {
@@ -48,6 +50,32 @@ SceneMedium buildMedium(const MediumDesc& desc) {
     return m;
 }
 
+// Media must lie apart. Crossing media are an error in any case (naming both and a triangle
+// pair); nested or touching ones would be regions of one tet mesh, which the integrators do not
+// render yet, so they are refused rather than rendered wrong.
+void checkMediaApart(const std::vector<MediumDesc>& media) {
+    if (media.size() < 2) return;
+    std::vector<TriangleMesh> surfaces;
+    std::vector<std::string> names;
+    for (const auto& m : media) {
+        surfaces.push_back(m.boundary);
+        names.push_back(m.name);
+        try {
+            validateAndRepair(surfaces.back());
+        } catch (const InputError& e) {
+            throw InputError(m.name + ": " + e.what());
+        }
+    }
+    const RegionComplex regions = buildRegionComplex(surfaces, names);
+    for (size_t i = 0; i < media.size(); ++i)
+        if (const int32_t p = regions.parent[i]; p >= 0)
+            throw InputError(names[i] + " lies inside " + names[p] + ": nested media are not rendered yet");
+    for (size_t s = 0; s < regions.sides.size(); ++s)
+        if (const int32_t front = regions.sides[s][1]; front >= 0)
+            throw InputError(names[regions.sides[s][0]] + " and " + names[front] +
+                             " share triangles: touching media are not rendered yet");
+}
+
 double sceneScale(const SceneDesc& desc) {
     double scale = glm::length(desc.camera.position);
     auto extend = [&](const TriangleMesh& mesh) {
@@ -64,6 +92,7 @@ Scene::Scene(const SceneDesc& desc) : desc_(desc), camera_(desc.camera) {
     // 64 float ulps at the scene's largest coordinate: beyond Embree's rounding of hit points.
     epsilon_ = 64 * 0x1.0p-23 * sceneScale(desc);
     const auto start = std::chrono::steady_clock::now();
+    checkMediaApart(desc.media);
     for (const auto& m : desc.media) media_.push_back(buildMedium(m));
     tetSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     Bounds3 geometry;

@@ -79,6 +79,8 @@ std::array<TetWalk::Vertex, 3> TetWalk::projectSurface(uint32_t s) const {
 }
 
 bool TetWalk::tryEnter(uint32_t s, bool* exits) {
+    if (exits) *exits = false;
+    if (mesh_->surfaceFaceFront[s] != UINT32_MAX) return false;  // an interface: reached from inside only
     const auto [a, b, c] = projectSurface(s);
     const double ab = orient(a, b), bc = orient(b, c), ca = orient(c, a);
     if (exits) *exits = ab < 0 && bc < 0 && ca < 0;
@@ -178,9 +180,21 @@ inline bool TetWalk::cross(int opposite, const Vertex& e, const Vertex& x, const
     if (TetMesh::isBoundary(adj)) {
         state_ = State::Exited;
         exitTriangle_ = TetMesh::surfaceTriangle(adj);
+        exitFace_ = opposite;
+        setFace(tet_, apex_, e, x, y, sEX, sXY, sYE);  // kept for crossInterface()
     } else {
         setFace(TetMesh::neighbourTet(adj), TetMesh::neighbourFace(adj), e, x, y, sEX, sXY, sYE);
     }
+    return true;
+}
+
+bool TetWalk::crossInterface() {
+    if (state_ != State::Exited || exitFace_ < 0) return false;
+    const uint32_t f = mesh_->across(exitTriangle_, 4 * tet_ + uint32_t(exitFace_));
+    if (f == UINT32_MAX) return false;
+    setFace(f >> 2, int(f & 3), face_[0], face_[1], face_[2], side_[0], side_[1], side_[2]);
+    exitFace_ = -1;
+    state_ = State::Walking;
     return true;
 }
 

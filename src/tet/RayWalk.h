@@ -78,6 +78,11 @@ public:
     // lost, which exact predicates should make impossible: see lost()).
     bool next(WalkSegment& segment);
 
+    // After exited(): continues into the region on the other side of the exit triangle, from the
+    // same projected face (so the decisions stay consistent), if there is one; false (and still
+    // exited) where the ray leaves every region.
+    bool crossInterface();
+
     bool exited() const { return state_ == State::Exited; }
     bool lost() const { return state_ == State::Lost; }
     uint32_t entryTriangle() const { return entryTriangle_; }  // UINT32_MAX after start()
@@ -123,7 +128,8 @@ private:
     State state_ = State::Walking;
     uint32_t tet_ = 0;
     int apex_ = 0;       // local index of the vertex opposite the entry face
-    Vertex face_[3];     // entry face of tet_, counter-clockwise around the origin
+    int exitFace_ = -1;  // once exited: tet_'s local face the ray left through, -1 if none
+    Vertex face_[3];     // entry face of tet_ (once exited: the exit face), counter-clockwise around the origin
     double side_[3]{};   // side(face_[k], face_[k+1]) > 0
     double tIn_ = 0;
     uint32_t entryTriangle_ = UINT32_MAX, exitTriangle_ = 0;

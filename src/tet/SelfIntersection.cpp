@@ -205,6 +205,10 @@ Grid buildGrid(const std::vector<Box>& boxes) {
 
 }  // namespace
 
+bool segmentMeetsTriangle(const glm::dvec3& p, const glm::dvec3& q, const Tri& triangle) {
+    return segmentHitsTriangle(p, q, side(triangle, p), side(triangle, q), triangle);
+}
+
 std::optional<std::pair<uint32_t, uint32_t>> findSelfIntersection(const TriangleMesh& mesh) {
     if (mesh.triangles.empty()) return std::nullopt;
     std::vector<Box> boxes(mesh.triangles.size());

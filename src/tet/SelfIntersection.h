@@ -13,4 +13,7 @@ namespace tetglow {
 // already be free of degenerate triangles.
 std::optional<std::pair<uint32_t, uint32_t>> findSelfIntersection(const TriangleMesh& mesh);
 
+// The closed segment pq meets the closed triangle abc (exact; p == q tests a point).
+bool segmentMeetsTriangle(const glm::dvec3& p, const glm::dvec3& q, const std::array<glm::dvec3, 3>& triangle);
+
 }  // namespace tetglow

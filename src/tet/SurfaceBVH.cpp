@@ -81,6 +81,12 @@ SurfaceBVH::~SurfaceBVH() {
     rtcReleaseScene(grown_);
 }
 
+namespace {
+thread_local uint64_t tQueries = 0;
+}  // namespace
+
+uint64_t surfaceQueries() { return tQueries; }
+
 double SurfaceBVH::refine(const Ray& ray, uint32_t triangle, float t) const {
     // Embree's float t is off by ~1e-7 / sin(angle) at grazing angles; the plane equation in
     // double is not.
@@ -142,6 +148,7 @@ std::optional<SurfaceHit> SurfaceBVH::intersect(const Ray& ray, double tnear, do
     rtcInitIntersectContext(&ctx.base);
     ctx.base.filter = filter;
     RTCRayHit rh = makeRay(ray, tnear, tfar);
+    ++tQueries;
     rtcIntersect1(scene_, &ctx.base, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
     const uint32_t prim = rh.hit.primID;
@@ -154,6 +161,7 @@ std::vector<SurfaceHit> SurfaceBVH::allHits(const Ray& ray, double tnear) const 
     rtcInitIntersectContext(&ctx.base);
     ctx.base.filter = filter;
     RTCRayHit rh = makeRay(ray, tnear, INFINITY);
+    ++tQueries;
     rtcIntersect1(scene_, &ctx.base, &rh);
     std::sort(hits.begin(), hits.end(), [](const SurfaceHit& a, const SurfaceHit& b) { return a.t < b.t; });
     return hits;
@@ -165,6 +173,7 @@ int SurfaceBVH::crossings(const Ray& ray) const {
     rtcInitIntersectContext(&ctx.base);
     ctx.base.filter = filter;
     RTCRayHit rh = makeRay(ray, 0, INFINITY);
+    ++tQueries;
     rtcIntersect1(scene_, &ctx.base, &rh);
     return count;
 }
@@ -180,6 +189,7 @@ std::vector<SurfaceHit> SurfaceBVH::candidates(const Ray& ray, double tnear) con
     rtcInitIntersectContext(&ctx.base);
     ctx.base.filter = filter;
     RTCRayHit rh = makeRay(ray, shift, INFINITY, shift);
+    ++tQueries;
     rtcIntersect1(grown_, &ctx.base, &rh);
     return hits;
 }

@@ -52,6 +52,9 @@ private:
     double margin_ = 0;   // how far each triangle was grown
 };
 
+// Embree traversals this thread has made through any SurfaceBVH: shows that a walk needs none.
+uint64_t surfaceQueries();
+
 RTCDevice embreeDevice();
 // Adds the triangles to `scene` as one Embree geometry (positions in float) and returns its id.
 unsigned attachTriangles(RTCScene scene, const std::vector<glm::dvec3>& positions,

@@ -1,5 +1,6 @@
 #include "tet/TetMesh.h"
 
+#include <algorithm>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -18,6 +19,27 @@ double TetMesh::tetVolume(uint32_t t) const {
 double TetMesh::volume() const {
     double sum = 0;
     for (uint32_t t = 0; t < tets.size(); ++t) sum += tetVolume(t);
+    return sum;
+}
+
+int32_t TetMesh::region(uint32_t t) const {
+    return int32_t(std::upper_bound(regionTets.begin() + 1, regionTets.end() - 1, t) - regionTets.begin()) - 1;
+}
+
+double TetMesh::regionVolume(int32_t r) const {
+    double sum = 0;
+    for (uint32_t t = regionTets[r]; t < regionTets[r + 1]; ++t) sum += tetVolume(t);
+    return sum;
+}
+
+double TetMesh::regionSurfaceVolume(int32_t r) const {
+    double sum = 0;
+    for (size_t s = 0; s < surface.size(); ++s) {
+        const int sign = (surfaceRegions[s][0] == r) - (surfaceRegions[s][1] == r);
+        if (sign == 0) continue;
+        const glm::dvec3 a = vertices[surface[s][0]], b = vertices[surface[s][1]], c = vertices[surface[s][2]];
+        sum += sign * glm::dot(a, glm::cross(b, c)) / 6.0;
+    }
     return sum;
 }
 
@@ -53,7 +75,7 @@ uint32_t TetMesh::surfaceAcross(uint32_t s, uint32_t a, uint32_t b) const {
 
 namespace {
 
-constexpr char kMagic[8] = {'T', 'G', 'L', 'W', 'T', 'E', 'T', '3'};  // 3: tets in Morton order
+constexpr char kMagic[8] = {'T', 'G', 'L', 'W', 'T', 'E', 'T', '4'};  // 4: regions
 
 template <class T>
 void put(std::ostream& out, const std::vector<T>& v) {
@@ -87,6 +109,11 @@ void writeTetMesh(const TetMesh& mesh, uint64_t key, const std::string& path) {
         put(out, mesh.adjacency);
         put(out, mesh.surface);
         put(out, mesh.surfaceFace);
+        put(out, mesh.regionTets);
+        put(out, mesh.regionParent);
+        put(out, mesh.surfaceRegions);
+        put(out, mesh.surfaceFaceFront);
+        put(out, mesh.surfaceSource);
         if (!out) throw InputError(path + ": write failed");
     }
     std::filesystem::rename(tmp, path);
@@ -103,19 +130,30 @@ bool readTetMesh(TetMesh& mesh, uint64_t key, const std::string& path) {
     TetMesh m;
     m.surfaceVertexCount = nsv;
     if (!get(in, m.vertices, limit) || !get(in, m.tets, limit) || !get(in, m.adjacency, limit) ||
-        !get(in, m.surface, limit) || !get(in, m.surfaceFace, limit))
+        !get(in, m.surface, limit) || !get(in, m.surfaceFace, limit) || !get(in, m.regionTets, limit) ||
+        !get(in, m.regionParent, limit) || !get(in, m.surfaceRegions, limit) || !get(in, m.surfaceFaceFront, limit) ||
+        !get(in, m.surfaceSource, limit))
         return false;
-    if (m.adjacency.size() != m.tets.size() || m.surfaceFace.size() != m.surface.size() || nsv > m.vertices.size())
+    const size_t ns = m.surface.size();
+    if (m.adjacency.size() != m.tets.size() || m.surfaceFace.size() != ns || nsv > m.vertices.size() ||
+        m.surfaceRegions.size() != ns || m.surfaceFaceFront.size() != ns || m.surfaceSource.size() != ns ||
+        m.regionTets.size() != m.regionParent.size() + 1 || m.regionTets.front() != 0 || m.regionTets.back() != m.tets.size() ||
+        !std::is_sorted(m.regionTets.begin(), m.regionTets.end()))
         return false;
+    const auto regionOk = [&](int32_t r) { return r >= -1 && r < int32_t(m.regionParent.size()); };
+    for (int32_t p : m.regionParent)
+        if (!regionOk(p)) return false;
     // Indices are checked so that a damaged file cannot send a walk out of bounds.
-    const uint64_t nv = m.vertices.size(), nt = m.tets.size(), ns = m.surface.size();
+    const uint64_t nv = m.vertices.size(), nt = m.tets.size();
     for (size_t t = 0; t < nt; ++t)
         for (int j = 0; j < 4; ++j) {
             const int32_t a = m.adjacency[t][j];
             if (m.tets[t][j] >= nv || (a < 0 ? TetMesh::surfaceTriangle(a) >= ns : TetMesh::neighbourTet(a) >= nt)) return false;
         }
     for (size_t s = 0; s < ns; ++s)
-        if (m.surfaceFace[s] / 4 >= nt || m.surface[s][0] >= nsv || m.surface[s][1] >= nsv || m.surface[s][2] >= nsv)
+        if (m.surfaceFace[s] / 4 >= nt || m.surface[s][0] >= nsv || m.surface[s][1] >= nsv || m.surface[s][2] >= nsv ||
+            (m.surfaceFaceFront[s] != UINT32_MAX && m.surfaceFaceFront[s] / 4 >= nt) || m.surfaceRegions[s][0] < 0 ||
+            !regionOk(m.surfaceRegions[s][0]) || !regionOk(m.surfaceRegions[s][1]))
             return false;
     mesh = std::move(m);
     return true;

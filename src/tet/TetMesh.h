@@ -25,17 +25,37 @@ struct TetMesh {
     std::vector<std::array<int32_t, 4>> adjacency;
     // The validated boundary, wound outward; its vertex ids index `vertices`.
     std::vector<std::array<uint32_t, 3>> surface;
-    // surfaceFace[s] = 4 * tet + local face: the one tet face that is surface triangle s.
+    // surfaceFace[s] = 4 * tet + local face: the tet face that is surface triangle s, behind it
+    // (on the side its normal points away from).
     std::vector<uint32_t> surfaceFace;
 
     size_t surfaceVertexCount = 0;
+
+    // Regions, one per input surface (see RegionComplex): region r owns tets
+    // [regionTets[r], regionTets[r + 1]), each region's in Morton order. A surface triangle is an
+    // interface where there is a region in front of it too: its tet faces on both sides are
+    // boundary faces (~s), and the walk decides what happens there.
+    std::vector<uint32_t> regionTets{0};
+    std::vector<int32_t> regionParent;  // the region around region r, -1 none
+    // Per surface triangle: the regions behind and in front of it (-1: outside every region),
+    // the tet face in front (UINT32_MAX where no region is), and {input surface, its triangle}.
+    std::vector<std::array<int32_t, 2>> surfaceRegions;
+    std::vector<uint32_t> surfaceFaceFront;
+    std::vector<std::array<uint32_t, 2>> surfaceSource;
 
     static bool isBoundary(int32_t adj) { return adj < 0; }
     static uint32_t neighbourTet(int32_t adj) { return uint32_t(adj) >> 2; }
     static int neighbourFace(int32_t adj) { return adj & 3; }
     static uint32_t surfaceTriangle(int32_t adj) { return ~uint32_t(adj); }
 
+    size_t regionCount() const { return regionParent.size(); }
+    // The tet face across surface triangle s from tet face `face` (4 * tet + local face), or
+    // UINT32_MAX where no region is on the other side.
+    uint32_t across(uint32_t s, uint32_t face) const { return surfaceFace[s] == face ? surfaceFaceFront[s] : surfaceFace[s]; }
+    int32_t region(uint32_t t) const;    // the region owning tet t
     double tetVolume(uint32_t t) const;
+    double regionVolume(int32_t r) const;         // sum of its tet volumes
+    double regionSurfaceVolume(int32_t r) const;  // enclosed by its surface triangles (divergence theorem)
     double volume() const;               // sum of tet volumes
     double surfaceVolume() const;        // the boundary's own volume (divergence theorem)
     glm::dvec3 centroid(uint32_t t) const;

@@ -81,7 +81,13 @@ bool TetVolume::visibilityWalk(const glm::dvec3& p, uint32_t& t) const {
         }
         if (beyond < 0) return true;
         const int32_t adj = mesh_.adjacency[t][beyond];
-        if (TetMesh::isBoundary(adj)) return false;  // p is outside, or beyond a concavity
+        if (TetMesh::isBoundary(adj)) {  // into the next region, or p is outside, or beyond a concavity
+            const uint32_t f = mesh_.across(TetMesh::surfaceTriangle(adj), 4 * t + uint32_t(beyond));
+            if (f == UINT32_MAX) return false;
+            t = f >> 2;
+            came = int(f & 3);
+            continue;
+        }
         t = TetMesh::neighbourTet(adj);
         came = TetMesh::neighbourFace(adj);
     }

@@ -35,7 +35,8 @@ public:
     // Tet t holds p, its faces included (exact).
     bool contains(uint32_t t, const glm::dvec3& p) const;
 
-    // Visits, in order, the segments of the ray inside the medium within [tmin, tmax], clipped;
+    // Visits, in order, the segments of the ray inside the medium within [tmin, tmax], clipped,
+    // crossing from region to region through their interfaces (the segment's tet tells the region);
     // the visitor returns false to stop early. `start` is the tet holding ray.at(tmin), or
     // kOutside / kUnknown. Returns false only if a walk was lost (exact predicates prevent it).
     template <class Visitor>
@@ -80,7 +81,9 @@ bool TetVolume::traverse(const Ray& ray, double tmin, double tmax, Visitor&& vis
                 if (!visit(WalkSegment{s.tet, std::max(s.tIn, t), std::min(s.tOut, tmax)})) return true;
             }
             if (walk->lost()) return false;
+            if (walk->crossInterface()) continue;  // into the next region, without Embree
             t = std::max(t, walk->exitT());
+            if (t >= tmax) return true;  // left the medium at or beyond the end: nothing to ask Embree
         }
         const double tolerance = 1e-9 * (1.0 + std::abs(t));
         if (!haveEntries) entries = entriesAlong(ray, t - tolerance), haveEntries = true;

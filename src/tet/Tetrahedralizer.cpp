@@ -6,6 +6,7 @@
 #include <cstring>
 #include <filesystem>
 #include <map>
+#include <tuple>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -14,11 +15,12 @@
 #include <tetgen.h>
 
 #include "tet/Predicates.h"
+#include "tet/RegionComplex.h"
 
 namespace tetglow {
 
 std::string TetOptions::switches() const {
-    std::string s = "pYnQz";
+    std::string s = "pYnQzA";
     char buf[64];
     if (radiusEdgeRatio > 0) s += (std::snprintf(buf, sizeof buf, "q%.17g", radiusEdgeRatio), buf);
     if (maxVolume > 0) s += (std::snprintf(buf, sizeof buf, "a%.17g", maxVolume), buf);
@@ -31,6 +33,7 @@ namespace {
 struct RawTets {
     std::vector<double> points;
     std::vector<int> tets, neighbours;
+    std::vector<double> attributes;  // per tet, with -A: the seeded region + 1, or TetGen's own number
 };
 
 void writeAll(int fd, const void* data, size_t n) {
@@ -51,7 +54,8 @@ void send(int fd, const T* data, int count) {
 }
 
 // In the child: run TetGen and stream the result; never returns.
-[[noreturn]] void runTetGen(const TriangleMesh& mesh, const std::string& switches, int fd) {
+[[noreturn]] void runTetGen(const RegionComplex& complex, const std::string& switches, int fd) {
+    const TriangleMesh& mesh = complex.surface;
     int devnull = ::open("/dev/null", O_WRONLY);  // TetGen prints to stdout even when quiet
     if (devnull >= 0) ::dup2(devnull, STDOUT_FILENO);
     try {
@@ -73,6 +77,13 @@ void send(int fd, const T* data, int count) {
             facet.polygonlist[0].vertexlist = new int[3];
             for (int k = 0; k < 3; ++k) facet.polygonlist[0].vertexlist[k] = int(mesh.triangles[f][k]);
         }
+        in.numberofregions = int(complex.seeds.size());
+        in.regionlist = complex.seeds.empty() ? nullptr : new REAL[5 * complex.seeds.size()];
+        for (size_t r = 0; r < complex.seeds.size(); ++r) {
+            for (int k = 0; k < 3; ++k) in.regionlist[5 * r + k] = complex.seeds[r][k];
+            in.regionlist[5 * r + 3] = double(r + 1);  // TetGen numbers the cells no seed reaches itself
+            in.regionlist[5 * r + 4] = -1;              // no volume bound of its own
+        }
         tetgenbehavior b;
         std::vector<char> sw(switches.begin(), switches.end());
         sw.push_back('\0');
@@ -81,6 +92,10 @@ void send(int fd, const T* data, int count) {
         send(fd, out.pointlist, out.numberofpoints * 3);
         send(fd, out.tetrahedronlist, out.numberoftetrahedra * 4);
         send(fd, out.neighborlist, out.numberoftetrahedra * 4);
+        const int na = out.numberoftetrahedronattributes;
+        std::vector<double> attributes;
+        for (int t = 0; na > 0 && t < out.numberoftetrahedra; ++t) attributes.push_back(out.tetrahedronattributelist[t * na]);
+        send(fd, attributes.data(), int(attributes.size()));
         _exit(0);
     } catch (int code) {
         _exit(code >= 1 && code <= 10 ? code : 11);
@@ -125,7 +140,7 @@ std::string tetgenFailure(int status) {
     }
 }
 
-RawTets runIsolated(const TriangleMesh& mesh, const std::string& switches) {
+RawTets runIsolated(const RegionComplex& complex, const std::string& switches) {
     int fds[2];
     if (::pipe(fds) != 0) throw std::runtime_error("cannot create a pipe for TetGen");
     std::fflush(nullptr);
@@ -133,11 +148,12 @@ RawTets runIsolated(const TriangleMesh& mesh, const std::string& switches) {
     if (pid < 0) throw std::runtime_error("cannot fork a process for TetGen");
     if (pid == 0) {
         ::close(fds[0]);
-        runTetGen(mesh, switches, fds[1]);
+        runTetGen(complex, switches, fds[1]);
     }
     ::close(fds[1]);
     RawTets raw;
-    const bool ok = receive(fds[0], raw.points) && receive(fds[0], raw.tets) && receive(fds[0], raw.neighbours);
+    const bool ok = receive(fds[0], raw.points) && receive(fds[0], raw.tets) && receive(fds[0], raw.neighbours) &&
+                    receive(fds[0], raw.attributes);
     ::close(fds[0]);
     int status = 0;
     while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
@@ -154,12 +170,18 @@ std::array<uint32_t, 3> sortedFace(const std::array<uint32_t, 4>& v, int j) {
 }
 
 // Builds the TetMesh: positive orientation, encoded adjacency, boundary faces <-> surface
-// triangles. Regions enclosed by surface triangles but outside the medium (cavities TetGen
-// filled) are removed: a region is kept when its tets lie behind the outward surface normals.
-TetMesh assemble(const TriangleMesh& surface, const RawTets& raw) {
-    const size_t nv = raw.points.size() / 3, nt = raw.tets.size() / 4;
+// triangles, tets grouped by region. TetGen fills every space the triangles enclose; the
+// connected pieces between triangles (cells) take their region from the side of a triangle
+// they lie on, exactly, and cells outside every region (such as the cavity of a hollow mesh)
+// are removed. With -A, TetGen's attribute of each kept tet must agree: the seed's region + 1,
+// or a number of TetGen's own (0 or above the seeds') for a cell that no seed reaches, such as
+// a second shell of one mesh.
+TetMesh assemble(const RegionComplex& complex, const RawTets& raw) {
+    const TriangleMesh& surface = complex.surface;
+    const size_t nv = raw.points.size() / 3, nt = raw.tets.size() / 4, nr = complex.regionCount();
     if (nt == 0) throw InputError("TetGen produced no tetrahedra (is the mesh closed?)");
     if (nv < surface.positions.size()) throw InputError("TetGen dropped input vertices");
+    if (!raw.attributes.empty() && raw.attributes.size() != nt) throw InputError("TetGen lost the region attributes");
     TetMesh m;
     m.vertices.resize(nv);
     for (size_t i = 0; i < nv; ++i) m.vertices[i] = {raw.points[3 * i], raw.points[3 * i + 1], raw.points[3 * i + 2]};
@@ -197,37 +219,54 @@ TetMesh assemble(const TriangleMesh& surface, const RawTets& raw) {
             auto it = surfaceIndex.find(sortedFace(tets[t], j));
             onSurface[t][j] = it == surfaceIndex.end() ? -1 : int64_t(it->second);
         }
+    // Tet face (t, j) on triangle s lies behind s when the tet's other vertex does.
+    const auto behind = [&](size_t t, int j) {
+        const auto& s = surface.triangles[size_t(onSurface[t][j])];
+        return orient3d(m.vertices[s[0]], m.vertices[s[1]], m.vertices[s[2]], m.vertices[tets[t][j]]) > 0;
+    };
 
-    // Flood regions across faces that are not surface triangles; keep the inside ones.
-    std::vector<int> region(nt, -1), keepRegion;
+    // Flood cells across faces that are not surface triangles; each takes its region from them.
+    constexpr int kUndecided = -2;
+    std::vector<int> cell(nt, -1), cellRegion;
     std::vector<uint32_t> stack;
     for (uint32_t seed = 0; seed < nt; ++seed) {
-        if (region[seed] >= 0) continue;
-        const int id = int(keepRegion.size());
-        keepRegion.push_back(-1);  // undecided
-        region[seed] = id;
+        if (cell[seed] >= 0) continue;
+        const int id = int(cellRegion.size());
+        cellRegion.push_back(kUndecided);
+        cell[seed] = id;
         stack.push_back(seed);
         while (!stack.empty()) {
             const uint32_t t = stack.back();
             stack.pop_back();
             for (int j = 0; j < 4; ++j) {
                 if (onSurface[t][j] >= 0) {
-                    const auto& s = surface.triangles[size_t(onSurface[t][j])];
-                    const bool inside = orient3d(m.vertices[s[0]], m.vertices[s[1]], m.vertices[s[2]],
-                                                 m.vertices[tets[t][j]]) > 0;
-                    if (keepRegion[id] >= 0 && keepRegion[id] != int(inside))
-                        throw InputError("the surface does not separate inside from outside consistently");
-                    keepRegion[id] = inside;
-                } else if (nbr[t][j] >= 0 && region[nbr[t][j]] < 0) {
-                    region[nbr[t][j]] = id;
+                    const int r = complex.sides[size_t(onSurface[t][j])][behind(t, j) ? 0 : 1];
+                    if (cellRegion[id] != kUndecided && cellRegion[id] != r)
+                        throw InputError("the surfaces do not separate the regions consistently");
+                    cellRegion[id] = r;
+                } else if (nbr[t][j] >= 0 && cell[nbr[t][j]] < 0) {
+                    cell[nbr[t][j]] = id;
                     stack.push_back(uint32_t(nbr[t][j]));
                 }
             }
         }
     }
+    const auto regionOf = [&](size_t t) { return cellRegion[cell[t]] == kUndecided ? -1 : cellRegion[cell[t]]; };
+    if (!raw.attributes.empty()) {
+        std::vector<char> seeded(nr, 0);
+        for (size_t t = 0; t < nt; ++t) {
+            const int r = regionOf(t), a = int(std::lround(raw.attributes[t]));
+            if (r < 0) continue;
+            if (a >= 1 && a <= int(nr) && a != r + 1)
+                throw InputError("TetGen's region of tet " + std::to_string(t) + " disagrees with the surfaces");
+            seeded[r] |= a == r + 1;
+        }
+        for (size_t r = 0; r < nr; ++r)
+            if (!seeded[r]) throw InputError("TetGen found no tets around the seed of region " + std::to_string(r));
+    }
 
-    // Kept tets in Morton order of their centroids: a walk's next tet is then usually close in
-    // memory (TetGen's order is not spatial).
+    // Kept tets by region, each region's in Morton order of their centroids: a walk's next tet
+    // is then usually close in memory (TetGen's order is not spatial).
     Bounds3 box;
     for (const auto& v : m.vertices) box.extend(v);
     const glm::dvec3 scale = 1023.0 / glm::max(box.hi - box.lo, glm::dvec3(1e-300));
@@ -237,32 +276,40 @@ TetMesh assemble(const TriangleMesh& surface, const RawTets& raw) {
         x = (x | (x << 4)) & 0x030C30C3;
         return (x | (x << 2)) & 0x09249249;
     };
-    std::vector<std::pair<uint64_t, uint32_t>> order;
+    std::vector<std::tuple<int, uint64_t, uint32_t>> order;
     for (uint32_t t = 0; t < nt; ++t) {
-        if (keepRegion[region[t]] != 1) continue;
+        if (regionOf(t) < 0) continue;
         const auto& v = tets[t];
         const glm::dvec3 c = (m.vertices[v[0]] + m.vertices[v[1]] + m.vertices[v[2]] + m.vertices[v[3]]) * 0.25;
         const glm::dvec3 q = glm::clamp((c - box.lo) * scale, 0.0, 1023.0);
-        order.push_back({spread(uint64_t(q.x)) | spread(uint64_t(q.y)) << 1 | spread(uint64_t(q.z)) << 2, t});
+        order.push_back({regionOf(t), spread(uint64_t(q.x)) | spread(uint64_t(q.y)) << 1 | spread(uint64_t(q.z)) << 2, t});
     }
     std::sort(order.begin(), order.end());
     std::vector<int64_t> newIndex(nt, -1);
-    for (const auto& [code, t] : order) {
+    m.regionTets.assign(nr + 1, 0);
+    for (const auto& [r, code, t] : order) {
         newIndex[t] = int64_t(m.tets.size());
         m.tets.push_back(tets[t]);
+        ++m.regionTets[size_t(r) + 1];
     }
+    for (size_t r = 0; r < nr; ++r) m.regionTets[r + 1] += m.regionTets[r];
+    m.regionParent = complex.parent;
     m.adjacency.resize(m.tets.size());
     m.surface = surface.triangles;
     m.surfaceVertexCount = surface.positions.size();
+    m.surfaceRegions = complex.sides;
+    m.surfaceSource = complex.source;
     m.surfaceFace.assign(surface.triangles.size(), UINT32_MAX);
+    m.surfaceFaceFront.assign(surface.triangles.size(), UINT32_MAX);
     for (size_t t = 0; t < nt; ++t) {
         if (newIndex[t] < 0) continue;
         const auto nt_ = uint32_t(newIndex[t]);
         for (int j = 0; j < 4; ++j) {
             if (onSurface[t][j] >= 0) {
                 const auto s = size_t(onSurface[t][j]);
-                if (m.surfaceFace[s] != UINT32_MAX) throw InputError("surface triangle " + std::to_string(s) + " bounds two tets");
-                m.surfaceFace[s] = 4 * nt_ + uint32_t(j);
+                uint32_t& face = behind(t, j) ? m.surfaceFace[s] : m.surfaceFaceFront[s];
+                if (face != UINT32_MAX) throw InputError("surface triangle " + std::to_string(s) + " bounds two tets on one side");
+                face = 4 * nt_ + uint32_t(j);
                 m.adjacency[nt_][j] = ~int32_t(s);
                 continue;
             }
@@ -276,7 +323,8 @@ TetMesh assemble(const TriangleMesh& surface, const RawTets& raw) {
         }
     }
     for (size_t s = 0; s < m.surfaceFace.size(); ++s)
-        if (m.surfaceFace[s] == UINT32_MAX) throw InputError("surface triangle " + std::to_string(s) + " bounds no tet");
+        if (m.surfaceFace[s] == UINT32_MAX || (m.surfaceFaceFront[s] == UINT32_MAX) != (complex.sides[s][1] < 0))
+            throw InputError("surface triangle " + std::to_string(s) + " is not a tet face on each side with a region");
     return m;
 }
 
@@ -286,10 +334,17 @@ uint64_t fnv1a(uint64_t h, const void* data, size_t n) {
     return h;
 }
 
-uint64_t cacheKey(const TriangleMesh& mesh, const std::string& switches) {
+// The whole set of surfaces: TetGen's input (merged surface, seeds) and how it is read back
+// (the sides of every triangle, the nesting).
+uint64_t cacheKey(const RegionComplex& complex, const std::string& switches) {
+    const TriangleMesh& mesh = complex.surface;
     uint64_t h = 14695981039346656037ull;
     h = fnv1a(h, mesh.positions.data(), mesh.positions.size() * sizeof(mesh.positions[0]));
     h = fnv1a(h, mesh.triangles.data(), mesh.triangles.size() * sizeof(mesh.triangles[0]));
+    h = fnv1a(h, complex.sides.data(), complex.sides.size() * sizeof(complex.sides[0]));
+    h = fnv1a(h, complex.source.data(), complex.source.size() * sizeof(complex.source[0]));
+    h = fnv1a(h, complex.parent.data(), complex.parent.size() * sizeof(complex.parent[0]));
+    h = fnv1a(h, complex.seeds.data(), complex.seeds.size() * sizeof(complex.seeds[0]));
     h = fnv1a(h, switches.data(), switches.size());
     return h;
 }
@@ -316,16 +371,29 @@ void checkTetCount(double volume, double maxVolume) {
 }
 
 TetMesh tetrahedralizeUnchecked(const TriangleMesh& surface, const std::string& switches) {
-    return assemble(surface, runIsolated(surface, switches));
+    const RegionComplex complex = singleRegion(surface);
+    return assemble(complex, runIsolated(complex, switches));
 }
 
-TetMesh tetrahedralize(TriangleMesh surface, const TetOptions& options, TetStats* stats, ValidationReport* report) {
+TetMesh tetrahedralize(std::vector<TriangleMesh> surfaces, const std::vector<std::string>& names,
+                       const TetOptions& options, TetStats* stats, std::vector<ValidationReport>* reports) {
     const auto start = std::chrono::steady_clock::now();
-    ValidationReport validation = validateAndRepair(surface);
-    if (report) *report = validation;
-    checkTetCount(validation.volume, options.maxVolume);
+    if (reports) reports->clear();
+    double largestVolume = 0;  // the regions' union holds at least this much
+    for (size_t i = 0; i < surfaces.size(); ++i) {
+        try {
+            const ValidationReport validation = validateAndRepair(surfaces[i]);
+            largestVolume = std::max(largestVolume, validation.volume);
+            if (reports) reports->push_back(validation);
+        } catch (const InputError& e) {
+            throw InputError(names[i].empty() ? e.what() : names[i] + ": " + e.what());
+        }
+    }
+    checkTetCount(largestVolume, options.maxVolume);
+    RegionComplex complex = buildRegionComplex(surfaces, names);
+    placeSeeds(complex, surfaces, names);
     const std::string switches = options.switches();
-    const uint64_t key = cacheKey(surface, switches);
+    const uint64_t key = cacheKey(complex, switches);
     TetStats local;
     std::filesystem::path file;
     if (options.useCache) {
@@ -336,11 +404,12 @@ TetMesh tetrahedralize(TriangleMesh surface, const TetOptions& options, TetStats
         }
     }
     TetMesh mesh;
-    if (!file.empty() && readTetMesh(mesh, key, file.string()) && mesh.surface == surface.triangles) {
+    if (!file.empty() && readTetMesh(mesh, key, file.string()) && mesh.surface == complex.surface.triangles &&
+        mesh.surfaceRegions == complex.sides) {
         local.fromCache = true;
         local.cacheFile = file.string();
     } else {
-        mesh = tetrahedralizeUnchecked(surface, switches);
+        mesh = assemble(complex, runIsolated(complex, switches));
         if (!file.empty()) {
             std::error_code ec;
             std::filesystem::create_directories(file.parent_path(), ec);
@@ -354,6 +423,13 @@ TetMesh tetrahedralize(TriangleMesh surface, const TetOptions& options, TetStats
     }
     local.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (stats) *stats = local;
+    return mesh;
+}
+
+TetMesh tetrahedralize(TriangleMesh surface, const TetOptions& options, TetStats* stats, ValidationReport* report) {
+    std::vector<ValidationReport> reports;
+    TetMesh mesh = tetrahedralize({std::move(surface)}, {""}, options, stats, &reports);
+    if (report) *report = reports.front();
     return mesh;
 }
 

@@ -1,6 +1,7 @@
 // Validated surface -> TetMesh, through TetGen with the boundary preserved (-pY).
 #pragma once
 #include <string>
+#include <vector>
 
 #include "tet/MeshValidation.h"
 #include "tet/TetMesh.h"
@@ -32,6 +33,13 @@ void checkTetCount(double volume, double maxVolume);
 // TetGen runs in a child process, so its crashes and thrown ints become InputErrors here.
 TetMesh tetrahedralize(TriangleMesh surface, const TetOptions& options = {}, TetStats* stats = nullptr,
                        ValidationReport* report = nullptr);
+
+// Several closed surfaces, nested or touching along shared triangles, in one TetGen run
+// (-pYnA): every triangle is tet faces, every tet belongs to a region (one per surface, see
+// RegionComplex). Errors name the surface by `names` (one per surface; "" adds no name).
+TetMesh tetrahedralize(std::vector<TriangleMesh> surfaces, const std::vector<std::string>& names,
+                       const TetOptions& options = {}, TetStats* stats = nullptr,
+                       std::vector<ValidationReport>* reports = nullptr);
 
 // TetGen on a surface as it is, without validation or cache: shows what tetglow survives when
 // TetGen fails (0 tets, a thrown int, a crash), each as an InputError. For tests.
