@@ -6,7 +6,7 @@
 #include <cstring>
 #include <sstream>
 
-#include "scene/TextFile.h"
+#include "tet/InputFile.h"
 
 namespace tetglow {
 namespace {
@@ -192,7 +192,7 @@ void addFace(TriangleMesh& out, const std::vector<double>& face, size_t vertexCo
 }  // namespace
 
 PlyMesh readPly(const std::string& path, std::vector<std::string>& warnings) {
-    const std::string data = readTextFile(path);
+    const std::string data = readInputFile(path, kMaxMeshFileBytes, "a mesh");
     const Header header = readHeader(data, path);
     Body body(data, header.bodyStart, header.format, path);
     PlyMesh out;

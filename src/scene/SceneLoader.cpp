@@ -9,7 +9,7 @@
 #include "scene/JsonReader.h"
 #include "scene/PbrtParser.h"
 #include "scene/SceneShapes.h"
-#include "scene/TextFile.h"
+#include "tet/InputFile.h"
 
 namespace tetglow {
 namespace {
@@ -239,7 +239,7 @@ bool emitsLight(const SceneDesc& s) {
 
 SceneDesc loadScene(const std::string& path) {
     if (fs::path(path).extension() == ".pbrt") return loadPbrtScene(path);  // without reading the file here too
-    const std::string text = readTextFile(path);
+    const std::string text = readInputFile(path, kMaxSceneFileBytes, "a scene file");
     if (looksLikePbrt(text)) return loadPbrtScene(path);
     const nlohmann::json doc = parseJson(text, path);
     return JsonValue(&doc, nlohmann::json::json_pointer(), path).readObject([&](JsonObject& o) { return readScene(o, path); });
