@@ -7,6 +7,9 @@
 
 #include <glm/geometric.hpp>
 
+#include "tet/Hash.h"
+#include "tet/InputFile.h"
+
 namespace tetglow {
 
 double TetMesh::tetVolume(uint32_t t) const {
@@ -53,72 +56,128 @@ uint32_t TetMesh::surfaceAcross(uint32_t s, uint32_t a, uint32_t b) const {
 
 namespace {
 
-constexpr char kMagic[8] = {'T', 'G', 'L', 'W', 'T', 'E', 'T', '3'};  // 3: tets in Morton order
+// 4: a checksum of the content after the header. The last byte is the version.
+constexpr char kMagic[8] = {'T', 'G', 'L', 'W', 'T', 'E', 'T', '4'};
+constexpr size_t kHeaderBytes = sizeof kMagic + 2 * sizeof(uint64_t);  // magic, key, checksum
 
 template <class T>
-void put(std::ostream& out, const std::vector<T>& v) {
-    const uint64_t n = v.size();
-    out.write(reinterpret_cast<const char*>(&n), sizeof n);
-    out.write(reinterpret_cast<const char*>(v.data()), std::streamsize(n * sizeof(T)));
+void put(std::string& out, const T& value) {
+    out.append(reinterpret_cast<const char*>(&value), sizeof value);
 }
 
 template <class T>
-bool get(std::istream& in, std::vector<T>& v, uint64_t limit) {
-    uint64_t n = 0;
-    if (!in.read(reinterpret_cast<char*>(&n), sizeof n) || n > limit) return false;
-    v.resize(n);
-    return bool(in.read(reinterpret_cast<char*>(v.data()), std::streamsize(n * sizeof(T))));
+void put(std::string& out, const std::vector<T>& v) {
+    put(out, uint64_t(v.size()));
+    out.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
+}
+
+// A cursor over an entry's bytes; every read checks what is left, so a short or lying entry
+// fails instead of reading past the end or allocating what a count claims.
+struct Reader {
+    const std::string& data;
+    size_t pos = 0;
+
+    template <class T>
+    bool get(T& value) {
+        if (data.size() - pos < sizeof value) return false;
+        std::memcpy(&value, data.data() + pos, sizeof value);
+        pos += sizeof value;
+        return true;
+    }
+    template <class T>
+    bool get(std::vector<T>& v) {
+        uint64_t n = 0;
+        if (!get(n) || n > (data.size() - pos) / sizeof(T)) return false;
+        v.resize(n);
+        std::memcpy(v.data(), data.data() + pos, n * sizeof(T));
+        pos += n * sizeof(T);
+        return true;
+    }
+};
+
+// Indices are checked so that an entry cannot send a walk out of bounds, even one whose checksum
+// matches by chance. "" when the mesh holds together.
+std::string inconsistency(const TetMesh& m) {
+    if (m.adjacency.size() != m.tets.size() || m.surfaceFace.size() != m.surface.size() ||
+        m.surfaceVertexCount > m.vertices.size())
+        return "array sizes disagree";
+    const uint64_t nv = m.vertices.size(), nt = m.tets.size(), ns = m.surface.size(), nsv = m.surfaceVertexCount;
+    for (size_t t = 0; t < nt; ++t)
+        for (int j = 0; j < 4; ++j) {
+            const int32_t a = m.adjacency[t][j];
+            if (m.tets[t][j] >= nv || (a < 0 ? TetMesh::surfaceTriangle(a) >= ns : TetMesh::neighbourTet(a) >= nt))
+                return "tet " + std::to_string(t) + " has an index out of range";
+        }
+    for (size_t s = 0; s < ns; ++s)
+        if (m.surfaceFace[s] / 4 >= nt || m.surface[s][0] >= nsv || m.surface[s][1] >= nsv || m.surface[s][2] >= nsv)
+            return "surface triangle " + std::to_string(s) + " has an index out of range";
+    return {};
 }
 
 }  // namespace
 
 void writeTetMesh(const TetMesh& mesh, uint64_t key, const std::string& path) {
+    std::string body;
+    put(body, uint64_t(mesh.surfaceVertexCount));
+    put(body, mesh.vertices);
+    put(body, mesh.tets);
+    put(body, mesh.adjacency);
+    put(body, mesh.surface);
+    put(body, mesh.surfaceFace);
+    std::string header(kMagic, sizeof kMagic);
+    put(header, key);
+    put(header, fnv1a(kFnvOffset, body.data(), body.size()));
     // Written beside the target and renamed, so a reader never sees half a file.
     const std::string tmp = path + ".tmp" + std::to_string(::getpid());
     {
         std::ofstream out(tmp, std::ios::binary);
         if (!out) throw InputError(path + ": cannot write tet mesh");
-        out.write(kMagic, sizeof kMagic);
-        out.write(reinterpret_cast<const char*>(&key), sizeof key);
-        const uint64_t nsv = mesh.surfaceVertexCount;
-        out.write(reinterpret_cast<const char*>(&nsv), sizeof nsv);
-        put(out, mesh.vertices);
-        put(out, mesh.tets);
-        put(out, mesh.adjacency);
-        put(out, mesh.surface);
-        put(out, mesh.surfaceFace);
-        if (!out) throw InputError(path + ": write failed");
+        out << header << body;
+        if (!out) {
+            out.close();
+            std::filesystem::remove(tmp);
+            throw InputError(path + ": write failed");
+        }
     }
-    std::filesystem::rename(tmp, path);
+    std::error_code ec;
+    std::filesystem::rename(tmp, path, ec);
+    if (ec) {
+        std::filesystem::remove(tmp, ec);
+        throw InputError(path + ": cannot write tet mesh: " + ec.message());
+    }
 }
 
-bool readTetMesh(TetMesh& mesh, uint64_t key, const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    char magic[8];
-    uint64_t storedKey = 0, nsv = 0;
-    if (!in.read(magic, sizeof magic) || std::memcmp(magic, kMagic, sizeof magic) != 0) return false;
-    if (!in.read(reinterpret_cast<char*>(&storedKey), sizeof storedKey) || storedKey != key) return false;
-    if (!in.read(reinterpret_cast<char*>(&nsv), sizeof nsv)) return false;
-    const uint64_t limit = uint64_t(1) << 32;
+CacheRead readTetMesh(TetMesh& mesh, uint64_t key, const std::string& path, std::string* problem) {
+    const auto damaged = [&](const std::string& why) {
+        if (problem) *problem = why;
+        return CacheRead::Damaged;
+    };
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec)) return CacheRead::Absent;
+    std::string data;
+    try {
+        data = readInputFile(path, kMaxCacheFileBytes, "a tet cache entry");
+    } catch (const InputError& e) {
+        const std::string what = e.what(), prefix = path + ": ";
+        return damaged(what.rfind(prefix, 0) == 0 ? what.substr(prefix.size()) : what);  // the caller names the file
+    }
+    if (data.size() < kHeaderBytes || std::memcmp(data.data(), kMagic, sizeof kMagic - 1) != 0)
+        return damaged("not a tetglow cache entry");
+    if (data[sizeof kMagic - 1] != kMagic[sizeof kMagic - 1]) return CacheRead::OtherVersion;
+    Reader in{data, sizeof kMagic};
+    uint64_t storedKey = 0, checksum = 0, nsv = 0;
+    in.get(storedKey), in.get(checksum);
+    if (storedKey != key) return damaged("its key does not match its name");
+    if (fnv1a(kFnvOffset, data.data() + kHeaderBytes, data.size() - kHeaderBytes) != checksum)
+        return damaged("checksum mismatch");
     TetMesh m;
+    if (!in.get(nsv) || !in.get(m.vertices) || !in.get(m.tets) || !in.get(m.adjacency) || !in.get(m.surface) ||
+        !in.get(m.surfaceFace) || in.pos != data.size())
+        return damaged("truncated or overlong");
     m.surfaceVertexCount = nsv;
-    if (!get(in, m.vertices, limit) || !get(in, m.tets, limit) || !get(in, m.adjacency, limit) ||
-        !get(in, m.surface, limit) || !get(in, m.surfaceFace, limit))
-        return false;
-    if (m.adjacency.size() != m.tets.size() || m.surfaceFace.size() != m.surface.size() || nsv > m.vertices.size())
-        return false;
-    // Indices are checked so that a damaged file cannot send a walk out of bounds.
-    const uint64_t nv = m.vertices.size(), nt = m.tets.size(), ns = m.surface.size();
-    for (size_t t = 0; t < nt; ++t)
-        for (int j = 0; j < 4; ++j) {
-            const int32_t a = m.adjacency[t][j];
-            if (m.tets[t][j] >= nv || (a < 0 ? TetMesh::surfaceTriangle(a) >= ns : TetMesh::neighbourTet(a) >= nt)) return false;
-        }
-    for (size_t s = 0; s < ns; ++s)
-        if (m.surfaceFace[s] / 4 >= nt || m.surface[s][0] >= nsv || m.surface[s][1] >= nsv || m.surface[s][2] >= nsv)
-            return false;
+    if (const std::string why = inconsistency(m); !why.empty()) return damaged(why);
     mesh = std::move(m);
-    return true;
+    return CacheRead::Used;
 }
 
 }  // namespace tetglow

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <csignal>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <map>
@@ -13,6 +14,7 @@
 #include <glm/common.hpp>
 #include <tetgen.h>
 
+#include "tet/Hash.h"
 #include "tet/Predicates.h"
 
 namespace tetglow {
@@ -280,14 +282,8 @@ TetMesh assemble(const TriangleMesh& surface, const RawTets& raw) {
     return m;
 }
 
-uint64_t fnv1a(uint64_t h, const void* data, size_t n) {
-    const auto* p = static_cast<const unsigned char*>(data);
-    for (size_t i = 0; i < n; ++i) h = (h ^ p[i]) * 1099511628211ull;
-    return h;
-}
-
 uint64_t cacheKey(const TriangleMesh& mesh, const std::string& switches) {
-    uint64_t h = 14695981039346656037ull;
+    uint64_t h = kFnvOffset;
     h = fnv1a(h, mesh.positions.data(), mesh.positions.size() * sizeof(mesh.positions[0]));
     h = fnv1a(h, mesh.triangles.data(), mesh.triangles.size() * sizeof(mesh.triangles[0]));
     h = fnv1a(h, switches.data(), switches.size());
@@ -324,10 +320,18 @@ TetMesh tetrahedralize(TriangleMesh surface, const TetOptions& options, TetStats
         }
     }
     TetMesh mesh;
-    if (!file.empty() && readTetMesh(mesh, key, file.string()) && mesh.surface == surface.triangles) {
+    std::string problem;
+    CacheRead cached = file.empty() ? CacheRead::Absent : readTetMesh(mesh, key, file.string(), &problem);
+    if (cached == CacheRead::Used && mesh.surface != surface.triangles)
+        cached = CacheRead::Damaged, problem = "it holds the tets of another mesh";  // a key collision
+    if (cached == CacheRead::Used) {
         local.fromCache = true;
         local.cacheFile = file.string();
     } else {
+        if (cached == CacheRead::Damaged) {
+            local.cacheWarning = file.string() + ": damaged tet cache entry (" + problem + "); not used, tetrahedralizing again";
+            std::fprintf(stderr, "tetglow: warning: %s\n", local.cacheWarning.c_str());
+        }
         mesh = tetrahedralizeUnchecked(surface, switches);
         if (!file.empty()) {
             std::error_code ec;
