@@ -116,6 +116,28 @@ TEST(TetCache, ContentChecksHoldBehindAMatchingChecksum) {
     reseal(badIndex);
     spit(c.file, badIndex);
     expectRebuilt(c, "tet 0 has an index out of range");
+    std::string repeated = entry;  // the first tet's second vertex made its first: a flat tet
+    std::memcpy(repeated.data() + tets + 4, repeated.data() + tets, 4);
+    reseal(repeated);
+    spit(c.file, repeated);
+    expectRebuilt(c, "tet 0 repeats a vertex");
+    std::string oneWay = entry;  // the first tet's face 0 made a boundary face of another surface triangle
+    const size_t adjacency = tets + 16 * c.fresh.tets.size() + 8;
+    const int32_t other = c.fresh.adjacency[0][0] == ~int32_t(0) ? ~int32_t(1) : ~int32_t(0);
+    std::memcpy(oneWay.data() + adjacency, &other, 4);
+    reseal(oneWay);
+    spit(c.file, oneWay);
+    expectRebuilt(c, "tet 0 has a neighbour that does not point back");
+}
+
+// Found by fuzz_tet_cache: an empty array was copied from a null pointer (UBSan). An entry of
+// empty arrays holds together, but it is not this mesh's, and is rebuilt like any collision.
+TEST(TetCache, AnEntryOfEmptyArraysIsReadSafelyAndNotUsed) {
+    const Cached c = cachedBox();
+    std::string empty = slurp(c.file).substr(0, kHeader) + std::string(6 * 8, '\0');
+    reseal(empty);
+    spit(c.file, empty);
+    expectRebuilt(c, "it holds the tets of another mesh");
 }
 
 TEST(TetCache, SpecialFilesInTheCacheAreNotRead) {

@@ -89,28 +89,42 @@ struct Reader {
         uint64_t n = 0;
         if (!get(n) || n > (data.size() - pos) / sizeof(T)) return false;
         v.resize(n);
-        std::memcpy(v.data(), data.data() + pos, n * sizeof(T));
+        if (n > 0) std::memcpy(v.data(), data.data() + pos, n * sizeof(T));  // an empty vector's data() may be null
         pos += n * sizeof(T);
         return true;
     }
 };
 
-// Indices are checked so that an entry cannot send a walk out of bounds, even one whose checksum
-// matches by chance. "" when the mesh holds together.
+// The structure is checked so that an entry cannot send a walk out of bounds or round in circles,
+// even one whose checksum matches (by chance, or forged). "" when the mesh holds together.
 std::string inconsistency(const TetMesh& m) {
     if (m.adjacency.size() != m.tets.size() || m.surfaceFace.size() != m.surface.size() ||
         m.surfaceVertexCount > m.vertices.size())
         return "array sizes disagree";
     const uint64_t nv = m.vertices.size(), nt = m.tets.size(), ns = m.surface.size(), nsv = m.surfaceVertexCount;
-    for (size_t t = 0; t < nt; ++t)
+    for (size_t t = 0; t < nt; ++t) {
+        const auto& v = m.tets[t];
         for (int j = 0; j < 4; ++j) {
             const int32_t a = m.adjacency[t][j];
-            if (m.tets[t][j] >= nv || (a < 0 ? TetMesh::surfaceTriangle(a) >= ns : TetMesh::neighbourTet(a) >= nt))
+            if (v[j] >= nv || (a < 0 ? TetMesh::surfaceTriangle(a) >= ns : TetMesh::neighbourTet(a) >= nt))
                 return "tet " + std::to_string(t) + " has an index out of range";
         }
-    for (size_t s = 0; s < ns; ++s)
+        if (v[0] == v[1] || v[0] == v[2] || v[0] == v[3] || v[1] == v[2] || v[1] == v[3] || v[2] == v[3])
+            return "tet " + std::to_string(t) + " repeats a vertex";
+        for (int j = 0; j < 4; ++j) {  // each face is seen the same way from both sides
+            const int32_t a = m.adjacency[t][j];
+            const uint32_t self = uint32_t(4 * t + j);
+            if (a < 0 ? m.surfaceFace[TetMesh::surfaceTriangle(a)] != self
+                      : uint32_t(m.adjacency[TetMesh::neighbourTet(a)][TetMesh::neighbourFace(a)]) != self)
+                return "tet " + std::to_string(t) + " has a neighbour that does not point back";
+        }
+    }
+    for (size_t s = 0; s < ns; ++s) {
         if (m.surfaceFace[s] / 4 >= nt || m.surface[s][0] >= nsv || m.surface[s][1] >= nsv || m.surface[s][2] >= nsv)
             return "surface triangle " + std::to_string(s) + " has an index out of range";
+        if (m.adjacency[m.surfaceFace[s] / 4][m.surfaceFace[s] % 4] != int32_t(~uint32_t(s)))
+            return "surface triangle " + std::to_string(s) + " is not the face it names";
+    }
     return {};
 }
 
