@@ -3,13 +3,16 @@
 #   ./setup.sh demo   render the glowing fish (scenes/fish.json) into out/
 #   ./setup.sh test   run the whole test suite
 #   ./setup.sh build  only install and build
+#   ./setup.sh sanitizers  only install, adding clang with its sanitizer and libFuzzer runtimes
+#                          (for .ci/sanitize.sh and fuzz/run.sh, which build in their own folders)
 set -euo pipefail
 cd "$(dirname "$0")"
 job=${1:-build}
-case "$job" in demo|test|build) ;; *) echo "usage: $0 demo|test|build" >&2; exit 2 ;; esac
+case "$job" in demo|test|build|sanitizers) ;; *) echo "usage: $0 demo|test|build|sanitizers" >&2; exit 2 ;; esac
 
 packages=(g++ cmake make libtet1.5-dev libembree-dev libopenexr-dev libglm-dev libtbb-dev nlohmann-json3-dev
           libcli11-dev libnanoflann-dev libpng-dev libgtest-dev libbenchmark-dev gnuplot-nox python3)
+[ "$job" = sanitizers ] && packages+=(clang libclang-rt-14-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "ok installed" || missing+=("$p")
@@ -21,6 +24,7 @@ if ((${#missing[@]})); then
   $sudo apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 fi
+[ "$job" = sanitizers ] && exit 0  # the sanitizer build has its own folder (.ci/sanitize.sh)
 
 jobs=$(nproc)
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null

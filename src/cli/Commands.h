@@ -16,6 +16,19 @@ void addValidateCommand(CLI::App& app);
 void addCompareBoundaryCommand(CLI::App& app);
 void addConvertCommand(CLI::App& app);
 
+// Every subcommand, in the order `tetglow --help` lists them, one of them required (for main
+// and the command-line fuzzer).
+inline void addCommands(CLI::App& app) {
+    app.require_subcommand(1);
+    addTetrahedralizeCommand(app);
+    addGenerateCommand(app);
+    addRenderCommand(app);
+    addDiffCommand(app);
+    addValidateCommand(app);
+    addCompareBoundaryCommand(app);
+    addConvertCommand(app);
+}
+
 // Creates the folder an output file goes into, if it names one.
 inline void createParentFolder(const std::string& path) {
     const auto parent = std::filesystem::path(path).parent_path();

@@ -7,14 +7,7 @@
 
 int main(int argc, char** argv) {
     CLI::App app{"tetglow: participating media inside closed triangle meshes"};
-    app.require_subcommand(1);
-    tetglow::cli::addTetrahedralizeCommand(app);
-    tetglow::cli::addGenerateCommand(app);
-    tetglow::cli::addRenderCommand(app);
-    tetglow::cli::addDiffCommand(app);
-    tetglow::cli::addValidateCommand(app);
-    tetglow::cli::addCompareBoundaryCommand(app);
-    tetglow::cli::addConvertCommand(app);
+    tetglow::cli::addCommands(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
