@@ -149,7 +149,8 @@ void writeTetMesh(const TetMesh& mesh, uint64_t key, const std::string& path) {
         out << header << body;
         if (!out) {
             out.close();
-            std::filesystem::remove(tmp);
+            std::error_code ec;
+            std::filesystem::remove(tmp, ec);
             throw InputError(path + ": write failed");
         }
     }

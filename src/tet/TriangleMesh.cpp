@@ -108,7 +108,8 @@ TriangleMesh readObj(std::istream& in, const std::string& path, std::vector<std:
         } else if (key == "mtllib") {
             std::string lib;
             std::getline(ls >> std::ws, lib);
-            if (warnings && !std::filesystem::exists(dir / lib))
+            std::error_code ec;  // a name the system refuses (too long) is as missing as an absent one
+            if (warnings && !std::filesystem::exists(dir / lib, ec))
                 warnings->push_back(where(path, line) + "material library '" + lib + "' not found; ignored");
         } else if (key == "vn" || key == "vt" || key == "vp" || key == "o" || key == "g" || key == "s" ||
                    key == "usemtl" || key == "l" || key == "p") {
