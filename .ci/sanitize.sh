@@ -11,7 +11,7 @@ build=build-sanitize
 jobs=$(nproc)
 start=$SECONDS
 CXX=clang++ cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" \
-  -DTETGLOW_FUZZ=ON -DTETGLOW_BUILD_BENCH=OFF >/dev/null
+  -DTETGLOW_FUZZ=ON >/dev/null
 cmake --build "$build" -j "$jobs"
 echo "sanitize: built in $((SECONDS - start)) s"
 
