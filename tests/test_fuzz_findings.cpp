@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "TestMeshes.h"
+#include "scene/PlyReader.h"
 
 namespace tetglow {
 namespace {
@@ -23,6 +24,21 @@ TEST(FuzzFindings, ObjWithAMaterialLibraryNameTooLongForTheSystem) {
     EXPECT_EQ(mesh.triangles.size(), 12u);
     ASSERT_EQ(warnings.size(), 1u);
     EXPECT_NE(warnings[0].find("not found; ignored"), std::string::npos) << warnings[0].substr(0, 200);
+}
+
+// fuzz_ply: a list length of 7e31 (a float count type) was converted to size_t (UBSan: outside
+// the range of representable values); in a Release build the read then ran to the file's end.
+TEST(FuzzFindings, PlyListLengthBeyondTheFile) {
+    const std::string path = test::writeTemp(
+        "tri.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                   "element face 1\nproperty list float int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n7e31 0 1 2\n");
+    std::vector<std::string> warnings;
+    try {
+        readPly(path, warnings);
+        ADD_FAILURE() << "no error";
+    } catch (const InputError& e) {
+        EXPECT_EQ(std::string(e.what()), path + ": bad list length in element 'face'");
+    }
 }
 
 }  // namespace
