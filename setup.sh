@@ -3,17 +3,19 @@
 #   ./setup.sh demo   render the glowing fish (scenes/fish.json) into out/
 #   ./setup.sh test   run the whole test suite
 #   ./setup.sh build  only install and build
+#   ./setup.sh sanitizers  only install, adding clang with its sanitizer and libFuzzer runtimes
+#                          (for .ci/sanitize.sh and fuzz/run.sh, which build in their own folders)
 set -euo pipefail
 cd "$(dirname "$0")"
 job=${1:-build}
-case "$job" in demo|test|build) ;; *) echo "usage: $0 demo|test|build" >&2; exit 2 ;; esac
+case "$job" in demo|test|build|sanitizers) ;; *) echo "usage: $0 demo|test|build|sanitizers" >&2; exit 2 ;; esac
 
 packages=(g++ cmake make pkg-config libtet1.5-dev libembree-dev libopenexr-dev libglm-dev libtbb-dev nlohmann-json3-dev
           libcli11-dev libnanoflann-dev libpng-dev libcpp-httplib-dev libgtest-dev libbenchmark-dev gnuplot-nox python3)
 # Only the tests need these: tetglow preview's page is tested in headless Chromium, tetglow farm
-# through a real Slurm on localhost (tests/slurm).
+# through a real Slurm on localhost (tests/slurm); the sanitized suite and the fuzzers need clang.
 test_packages=(chromium chromium-driver python3-selenium slurmctld slurmd slurm-client munge)
-[ "$job" = test ] && packages+=("${test_packages[@]}")
+case "$job" in test) packages+=("${test_packages[@]}") ;; sanitizers) packages+=("${test_packages[@]}" clang libclang-rt-14-dev) ;; esac
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "ok installed" || missing+=("$p")
@@ -25,6 +27,7 @@ if ((${#missing[@]})); then
   $sudo apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 fi
+[ "$job" = sanitizers ] && exit 0  # the sanitizer build has its own folder (.ci/sanitize.sh)
 
 jobs=$(nproc)
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null

@@ -20,6 +20,22 @@ void addPreviewCommand(CLI::App& app);
 void addMergeCommand(CLI::App& app);
 void addFarmCommand(CLI::App& app);
 
+// Every subcommand, in the order `tetglow --help` lists them, one of them required (for main
+// and the command-line fuzzer).
+inline void addCommands(CLI::App& app) {
+    app.require_subcommand(1);
+    addTetrahedralizeCommand(app);
+    addGenerateCommand(app);
+    addRenderCommand(app);
+    addDiffCommand(app);
+    addValidateCommand(app);
+    addCompareBoundaryCommand(app);
+    addConvertCommand(app);
+    addPreviewCommand(app);
+    addMergeCommand(app);
+    addFarmCommand(app);
+}
+
 // The first argument CLI11 would report badly, as a one-line message ("" when there is none): an
 // unknown subcommand (CLI11 says only "A subcommand is required") or an unknown option (CLI11
 // checks the other arguments first, so `render --frob x` was reported as a missing file "x").

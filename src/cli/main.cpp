@@ -18,17 +18,7 @@ int fail(int code, const std::string& message) {
 
 int main(int argc, char** argv) {
     CLI::App app{"tetglow: participating media inside closed triangle meshes"};
-    app.require_subcommand(1);
-    tetglow::cli::addTetrahedralizeCommand(app);
-    tetglow::cli::addGenerateCommand(app);
-    tetglow::cli::addRenderCommand(app);
-    tetglow::cli::addDiffCommand(app);
-    tetglow::cli::addValidateCommand(app);
-    tetglow::cli::addCompareBoundaryCommand(app);
-    tetglow::cli::addConvertCommand(app);
-    tetglow::cli::addPreviewCommand(app);
-    tetglow::cli::addMergeCommand(app);
-    tetglow::cli::addFarmCommand(app);
+    tetglow::cli::addCommands(app);
     try {
         if (const std::string unknown = tetglow::cli::unknownArgument(app, argc, argv); !unknown.empty()) return fail(2, unknown);
         app.parse(argc, argv);

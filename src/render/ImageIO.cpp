@@ -14,9 +14,13 @@
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfOutputFile.h>
-#include <OpenEXR/ImfTestFile.h>
+#include <OpenEXR/ImfIO.h>
+#include <OpenEXR/ImfVersion.h>
+#include <OpenEXR/IexBaseExc.h>
 #include <png.h>
 
+#include "scene/SceneDescription.h"  // kMaxResolution
+#include "tet/InputFile.h"
 #include "tet/OutputFile.h"
 #include "tet/TriangleMesh.h"
 
@@ -39,6 +43,24 @@ void insertSlices(Imf::FrameBuffer& frameBuffer, const std::string& layer, const
         frameBuffer.insert(names[c], Imf::Slice::Make(Imf::FLOAT, &image.pixels[0][c], dataWindow, sizeof(glm::vec3),
                                                       sizeof(glm::vec3) * image.width));
 }
+
+// An OpenEXR stream over bytes already read with readInputFile's checks and limit.
+class MemoryStream : public Imf::IStream {
+public:
+    MemoryStream(const std::string& data, const std::string& name) : Imf::IStream(name.c_str()), data_(data) {}
+    bool read(char c[], int n) override {
+        if (n < 0 || pos_ > data_.size() || uint64_t(n) > data_.size() - pos_) throw Iex::InputExc("unexpected end of file");
+        std::memcpy(c, data_.data() + pos_, size_t(n));
+        pos_ += uint64_t(n);
+        return pos_ < data_.size();
+    }
+    uint64_t tellg() override { return pos_; }
+    void seekg(uint64_t pos) override { pos_ = pos; }
+
+private:
+    const std::string& data_;
+    uint64_t pos_ = 0;
+};
 
 void checkChannels(const std::string& path, const Imf::ChannelList& channels, const std::string& layer) {
     std::string missing, present;
@@ -88,14 +110,24 @@ void writeExr(const std::string& path, const Image& rgb, const std::vector<Image
 }
 
 Image readExr(const std::string& path, const std::string& layer) {
-    std::error_code ec;
-    if (!fs::exists(path, ec)) throw InputError(path + ": no such file");
-    if (!Imf::isOpenExrFile(path.c_str())) throw InputError(path + ": not an OpenEXR file");
+    // OpenEXR checks these while it reads the header, before it sizes its tables by them.
+    static const bool limited = (Imf::Header::setMaxImageSize(kMaxResolution, kMaxResolution),
+                                 Imf::Header::setMaxTileSize(kMaxResolution, kMaxResolution), true);
+    (void)limited;
+    const std::string data = readInputFile(path, kMaxImageFileBytes, "an OpenEXR image");
+    if (data.size() < 4 || !Imf::isImfMagic(data.data())) throw InputError(path + ": not an OpenEXR file");
     try {
-        Imf::InputFile file(path.c_str());
+        MemoryStream stream(data, path);
+        Imf::InputFile file(stream);
         checkChannels(path, file.header().channels(), layer);
         const Imath::Box2i dataWindow = file.header().dataWindow();
-        Image image(dataWindow.max.x - dataWindow.min.x + 1, dataWindow.max.y - dataWindow.min.y + 1);
+        const int64_t width = int64_t(dataWindow.max.x) - dataWindow.min.x + 1,
+                      height = int64_t(dataWindow.max.y) - dataWindow.min.y + 1;
+        if (width < 1 || height < 1 || width * height > kMaxExrPixels)
+            throw InputError(path + ": the header claims " + std::to_string(width) + " x " + std::to_string(height) +
+                             " pixels; at most " + std::to_string(kMaxExrPixels) + " pixels (and " +
+                             std::to_string(kMaxResolution) + " per side) are read");
+        Image image{int(width), int(height)};
         Imf::FrameBuffer frameBuffer;
         insertSlices(frameBuffer, layer, image, dataWindow);
         file.setFrameBuffer(frameBuffer);

@@ -19,8 +19,13 @@ struct ImageLayer {
 // 32-bit float R, G, B plus the layers (same size as rgb). InputError naming the path on failure.
 void writeExr(const std::string& path, const Image& rgb, const std::vector<ImageLayer>& layers = {});
 
+// The most pixels readExr reads (8192 x 8192: three floats each, 768 MiB), and at most
+// kMaxResolution along either side; a header that claims more is refused before allocating.
+inline constexpr int64_t kMaxExrPixels = int64_t(1) << 26;
+
 // R, G, B of the default layer, or of the named one; half, float or uint channels, scanline or tiled.
-// A missing, corrupt or incomplete file, or missing channels, is an InputError naming the path.
+// A missing, corrupt or incomplete file, missing channels, a special file, a file over
+// kMaxImageFileBytes or an image over kMaxExrPixels is an InputError naming the path.
 Image readExr(const std::string& path, const std::string& layer = "");
 
 // An 8-bit sRGB preview: scale by 2^exposure, tonemap, sRGB OETF, round. The tonemap clamps

@@ -53,6 +53,10 @@ private:
     };
 
     bool open(bool array) {
+        // Printing a value in an error message recurses once per level: a bound keeps the stack safe.
+        if (levels_.size() >= kMaxJsonDepth)
+            throw InputError(file_ + ": " + pointer().to_string() + ": nested deeper than " + std::to_string(kMaxJsonDepth) +
+                             " arrays and objects");
         levels_.emplace_back().array = array;
         return true;
     }

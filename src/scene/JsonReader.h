@@ -17,8 +17,11 @@
 
 namespace tetglow {
 
-// Parses JSON text. A syntax error, a number too large for a double or a duplicate key throws
-// InputError naming `file`, the line and column (where known) and the JSON pointer being read.
+inline constexpr size_t kMaxJsonDepth = 64;  // arrays and objects inside each other; a scene needs 4
+
+// Parses JSON text. A syntax error, a number too large for a double, a duplicate key or nesting
+// deeper than kMaxJsonDepth throws InputError naming `file`, the line and column (where known)
+// and the JSON pointer being read.
 nlohmann::json parseJson(const std::string& text, const std::string& file);
 
 // The numbers a field allows; the default allows every finite number.

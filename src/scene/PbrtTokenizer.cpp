@@ -2,7 +2,7 @@
 
 #include <utility>
 
-#include "scene/TextFile.h"
+#include "tet/InputFile.h"
 #include "tet/TriangleMesh.h"  // InputError
 
 namespace tetglow {
@@ -33,12 +33,12 @@ void pbrtWarn(std::vector<std::string>& warnings, const PbrtLocation& at, const 
     warnings.push_back(at.str() + ": " + kind + ": " + message);
 }
 
-PbrtTokenizer::PbrtTokenizer(const std::string& path) { files_.push_back({path, readTextFile(path)}); }
+PbrtTokenizer::PbrtTokenizer(const std::string& path) { files_.push_back({path, readInputFile(path, kMaxSceneFileBytes, "a pbrt file")}); }
 
 void PbrtTokenizer::include(const std::string& path, const PbrtLocation& from) {
     if (files_.size() >= kMaxIncludeDepth) pbrtError(from, "Include nested more than 64 deep (does a file include itself?)");
     try {
-        files_.push_back({path, readTextFile(path)});
+        files_.push_back({path, readInputFile(path, kMaxSceneFileBytes, "a pbrt file")});
     } catch (const InputError& e) {
         pbrtError(from, std::string("Include: ") + e.what());
     }

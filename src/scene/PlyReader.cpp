@@ -6,7 +6,7 @@
 #include <cstring>
 #include <sstream>
 
-#include "scene/TextFile.h"
+#include "tet/InputFile.h"
 
 namespace tetglow {
 namespace {
@@ -192,7 +192,7 @@ void addFace(TriangleMesh& out, const std::vector<double>& face, size_t vertexCo
 }  // namespace
 
 PlyMesh readPly(const std::string& path, std::vector<std::string>& warnings) {
-    const std::string data = readTextFile(path);
+    const std::string data = readInputFile(path, kMaxMeshFileBytes, "a mesh");
     const Header header = readHeader(data, path);
     Body body(data, header.bodyStart, header.format, path);
     PlyMesh out;
@@ -218,7 +218,10 @@ PlyMesh readPly(const std::string& path, std::vector<std::string>& warnings) {
                     continue;
                 }
                 const double n = body.read(p.countType, e.name);
-                if (n < 0 || n != std::floor(n)) throw InputError(path + ": bad list length in element '" + e.name + "'");
+                // Each item takes at least a byte, so a count beyond the file's size is a lie (and a
+                // float count may not even fit the integer it is converted to).
+                if (!(n >= 0 && n == std::floor(n) && n <= double(data.size())))
+                    throw InputError(path + ": bad list length in element '" + e.name + "'");
                 const bool keep = faces && int(k) == indices;  // other lists are read past
                 if (keep) face.clear();
                 for (size_t j = 0; j < size_t(n); ++j) {

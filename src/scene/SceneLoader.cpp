@@ -10,7 +10,7 @@
 #include "scene/JsonReader.h"
 #include "scene/PbrtParser.h"
 #include "scene/SceneShapes.h"
-#include "scene/TextFile.h"
+#include "tet/InputFile.h"
 
 namespace tetglow {
 namespace {
@@ -300,7 +300,7 @@ SceneDesc loadScene(const std::string& path) {
         return s;
     };
     if (fs::path(path).extension() == ".pbrt") return pbrt();  // without reading the file here too
-    const std::string text = readTextFile(path);
+    const std::string text = readInputFile(path, kMaxSceneFileBytes, "a scene file");
     if (looksLikePbrt(text)) return pbrt();
     const nlohmann::json doc = parseJson(text, path);
     return JsonValue(&doc, nlohmann::json::json_pointer(), path).readObject([&](JsonObject& o) { return readScene(o, path); });

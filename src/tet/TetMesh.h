@@ -66,9 +66,18 @@ struct TetMesh {
     uint32_t surfaceAcross(uint32_t s, uint32_t a, uint32_t b) const;
 };
 
-// Binary cache file. `read` returns false (never throws) if the file is absent, from another
-// version, or damaged, so a stale cache only costs a new tetrahedralization.
+// Binary cache file: a header (version, key, checksum of the rest) and the arrays. Writing goes
+// through a temporary file and a rename, so a reader never sees half an entry.
 void writeTetMesh(const TetMesh& mesh, uint64_t key, const std::string& path);
-bool readTetMesh(TetMesh& mesh, uint64_t key, const std::string& path);
+
+enum class CacheRead {
+    Used,          // `mesh` holds the entry
+    Absent,        // no file
+    OtherVersion,  // written by another version of tetglow: not an error, only a rebuild
+    Damaged,       // anything else: `problem` says what (a bad checksum, a FIFO, a bad index, ...)
+};
+// Never throws and never fills `mesh` from an entry that is not whole, so a bad cache only
+// costs a new tetrahedralization. Reads at most kMaxCacheFileBytes.
+CacheRead readTetMesh(TetMesh& mesh, uint64_t key, const std::string& path, std::string* problem = nullptr);
 
 }  // namespace tetglow

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <csignal>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <map>
@@ -14,6 +15,7 @@
 #include <glm/common.hpp>
 #include <tetgen.h>
 
+#include "tet/Hash.h"
 #include "tet/Predicates.h"
 #include "tet/RegionComplex.h"
 
@@ -328,17 +330,11 @@ TetMesh assemble(const RegionComplex& complex, const RawTets& raw) {
     return m;
 }
 
-uint64_t fnv1a(uint64_t h, const void* data, size_t n) {
-    const auto* p = static_cast<const unsigned char*>(data);
-    for (size_t i = 0; i < n; ++i) h = (h ^ p[i]) * 1099511628211ull;
-    return h;
-}
-
 // The whole set of surfaces: TetGen's input (merged surface, seeds) and how it is read back
 // (the sides of every triangle, the nesting).
 uint64_t cacheKey(const RegionComplex& complex, const std::string& switches) {
     const TriangleMesh& mesh = complex.surface;
-    uint64_t h = 14695981039346656037ull;
+    uint64_t h = kFnvOffset;
     h = fnv1a(h, mesh.positions.data(), mesh.positions.size() * sizeof(mesh.positions[0]));
     h = fnv1a(h, mesh.triangles.data(), mesh.triangles.size() * sizeof(mesh.triangles[0]));
     h = fnv1a(h, complex.sides.data(), complex.sides.size() * sizeof(complex.sides[0]));
@@ -404,11 +400,18 @@ TetMesh tetrahedralize(std::vector<TriangleMesh> surfaces, const std::vector<std
         }
     }
     TetMesh mesh;
-    if (!file.empty() && readTetMesh(mesh, key, file.string()) && mesh.surface == complex.surface.triangles &&
-        mesh.surfaceRegions == complex.sides) {
+    std::string problem;
+    CacheRead cached = file.empty() ? CacheRead::Absent : readTetMesh(mesh, key, file.string(), &problem);
+    if (cached == CacheRead::Used && (mesh.surface != complex.surface.triangles || mesh.surfaceRegions != complex.sides))
+        cached = CacheRead::Damaged, problem = "it holds the tets of another set of meshes";  // a key collision
+    if (cached == CacheRead::Used) {
         local.fromCache = true;
         local.cacheFile = file.string();
     } else {
+        if (cached == CacheRead::Damaged) {
+            local.cacheWarning = file.string() + ": damaged tet cache entry (" + problem + "); not used, tetrahedralizing again";
+            std::fprintf(stderr, "tetglow: warning: %s\n", local.cacheWarning.c_str());
+        }
         mesh = assemble(complex, runIsolated(complex, switches));
         if (!file.empty()) {
             std::error_code ec;

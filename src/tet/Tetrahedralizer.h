@@ -22,6 +22,7 @@ struct TetStats {
     double seconds = 0;      // validation + tetrahedralization (or cache read)
     bool fromCache = false;
     std::string cacheFile;   // "" when caching is off or the directory is not writable
+    std::string cacheWarning;  // why a cache entry found was not used (also printed to stderr); "" if none
 };
 
 // The most tets a tetrahedralization may have (about 3 GB with TetGen's own data): a max volume

@@ -8,6 +8,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "tet/InputFile.h"
 #include "tet/OutputFile.h"
 
 namespace tetglow {
@@ -108,7 +109,8 @@ TriangleMesh readObj(std::istream& in, const std::string& path, std::vector<std:
         } else if (key == "mtllib") {
             std::string lib;
             std::getline(ls >> std::ws, lib);
-            if (warnings && !std::filesystem::exists(dir / lib))
+            std::error_code ec;  // a name the system refuses (too long) is as missing as an absent one
+            if (warnings && !std::filesystem::exists(dir / lib, ec))
                 warnings->push_back(where(path, line) + "material library '" + lib + "' not found; ignored");
         } else if (key == "vn" || key == "vt" || key == "vp" || key == "o" || key == "g" || key == "s" ||
                    key == "usemtl" || key == "l" || key == "p") {
@@ -167,16 +169,9 @@ TriangleMesh readOff(std::istream& in, const std::string& path) {
 }  // namespace
 
 TriangleMesh readMesh(const std::string& path, std::vector<std::string>* warnings) {
-    std::error_code ec;
-    if (!std::filesystem::exists(path, ec)) throw InputError(path + ": no such file");
-    if (std::filesystem::is_directory(path, ec)) throw InputError(path + ": is a directory, not a mesh");
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(path + ": cannot open");
-    std::string head(512, '\0');
-    in.read(head.data(), std::streamsize(head.size()));
-    head.resize(size_t(in.gcount()));
-    in.clear();
-    in.seekg(0);
+    std::string data = readInputFile(path, kMaxMeshFileBytes, "a mesh");
+    const std::string head = data.substr(0, 512);
+    std::istringstream in(std::move(data));
     std::string ext = std::filesystem::path(path).extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
     // Control characters other than whitespace do not occur in OBJ or OFF text.

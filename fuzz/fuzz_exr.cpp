@@ -1,0 +1,12 @@
+// The OpenEXR reader behind `tetglow diff`: the header's claims, then the pixels.
+#include "FuzzInput.h"
+#include "render/ImageIO.h"
+#include "tet/TriangleMesh.h"  // InputError
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+    try {
+        tetglow::readExr(tetglow::fuzz::writeFile("image.exr", data, size));
+    } catch (const tetglow::InputError&) {
+    }
+    return 0;
+}

@@ -1,0 +1,23 @@
+// Input files, read whole, for every reader. Only a regular file no larger than its limit is
+// read: a FIFO or a device (/dev/zero) would block or never end, and a huge file would take the
+// machine's memory. The limits are documented in docs/FORMAT.md and README.md.
+#pragma once
+#include <cstdint>
+#include <string>
+
+namespace tetglow {
+
+inline constexpr uint64_t kMiB = uint64_t(1) << 20;
+inline constexpr uint64_t kMaxSceneFileBytes = 64 * kMiB;    // a JSON scene, a pbrt file, each Include
+inline constexpr uint64_t kMaxMeshFileBytes = 1024 * kMiB;   // OBJ, OFF, PLY (also pbrt's plymesh)
+inline constexpr uint64_t kMaxImageFileBytes = 1024 * kMiB;  // an OpenEXR image read by diff
+inline constexpr uint64_t kMaxCacheFileBytes = 4096 * kMiB;  // a tet cache entry
+
+// The bytes of the file at `path`, at most `maxBytes` of them. Throws InputError, one line:
+//   "<path>: no such file", "<path>: is a directory, not a file", "<path>: is a FIFO, not a
+//   regular file" (or a character device, ...), "<path>: 70 MiB, larger than the 64 MiB limit
+//   for a scene file", "<path>: cannot open: <reason>".
+// `what` names the kind of file in the size message ("a scene file", "a mesh").
+std::string readInputFile(const std::string& path, uint64_t maxBytes, const char* what);
+
+}  // namespace tetglow

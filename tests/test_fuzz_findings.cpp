@@ -1,0 +1,45 @@
+// What the fuzz targets in fuzz/ found, each as the smallest input that showed it (the tet cache
+// reader's finding is in test_tet_cache.cpp, beside the other cache entries).
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "TestMeshes.h"
+#include "scene/PlyReader.h"
+
+namespace tetglow {
+namespace {
+
+// fuzz_obj: a material library name longer than the system allows made std::filesystem::exists
+// throw, and the command printed "filesystem error: ... File name too long" instead of going on.
+TEST(FuzzFindings, ObjWithAMaterialLibraryNameTooLongForTheSystem) {
+    const std::string name(5000, 'm');
+    const std::string path = test::writeTemp("box.obj", "mtllib " + name + ".mtl\n" +
+                                                            "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+                                                            "f 1 3 2\nf 1 4 3\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\n"
+                                                            "f 2 3 7\nf 2 7 6\nf 3 4 8\nf 3 8 7\nf 4 1 5\nf 4 5 8\n");
+    std::vector<std::string> warnings;
+    const TriangleMesh mesh = readMesh(path, &warnings);
+    EXPECT_EQ(mesh.triangles.size(), 12u);
+    ASSERT_EQ(warnings.size(), 1u);
+    EXPECT_NE(warnings[0].find("not found; ignored"), std::string::npos) << warnings[0].substr(0, 200);
+}
+
+// fuzz_ply: a list length of 7e31 (a float count type) was converted to size_t (UBSan: outside
+// the range of representable values); in a Release build the read then ran to the file's end.
+TEST(FuzzFindings, PlyListLengthBeyondTheFile) {
+    const std::string path = test::writeTemp(
+        "tri.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                   "element face 1\nproperty list float int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n7e31 0 1 2\n");
+    std::vector<std::string> warnings;
+    try {
+        readPly(path, warnings);
+        ADD_FAILURE() << "no error";
+    } catch (const InputError& e) {
+        EXPECT_EQ(std::string(e.what()), path + ": bad list length in element 'face'");
+    }
+}
+
+}  // namespace
+}  // namespace tetglow
