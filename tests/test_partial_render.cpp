@@ -1,5 +1,7 @@
 // Renders split into parts (render --pass-range) and merged (merge) are the single render, bit
 // for bit, for any split; merge refuses parts that do not make up one render.
+#include <sys/stat.h>
+
 #include <cstring>
 #include <filesystem>
 
@@ -123,6 +125,12 @@ TEST(PartialRender, MergeRefusesPartsThatAreNotOneRender) {
         EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
         EXPECT_FALSE(std::filesystem::exists(dir + "/out.exr")) << c.parts;
     }
+    // A part is read like every input: a FIFO in its place blocked merge for ever.
+    const std::string fifo = dir + "/fifo.exr";
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    const auto r = runTetglow("merge " + a + " " + fifo + " -o " + dir + "/out.exr", 60);
+    EXPECT_EQ(r.exitCode, 1) << r.err;
+    EXPECT_NE(r.err.find(fifo + ": is a FIFO"), std::string::npos) << r.err;
     EXPECT_EQ(runTetglow("merge " + a + " " + b + " -o " + dir + "/out.exr").exitCode, 0);
 }
 

@@ -14,11 +14,9 @@
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfOutputFile.h>
-#include <OpenEXR/ImfIO.h>
-#include <OpenEXR/ImfVersion.h>
-#include <OpenEXR/IexBaseExc.h>
 #include <png.h>
 
+#include "render/ExrMemoryStream.h"
 #include "scene/SceneDescription.h"  // kMaxResolution
 #include "tet/InputFile.h"
 #include "tet/OutputFile.h"
@@ -43,24 +41,6 @@ void insertSlices(Imf::FrameBuffer& frameBuffer, const std::string& layer, const
         frameBuffer.insert(names[c], Imf::Slice::Make(Imf::FLOAT, &image.pixels[0][c], dataWindow, sizeof(glm::vec3),
                                                       sizeof(glm::vec3) * image.width));
 }
-
-// An OpenEXR stream over bytes already read with readInputFile's checks and limit.
-class MemoryStream : public Imf::IStream {
-public:
-    MemoryStream(const std::string& data, const std::string& name) : Imf::IStream(name.c_str()), data_(data) {}
-    bool read(char c[], int n) override {
-        if (n < 0 || pos_ > data_.size() || uint64_t(n) > data_.size() - pos_) throw Iex::InputExc("unexpected end of file");
-        std::memcpy(c, data_.data() + pos_, size_t(n));
-        pos_ += uint64_t(n);
-        return pos_ < data_.size();
-    }
-    uint64_t tellg() override { return pos_; }
-    void seekg(uint64_t pos) override { pos_ = pos; }
-
-private:
-    const std::string& data_;
-    uint64_t pos_ = 0;
-};
 
 void checkChannels(const std::string& path, const Imf::ChannelList& channels, const std::string& layer) {
     std::string missing, present;
@@ -110,14 +90,9 @@ void writeExr(const std::string& path, const Image& rgb, const std::vector<Image
 }
 
 Image readExr(const std::string& path, const std::string& layer) {
-    // OpenEXR checks these while it reads the header, before it sizes its tables by them.
-    static const bool limited = (Imf::Header::setMaxImageSize(kMaxResolution, kMaxResolution),
-                                 Imf::Header::setMaxTileSize(kMaxResolution, kMaxResolution), true);
-    (void)limited;
-    const std::string data = readInputFile(path, kMaxImageFileBytes, "an OpenEXR image");
-    if (data.size() < 4 || !Imf::isImfMagic(data.data())) throw InputError(path + ": not an OpenEXR file");
+    const std::string data = readExrBytes(path, "an OpenEXR image");
     try {
-        MemoryStream stream(data, path);
+        ExrMemoryStream stream(data, path);
         Imf::InputFile file(stream);
         checkChannels(path, file.header().channels(), layer);
         const Imath::Box2i dataWindow = file.header().dataWindow();

@@ -11,8 +11,8 @@
 #include <OpenEXR/ImfIntAttribute.h>
 #include <OpenEXR/ImfOutputFile.h>
 #include <OpenEXR/ImfStringAttribute.h>
-#include <OpenEXR/ImfTestFile.h>
 
+#include "render/ExrMemoryStream.h"
 #include "render/ImageIO.h"
 #include "tet/OutputFile.h"
 #include "tet/TriangleMesh.h"
@@ -78,11 +78,10 @@ void writePartial(const std::string& path, const PartialRender& part) {
 }
 
 PartialRender readPartial(const std::string& path) {
-    std::error_code ec;
-    if (!std::filesystem::exists(path, ec)) throw InputError(path + ": no such file");
-    if (!Imf::isOpenExrFile(path.c_str())) throw InputError(path + ": not an OpenEXR file");
+    const std::string data = readExrBytes(path, "a partial render");
     try {
-        Imf::InputFile file(path.c_str());
+        ExrMemoryStream stream(data, path);
+        Imf::InputFile file(stream);
         const Imf::Header& header = file.header();
         PartialRender part;
         part.info.fingerprint = attribute<Imf::StringAttribute>(path, header, "tetglowFingerprint");

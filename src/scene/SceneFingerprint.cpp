@@ -7,7 +7,8 @@
 #include <filesystem>
 
 #include "scene/SceneWriter.h"
-#include "scene/TextFile.h"
+#include "tet/Hash.h"
+#include "tet/InputFile.h"
 
 namespace tetglow {
 
@@ -19,13 +20,15 @@ std::string sceneFingerprint(const SceneDesc& scene) {
     SceneDesc copy = scene;  // the writer's copy is judged by content only: no paths
     copy.path.clear();
     copy.output.clear();
-    uint64_t hash = 0xcbf29ce484222325ull;
+    uint64_t hash = kFnvOffset;
     try {
         const std::string json = (dir / "scene.json").string();
         std::vector<std::string> files = writeScene(copy, json);
         files.insert(files.begin(), json);
-        for (const auto& file : files)
-            for (unsigned char byte : readTextFile(file)) hash = (hash ^ byte) * 0x100000001b3ull;
+        for (const auto& file : files) {
+            const std::string bytes = readInputFile(file, kMaxMeshFileBytes, "a scene's file");
+            hash = fnv1a(hash, bytes.data(), bytes.size());
+        }
     } catch (...) {
         fs::remove_all(dir);
         throw;
