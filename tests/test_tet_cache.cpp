@@ -134,10 +134,11 @@ TEST(TetCache, ContentChecksHoldBehindAMatchingChecksum) {
 // empty arrays holds together, but it is not this mesh's, and is rebuilt like any collision.
 TEST(TetCache, AnEntryOfEmptyArraysIsReadSafelyAndNotUsed) {
     const Cached c = cachedBox();
-    std::string empty = slurp(c.file).substr(0, kHeader) + std::string(6 * 8, '\0');
+    // The surface-vertex count and the ten arrays' lengths, all zero.
+    std::string empty = slurp(c.file).substr(0, kHeader) + std::string(11 * 8, '\0');
     reseal(empty);
     spit(c.file, empty);
-    expectRebuilt(c, "it holds the tets of another mesh");
+    expectRebuilt(c, "array sizes disagree");
 }
 
 TEST(TetCache, SpecialFilesInTheCacheAreNotRead) {
@@ -159,7 +160,7 @@ TEST(TetCache, AnEntryOfAnotherVersionIsRebuiltSilently) {
     EXPECT_EQ(testing::internal::GetCapturedStderr(), "");
     EXPECT_FALSE(stats.fromCache);
     EXPECT_EQ(stats.cacheWarning, "");
-    EXPECT_EQ(slurp(c.file)[7], '4') << "rewritten in this version";
+    EXPECT_EQ(slurp(c.file)[7], '5') << "rewritten in this version";
 }
 
 }  // namespace
