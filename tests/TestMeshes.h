@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "tet/Shapes.h"
+#include "tet/Tetrahedralizer.h"
 #include "tet/TriangleMesh.h"
 
 namespace tetglow::test {
@@ -26,6 +27,13 @@ std::vector<NamedMesh> referenceMeshes();
 std::string sharedMesh(const std::string& name);  // "" when ../shared/meshes is absent
 
 // A fresh temporary directory for this test.
+// Options that always run TetGen (the tests judge TetGen's output, not a cached copy).
+inline TetOptions noCache() {
+    TetOptions o;
+    o.useCache = false;
+    return o;
+}
+
 std::string tempDir();
 // Writes `contents` byte for byte to `name` (which may name sub-folders) in tempDir().
 std::string writeTemp(const std::string& name, const std::string& contents);

@@ -17,12 +17,6 @@
 namespace tetglow {
 namespace {
 
-TetOptions noCache() {
-    TetOptions o;
-    o.useCache = false;
-    return o;
-}
-
 TriangleMesh validated(TriangleMesh m) {
     validateAndRepair(m);
     return m;
@@ -103,7 +97,7 @@ void expectConsistent(const TetMesh& m, const std::vector<TriangleMesh>& meshes)
 TEST(Regions, NestedBoxesHaveExactVolumes) {
     const std::vector<TriangleMesh> meshes{validated(box({0, 0, 0}, {4, 4, 4})), validated(box({1, 1, 1}, {3, 3, 3})),
                                            validated(box({1.5, 1.5, 1.5}, {2.5, 2.5, 2.5}))};
-    const TetMesh m = tetrahedralize(meshes, {"outer", "middle", "inner"}, noCache());
+    const TetMesh m = tetrahedralize(meshes, {"outer", "middle", "inner"}, test::noCache());
     EXPECT_EQ(m.regionParent, (std::vector<int32_t>{-1, 0, 1}));
     EXPECT_NEAR(m.regionVolume(0), 56.0, 1e-13);
     EXPECT_NEAR(m.regionVolume(1), 7.0, 1e-13);
@@ -118,7 +112,7 @@ TEST(Regions, SteinerPointsStayOffTheInterfaces) {
     // still be tet faces as it is, and every tet in its region.
     const std::vector<TriangleMesh> meshes{validated(icosphere(2, 1.0)), validated(icosphere(2, 0.5, {0.2, 0, 0})),
                                            validated(icosphere(1, 0.2, {0.3, 0.1, 0}))};
-    TetOptions o = noCache();
+    TetOptions o = test::noCache();
     o.radiusEdgeRatio = 1.4;
     const TetMesh m = tetrahedralize(meshes, {"outer", "middle", "inner"}, o);
     EXPECT_GT(m.vertices.size(), m.surfaceVertexCount + 100);
@@ -129,7 +123,7 @@ TEST(Regions, NestedSpheresThreeLevels) {
     const std::vector<TriangleMesh> meshes{validated(icosphere(2, 1.0)), validated(icosphere(2, 0.6, {0.1, 0, 0})),
                                            validated(icosphere(2, 0.25, {0.2, 0.05, 0}))};
     TetStats stats;
-    const TetMesh m = tetrahedralize(meshes, {"a", "b", "c"}, noCache(), &stats);
+    const TetMesh m = tetrahedralize(meshes, {"a", "b", "c"}, test::noCache(), &stats);
     EXPECT_EQ(m.regionParent, (std::vector<int32_t>{-1, 0, 1}));
     expectConsistent(m, meshes);
 }
@@ -137,21 +131,21 @@ TEST(Regions, NestedSpheresThreeLevels) {
 TEST(Regions, SiblingsInsideOneContainer) {
     const std::vector<TriangleMesh> meshes{validated(icosphere(2, 1.0)), validated(icosphere(1, 0.3, {0.5, 0, 0})),
                                            validated(icosphere(1, 0.3, {-0.5, 0, 0}))};
-    const TetMesh m = tetrahedralize(meshes, {"body", "left", "right"}, noCache());
+    const TetMesh m = tetrahedralize(meshes, {"body", "left", "right"}, test::noCache());
     EXPECT_EQ(m.regionParent, (std::vector<int32_t>{-1, 0, 0}));
     expectConsistent(m, meshes);
 }
 
 TEST(Regions, InputOrderDoesNotMatterToTheNesting) {
     const std::vector<TriangleMesh> meshes{validated(icosphere(1, 0.3)), validated(icosphere(2, 1.0))};
-    const TetMesh m = tetrahedralize(meshes, {"inner", "outer"}, noCache());
+    const TetMesh m = tetrahedralize(meshes, {"inner", "outer"}, test::noCache());
     EXPECT_EQ(m.regionParent, (std::vector<int32_t>{1, -1}));
     expectConsistent(m, meshes);
 }
 
 TEST(Regions, TouchingBoxesShareTheirFace) {
     const std::vector<TriangleMesh> meshes{validated(box()), validated(box({1, 0, 0}, {2, 1, 1}))};
-    const TetMesh m = tetrahedralize(meshes, {"left", "right"}, noCache());
+    const TetMesh m = tetrahedralize(meshes, {"left", "right"}, test::noCache());
     EXPECT_EQ(m.regionParent, (std::vector<int32_t>{-1, -1}));
     EXPECT_EQ(m.surface.size(), 22u) << "the two shared triangles once";
     EXPECT_EQ(m.vertices.size(), 12u);
@@ -170,7 +164,7 @@ TEST(Regions, TouchingBoxesShareTheirFace) {
 
 TEST(Regions, InnerMeshTouchingItsContainerFromInside) {
     const std::vector<TriangleMesh> meshes{validated(doubleBox()), validated(box())};
-    const TetMesh m = tetrahedralize(meshes, {"outer", "inner"}, noCache());
+    const TetMesh m = tetrahedralize(meshes, {"outer", "inner"}, test::noCache());
     EXPECT_EQ(m.regionParent, (std::vector<int32_t>{-1, 0}));
     EXPECT_EQ(m.surface.size(), 22u) << "10 triangles shared, the inner box's face at x = 1 inside";
     size_t innerOutside = 0;
@@ -182,7 +176,7 @@ TEST(Regions, InnerMeshTouchingItsContainerFromInside) {
 }
 
 TEST(Regions, OneMeshIsOneRegion) {
-    const TetMesh m = tetrahedralize(box(), noCache());
+    const TetMesh m = tetrahedralize(box(), test::noCache());
     EXPECT_EQ(m.regionCount(), 1u);
     EXPECT_EQ(m.regionTets, (std::vector<uint32_t>{0, uint32_t(m.tets.size())}));
     for (const auto& sides : m.surfaceRegions) EXPECT_EQ(sides, (std::array<int32_t, 2>{0, -1}));
@@ -212,7 +206,7 @@ TEST(Regions, CacheKeysOnTheWholeSet) {
 
 std::string errorOf(const std::vector<TriangleMesh>& meshes, const std::vector<std::string>& names) {
     try {
-        tetrahedralize(meshes, names, noCache());
+        tetrahedralize(meshes, names, test::noCache());
     } catch (const InputError& e) {
         return e.what();
     }

@@ -17,12 +17,6 @@
 namespace tetglow {
 namespace {
 
-TetOptions noCache() {
-    TetOptions o;
-    o.useCache = false;
-    return o;
-}
-
 // The medium's length along the ray from Embree's boundary hits: the ray is cut at every hit
 // (t refined in double), at every end of a walk segment and at `extra`, and each piece counts
 // when its midpoint is inside by the parity test (majority of 5 rays). Embree can report a
@@ -71,7 +65,7 @@ class TetCore : public testing::TestWithParam<test::NamedMesh> {
 protected:
     void SetUp() override {
         if (GetParam().path.empty()) GTEST_SKIP() << GetParam().name << ".obj not tested: ../shared/meshes not found";
-        volume_ = std::make_unique<TetVolume>(tetrahedralize(readMesh(GetParam().path), noCache()));
+        volume_ = std::make_unique<TetVolume>(tetrahedralize(readMesh(GetParam().path), test::noCache()));
         Bounds3 b;
         for (const auto& v : mesh().vertices) b.extend(v);
         bounds_ = b;
