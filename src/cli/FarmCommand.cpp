@@ -119,8 +119,8 @@ void run(const Options& o) {
     for (int f = 0; f < p.frames; ++f)
         for (int part = 0; part < p.parts; ++part) fs::remove(p.partPath(p.firstFrame + f, part), ignored);
     fs::remove(mergeStatusPath(p), ignored);
-    for (const auto& [path, text] : {std::pair{prepare, scripts.prepare}, {render, scripts.render}, {merge, scripts.merge}})
-        writeStream(path, [&](std::ostream& out) { out << text; });
+    for (const auto& script : {std::pair{prepare, scripts.prepare}, {render, scripts.render}, {merge, scripts.merge}})
+        writeStream(script.first, [&](std::ostream& out) { out << script.second; });
     const std::string prepareJob = submit(prepare, "");
     const std::string renderJob = submit(render, "--dependency=afterok:" + prepareJob + " --kill-on-invalid-dep=yes");
     const std::string mergeJob = submit(merge, "--dependency=afterany:" + prepareJob + ":" + renderJob);
