@@ -41,5 +41,19 @@ TEST(FuzzFindings, PlyListLengthBeyondTheFile) {
     }
 }
 
+// fuzz_ply: a vertex index of 3.3e32 was converted to int64_t for the error message (UB).
+TEST(FuzzFindings, PlyVertexIndexBeyondEveryIntegerType) {
+    const std::string path = test::writeTemp(
+        "tri.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                   "element face 1\nproperty list uchar float vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3.33333e32\n");
+    std::vector<std::string> warnings;
+    try {
+        readPly(path, warnings);
+        ADD_FAILURE() << "no error";
+    } catch (const InputError& e) {
+        EXPECT_EQ(std::string(e.what()), path + ": face 0: vertex index 3.33333e+32 out of range (3 vertices)");
+    }
+}
+
 }  // namespace
 }  // namespace tetglow

@@ -3,6 +3,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <sstream>
 
@@ -180,9 +181,13 @@ void addFace(TriangleMesh& out, const std::vector<double>& face, size_t vertexCo
     }
     uint32_t v[4];
     for (size_t k = 0; k < face.size(); ++k) {
-        if (face[k] < 0 || face[k] >= double(vertexCount))
-            throw InputError(path + ": face " + std::to_string(index) + ": vertex index " + std::to_string(int64_t(face[k])) +
-                             " out of range (" + std::to_string(vertexCount) + " vertices)");
+        if (face[k] < 0 || face[k] >= double(vertexCount)) {
+            // Printed as read: an index like 3e32 has no integer type to go through.
+            char value[32];
+            std::snprintf(value, sizeof value, "%.6g", face[k]);
+            throw InputError(path + ": face " + std::to_string(index) + ": vertex index " + value + " out of range (" +
+                             std::to_string(vertexCount) + " vertices)");
+        }
         v[k] = uint32_t(face[k]);
     }
     out.triangles.push_back({v[0], v[1], v[2]});
