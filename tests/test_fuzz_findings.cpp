@@ -26,33 +26,30 @@ TEST(FuzzFindings, ObjWithAMaterialLibraryNameTooLongForTheSystem) {
     EXPECT_NE(warnings[0].find("not found; ignored"), std::string::npos) << warnings[0].substr(0, 200);
 }
 
-// fuzz_ply: a list length of 7e31 (a float count type) was converted to size_t (UBSan: outside
-// the range of representable values); in a Release build the read then ran to the file's end.
-TEST(FuzzFindings, PlyListLengthBeyondTheFile) {
+// A triangle in ASCII PLY whose face element is declared by `faceList` and read from `faceLine`:
+// readPly must refuse it with exactly `error` (after the file's path).
+void expectTriangleRefused(const std::string& faceList, const std::string& faceLine, const std::string& error) {
     const std::string path = test::writeTemp(
         "tri.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
-                   "element face 1\nproperty list float int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n7e31 0 1 2\n");
+                   "element face 1\nproperty list " + faceList + " vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n" + faceLine + "\n");
     std::vector<std::string> warnings;
     try {
         readPly(path, warnings);
         ADD_FAILURE() << "no error";
     } catch (const InputError& e) {
-        EXPECT_EQ(std::string(e.what()), path + ": bad list length in element 'face'");
+        EXPECT_EQ(std::string(e.what()), path + ": " + error);
     }
+}
+
+// fuzz_ply: a list length of 7e31 (a float count type) was converted to size_t (UBSan: outside
+// the range of representable values); in a Release build the read then ran to the file's end.
+TEST(FuzzFindings, PlyListLengthBeyondTheFile) {
+    expectTriangleRefused("float int", "7e31 0 1 2", "bad list length in element 'face'");
 }
 
 // fuzz_ply: a vertex index of 3.3e32 was converted to int64_t for the error message (UB).
 TEST(FuzzFindings, PlyVertexIndexBeyondEveryIntegerType) {
-    const std::string path = test::writeTemp(
-        "tri.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
-                   "element face 1\nproperty list uchar float vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3.33333e32\n");
-    std::vector<std::string> warnings;
-    try {
-        readPly(path, warnings);
-        ADD_FAILURE() << "no error";
-    } catch (const InputError& e) {
-        EXPECT_EQ(std::string(e.what()), path + ": face 0: vertex index 3.33333e+32 out of range (3 vertices)");
-    }
+    expectTriangleRefused("uchar float", "3 0 1 3.33333e32", "face 0: vertex index 3.33333e+32 out of range (3 vertices)");
 }
 
 }  // namespace
