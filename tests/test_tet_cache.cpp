@@ -130,6 +130,28 @@ TEST(TetCache, ContentChecksHoldBehindAMatchingChecksum) {
     expectRebuilt(c, "tet 0 has a neighbour that does not point back");
 }
 
+// Two forgeries that keep every index in range: a tet turned inside out (two vertices swapped)
+// and a surface vertex moved (the same triangles, another mesh). Both used to be accepted.
+TEST(TetCache, AnInsideOutTetOrAMovedVertexIsNotUsed) {
+    const Cached c = cachedBox();
+    const std::string entry = slurp(c.file);
+    const size_t tets = kFirstVertex + 24 * c.fresh.vertices.size() + 8;
+    std::string insideOut = entry;
+    std::memcpy(insideOut.data() + tets, entry.data() + tets + 4, 4);
+    std::memcpy(insideOut.data() + tets + 4, entry.data() + tets, 4);
+    reseal(insideOut);
+    spit(c.file, insideOut);
+    expectRebuilt(c, "tet 0 is flat or inside out");
+    std::string moved = entry;  // vertex 0's x, nudged by one part in 10^6 of the box: no tet flips
+    double x = 0;
+    std::memcpy(&x, entry.data() + kFirstVertex, 8);
+    x += 1e-6;
+    std::memcpy(moved.data() + kFirstVertex, &x, 8);
+    reseal(moved);
+    spit(c.file, moved);
+    expectRebuilt(c, "it holds the tets of another set of meshes");
+}
+
 // Found by fuzz_tet_cache: an empty array was copied from a null pointer (UBSan). An entry of
 // empty arrays holds together, but it is not this mesh's, and is rebuilt like any collision.
 TEST(TetCache, AnEntryOfEmptyArraysIsReadSafelyAndNotUsed) {

@@ -9,6 +9,7 @@
 #include "tet/Hash.h"
 #include "tet/InputFile.h"
 #include "tet/OutputFile.h"
+#include "tet/Predicates.h"
 
 namespace tetglow {
 
@@ -138,6 +139,10 @@ std::string inconsistency(const TetMesh& m) {
         }
         if (v[0] == v[1] || v[0] == v[2] || v[0] == v[3] || v[1] == v[2] || v[1] == v[3] || v[2] == v[3])
             return "tet " + std::to_string(t) + " repeats a vertex";
+        // A moved vertex that turns a tet inside out would send walks the wrong way (exact sign;
+        // Shewchuk's orient3d is negative for the mesh's positive orientation).
+        if (!(orient3d(m.vertices[v[0]], m.vertices[v[1]], m.vertices[v[2]], m.vertices[v[3]]) < 0))
+            return "tet " + std::to_string(t) + " is flat or inside out";
         for (int j = 0; j < 4; ++j) {  // each face is seen the same way from both sides
             const int32_t a = m.adjacency[t][j];
             const uint32_t self = uint32_t(4 * t + j);

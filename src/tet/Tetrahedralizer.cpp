@@ -402,7 +402,12 @@ TetMesh tetrahedralize(std::vector<TriangleMesh> surfaces, const std::vector<std
     TetMesh mesh;
     std::string problem;
     CacheRead cached = file.empty() ? CacheRead::Absent : readTetMesh(mesh, key, file.string(), &problem);
-    if (cached == CacheRead::Used && (mesh.surface != complex.surface.triangles || mesh.surfaceRegions != complex.sides))
+    const auto sameSurface = [&] {
+        const auto& p = complex.surface.positions;
+        return mesh.surfaceVertexCount == p.size() && std::equal(p.begin(), p.end(), mesh.vertices.begin()) &&
+               mesh.surface == complex.surface.triangles && mesh.surfaceRegions == complex.sides;
+    };
+    if (cached == CacheRead::Used && !sameSurface())
         cached = CacheRead::Damaged, problem = "it holds the tets of another set of meshes";  // a key collision
     if (cached == CacheRead::Used) {
         local.fromCache = true;
