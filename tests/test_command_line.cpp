@@ -99,6 +99,27 @@ TEST(Outputs, OutputThatNamesAnInputIsRefused) {
     EXPECT_EQ(slurp(mesh), boxObj());
 }
 
+// The files a scene pulls in are inputs too: its mesh (under a name render would write to), a
+// pbrt Include, and the mesh that convert's own mesh file would replace. All used to be overwritten.
+TEST(Outputs, OutputThatNamesAFileTheSceneReadsIsRefused) {
+    const std::string dir = tempDir();
+    const std::string mesh = writeTemp("out-medium-0.obj", boxObj());
+    const std::string scene = writeTemp("mesh.json", R"({"camera": {"position": [0.5, 0.5, 4], "look_at": [0.5, 0.5, 0], "resolution": [4, 4]},
+        "integrator": {"spp": 1}, "media": [{"shape": {"type": "mesh", "file": "out-medium-0.obj"}, "sigma_s": 1, "emission": 1}]})");
+    const std::string include = writeTemp("light.exr", "LightSource \"distant\" \"point from\" [0 0 1] \"point to\" [0 0 0]\n");
+    const std::string pbrt = writeTemp("inc.pbrt", "LookAt 0 0 4 0 0 0 0 1 0\nCamera \"perspective\"\nFilm \"image\" \"integer xresolution\" [4] "
+                                                   "\"integer yresolution\" [4]\nWorldBegin\nInclude \"light.exr\"\nWorldEnd\n");
+    fs::create_symlink(mesh, dir + "/mesh-link.exr");
+    const std::string commands[] = {"render " + scene + " -o " + dir + "/mesh-link.exr", "render " + pbrt + " -o " + include,
+                                    "convert " + scene + " -o " + dir + "/out.json"};
+    for (const auto& command : commands) {
+        SCOPED_TRACE(command);
+        expectOneLineError(runTetglow(command), 1, "the output is an input");
+    }
+    EXPECT_EQ(slurp(mesh), boxObj());
+    EXPECT_EQ(slurp(include).rfind("LightSource", 0), 0u);
+}
+
 TEST(Outputs, OutputThatIsAFolderIsAnError) {
     const std::string scene = writeTemp("scene.json", tinyScene()), mesh = writeTemp("box.obj", boxObj());
     const std::string dir = tempDir() + "/folder";

@@ -17,8 +17,9 @@ struct Options {
 void run(const Options& o) {
     namespace fs = std::filesystem;
     if (fs::path(o.output).extension() != ".json") throw InputError(o.output + ": the output must be a .json file");
-    prepareOutput(o.output, {o.scene});
+    prepareOutput(o.output, {o.scene});  // before the work; once more against every file the scene read
     const SceneDesc scene = loadScene(o.scene);
+    prepareOutput(o.output, scene.inputs);
     const auto meshes = writeScene(scene, o.output);
     std::printf("%s and %zu mesh files: %zu lights, %zu surfaces, %zu media\n", o.output.c_str(), meshes.size(), scene.lights.size(),
                 scene.surfaces.size(), scene.media.size());

@@ -78,6 +78,7 @@ FarmPlan plan(const Options& o) {
         for (const auto& value : option->results())
             if (option->get_name() != "--threads") p.renderArgs.insert(p.renderArgs.end(), {option->get_name(), value});
     p.totalPasses = desc.integrator.spp;
+    p.inputs = desc.inputs;
     if (o.parts > p.totalPasses)
         throw InputError("farm: --parts " + std::to_string(o.parts) + " is more than the " + std::to_string(p.totalPasses) + " passes to split");
     p.parts = o.parts;
@@ -112,8 +113,8 @@ void run(const Options& o) {
                     prepare.c_str(), scripts.render.c_str(), merge.c_str(), scripts.merge.c_str());
         return;
     }
-    for (const auto& output : p.outputs) prepareOutput(output, {o.args.scene});
-    for (const auto& script : {prepare, render, merge}) prepareOutput(script, {o.args.scene});
+    for (const auto& output : p.outputs) prepareOutput(output, p.inputs);
+    for (const auto& script : {prepare, render, merge}) prepareOutput(script, p.inputs);
     // Parts and status of an earlier run must not stand in for this one's.
     std::error_code ignored;
     for (int f = 0; f < p.frames; ++f)

@@ -13,6 +13,7 @@ struct FarmPlan {
     int totalPasses = 1, parts = 1, cpusPerTask = 1;
     int firstFrame = 0, frames = 1;         // frames firstFrame .. firstFrame + frames - 1
     std::vector<std::string> outputs;       // per frame
+    std::vector<std::string> inputs;        // every file the scene reads: no output may name one
     std::string workDir, partition;         // partition "": the cluster's default
     std::pair<int, int> passRange(int part) const;  // part p of `parts`: passes as even as can be
     std::string partPath(int frame, int part) const;

@@ -74,8 +74,8 @@ void run(const Options& o) {
     const std::string output = outputPath(o, desc);
     if (std::filesystem::path(output).extension() != ".exr") throw InputError(output + ": the output must be an .exr file");
     if (!o.tetsOnly) {
-        prepareOutput(output, {o.args.scene});
-        if (o.passRange.empty()) prepareOutput(previewPath(output), {o.args.scene});
+        prepareOutput(output, desc.inputs);
+        if (o.passRange.empty()) prepareOutput(previewPath(output), desc.inputs);
     }
 
     const Scene scene(desc);

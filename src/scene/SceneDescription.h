@@ -165,6 +165,7 @@ struct SceneDesc {
     std::vector<MediumDesc> media;
     IntegratorDesc integrator;
     std::string output;  // default image path from the file ("" when not given)
+    std::vector<std::string> inputs;  // every file read to build it: the scene, Includes, meshes
 };
 
 }  // namespace tetglow

@@ -20,6 +20,7 @@ std::string sceneFingerprint(const SceneDesc& scene) {
     SceneDesc copy = scene;  // the writer's copy is judged by content only: no paths
     copy.path.clear();
     copy.output.clear();
+    copy.inputs.clear();
     uint64_t hash = kFnvOffset;
     try {
         const std::string json = (dir / "scene.json").string();

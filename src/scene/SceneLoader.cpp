@@ -294,16 +294,22 @@ bool emitsLight(const SceneDesc& s) {
 }
 
 SceneDesc loadScene(const std::string& path) {
-    auto pbrt = [&] {
-        SceneDesc s = loadPbrtScene(path);
-        checkLimits(s);
-        return s;
+    const InputLog log;
+    const auto read = [&] {
+        auto pbrt = [&] {
+            SceneDesc s = loadPbrtScene(path);
+            checkLimits(s);
+            return s;
+        };
+        if (fs::path(path).extension() == ".pbrt") return pbrt();  // without reading the file here too
+        const std::string text = readInputFile(path, kMaxSceneFileBytes, "a scene file");
+        if (looksLikePbrt(text)) return pbrt();
+        const nlohmann::json doc = parseJson(text, path);
+        return JsonValue(&doc, nlohmann::json::json_pointer(), path).readObject([&](JsonObject& o) { return readScene(o, path); });
     };
-    if (fs::path(path).extension() == ".pbrt") return pbrt();  // without reading the file here too
-    const std::string text = readInputFile(path, kMaxSceneFileBytes, "a scene file");
-    if (looksLikePbrt(text)) return pbrt();
-    const nlohmann::json doc = parseJson(text, path);
-    return JsonValue(&doc, nlohmann::json::json_pointer(), path).readObject([&](JsonObject& o) { return readScene(o, path); });
+    SceneDesc scene = read();
+    scene.inputs = log.files();
+    return scene;
 }
 
 }  // namespace tetglow

@@ -92,7 +92,7 @@ private:
     // A "mesh" shape whose OBJ file holds the world-space triangles as they are.
     Json mesh(const TriangleMesh& m, const std::string& role, size_t index) {
         const std::string file = stem_ + "-" + role + "-" + std::to_string(index) + ".obj";
-        prepareOutput((dir_ / file).string(), {scene_.path});
+        prepareOutput((dir_ / file).string(), scene_.inputs);
         writeObj(m, (dir_ / file).string(), "# " + role + " " + std::to_string(index) + " of " + scene_.path + ", world space\n");
         written.push_back((dir_ / file).string());
         return {{"type", "mesh"}, {"file", file}};

@@ -26,12 +26,17 @@ std::string size(uint64_t bytes) {
     return bytes >= kMiB ? std::to_string(bytes / kMiB) + " MiB" : std::to_string(bytes) + " bytes";
 }
 
+thread_local InputLog* currentLog = nullptr;
+
 struct Fd {
     int fd;
     ~Fd() { ::close(fd); }
 };
 
 }  // namespace
+
+InputLog::InputLog() : outer_(currentLog) { currentLog = this; }
+InputLog::~InputLog() { currentLog = outer_; }
 
 std::string readInputFile(const std::string& path, uint64_t maxBytes, const char* what) {
     // O_NONBLOCK: opening a FIFO without a writer returns at once instead of waiting; the type
@@ -42,6 +47,7 @@ std::string readInputFile(const std::string& path, uint64_t maxBytes, const char
         throw InputError(path + ": cannot open: " + std::strerror(errno));
     }
     const Fd guard{fd};
+    if (currentLog) currentLog->files_.push_back(path);
     struct stat st {};
     if (::fstat(fd, &st) != 0) throw InputError(path + ": cannot open: " + std::strerror(errno));
     if (!S_ISREG(st.st_mode)) throw InputError(path + ": is " + kindOf(st.st_mode) + ", not a regular file");

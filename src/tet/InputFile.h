@@ -4,6 +4,7 @@
 #pragma once
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace tetglow {
 
@@ -19,5 +20,22 @@ inline constexpr uint64_t kMaxCacheFileBytes = 4096 * kMiB;  // a tet cache entr
 //   for a scene file", "<path>: cannot open: <reason>".
 // `what` names the kind of file in the size message ("a scene file", "a mesh").
 std::string readInputFile(const std::string& path, uint64_t maxBytes, const char* what);
+
+// While one lives, the path of every file readInputFile opens on this thread is recorded in it
+// (the innermost log, when they nest): a loader learns every file a scene pulls in (Includes,
+// meshes, plymesh), and commands refuse outputs that would overwrite any of them.
+class InputLog {
+public:
+    InputLog();
+    ~InputLog();
+    InputLog(const InputLog&) = delete;
+    InputLog& operator=(const InputLog&) = delete;
+    const std::vector<std::string>& files() const { return files_; }
+
+private:
+    friend std::string readInputFile(const std::string&, uint64_t, const char*);
+    std::vector<std::string> files_;
+    InputLog* outer_;
+};
 
 }  // namespace tetglow
