@@ -42,6 +42,29 @@ TEST(Slab, SameResultAnyThreadCount) {
     EXPECT_EQ(one.transmittance.mean, two.transmittance.mean);
 }
 
+// The largest photon count used to allocate one sum per block of 4096 photons at once (17 GB
+// for 2^40) and had no time bound; now its blocks are summed a few thousand at a time and
+// --time ends it with an error naming how far it got.
+TEST(Slab, LargestPhotonCountEndsAtItsTimeLimit) {
+    const auto r = runTetglow("validate slab --photons 1099511627776 --time 0.3");
+    expectOneLineError(r, 1, "photons traced in --time 0.3 s: ask for fewer photons or more time");
+    EXPECT_NE(r.err.find(" of 1099511627776 photons"), std::string::npos) << r.err;
+}
+
+// A slab so thick and forward-scattering that a photon neither leaves nor is absorbed within the
+// event cap: its flux would be missing from every tally, so the run is refused, not reported.
+TEST(Slab, PhotonAtTheEventCapIsAnError) {
+    SlabParams p;
+    p.tau = 1e6, p.albedo = 1, p.g = 0.999999, p.photons = 2;
+    try {
+        simulateSlab(p);
+        FAIL() << "a photon at the event cap was counted";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("a photon scattered 1048576 times without leaving or being absorbed"), std::string::npos)
+            << e.what();
+    }
+}
+
 TEST(Slab, CommandPrintsJsonAndRejectsBadParameters) {
     const auto r = runTetglow("validate slab --tau 2 --albedo 0.9 --g 0.75 --photons 20000 --json");
     ASSERT_EQ(r.exitCode, 0) << r.err;

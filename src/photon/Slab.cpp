@@ -1,13 +1,17 @@
 #include "photon/Slab.h"
 
+#include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <string>
 #include <vector>
 
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
 #include "photon/PhotonWalk.h"
+#include "tet/TriangleMesh.h"  // InputError
 #include "tet/Shapes.h"
 #include "tet/Tetrahedralizer.h"
 
@@ -25,6 +29,12 @@ struct Sums {
         for (int k = 0; k < 4; ++k) value[k] += o.value[k], square[k] += o.square[k];
     }
 };
+
+std::string number(double x) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", x);
+    return text;
+}
 
 Tally tally(double sum, double sumSquares, double n) {
     const double mean = sum / n;
@@ -54,34 +64,56 @@ SlabResult simulateSlab(const SlabParams& p) {
     const SurfaceBVH& bvh = medium.volume().bvh();
 
     constexpr uint64_t kBlock = 4096;
+    // Blocks are summed in order, so the sum is the same for any thread count; a few thousand at
+    // a time, so that 2^40 photons do not need 2^28 block sums in memory at once.
+    constexpr uint64_t kBlocksAtOnce = 4096;
     const uint64_t blocks = (p.photons + kBlock - 1) / kBlock;
-    std::vector<Sums> blockSums(blocks);
-    tbb::task_arena arena(p.threads > 0 ? p.threads : tbb::task_arena::automatic);
-    arena.execute([&] {
-        tbb::parallel_for(uint64_t(0), blocks, [&](uint64_t b) {
-            for (uint64_t i = b * kBlock; i < std::min(p.photons, (b + 1) * kBlock); ++i) {
-                Rng rng(p.seed, i);
-                const double x = (rng.uniform() - 0.5) * 0.1 * width, y = (rng.uniform() - 0.5) * 0.1 * width;
-                const Ray ray{{x, y, 1}, {0, 0, -1}};
-                const auto entry = bvh.intersect(ray, 0, INFINITY, Facing::Entering);
-                double x4[4] = {};
-                if (entry) {
-                    SpectralPath path(0);
-                    const WalkResult r = photonWalk(medium, Ray{ray.at(entry->t), ray.d}, WalkStart::surface(entry->triangle),
-                                                    RGB(1), path, rng, 1 << 20, [](const Ray&) { return INFINITY; },
-                                                    [](const PhotonEvent&) {});
-                    x4[2] = r.absorbedFlux.x;
-                    if (r.left) {
-                        const double nz = glm::normalize(bvh.normal(r.exitTriangle)).z, w = path.weight().x;
-                        x4[nz > 0.5 ? 0 : nz < -0.5 ? 1 : 3] = w;
-                    }
-                }
-                blockSums[b].add(x4);
-            }
-        });
-    });
+    std::vector<Sums> blockSums(std::min(blocks, kBlocksAtOnce));
     Sums total;
-    for (const auto& s : blockSums) total.add(s);  // in block order: the same sum for any thread count
+    std::atomic<bool> stuck{false}, late{false};
+    std::atomic<uint64_t> traced{0};
+    const auto pastTime = [&] {
+        return p.timeLimit > 0 && std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > p.timeLimit;
+    };
+    tbb::task_arena arena(p.threads > 0 ? p.threads : tbb::task_arena::automatic);
+    for (uint64_t first = 0; first < blocks && !stuck && !late; first += kBlocksAtOnce) {
+        const uint64_t count = std::min(kBlocksAtOnce, blocks - first);
+        std::fill(blockSums.begin(), blockSums.end(), Sums{});
+        arena.execute([&] {
+            tbb::parallel_for(first, first + count, [&](uint64_t b) {
+                for (uint64_t i = b * kBlock; i < std::min(p.photons, (b + 1) * kBlock); ++i) {
+                    if (stuck || late) return;
+                    if (pastTime()) return void(late = true);  // per photon: one may take 2^20 events
+                    Rng rng(p.seed, i);
+                    const double x = (rng.uniform() - 0.5) * 0.1 * width, y = (rng.uniform() - 0.5) * 0.1 * width;
+                    const Ray ray{{x, y, 1}, {0, 0, -1}};
+                    const auto entry = bvh.intersect(ray, 0, INFINITY, Facing::Entering);
+                    double x4[4] = {};
+                    if (entry) {
+                        SpectralPath path(0);
+                        const WalkResult r = photonWalk(medium, Ray{ray.at(entry->t), ray.d}, WalkStart::surface(entry->triangle),
+                                                        RGB(1), path, rng, kMaxSlabEvents, [](const Ray&) { return INFINITY; },
+                                                        [](const PhotonEvent&) {});
+                        if (r.events >= kMaxSlabEvents) stuck = true;
+                        x4[2] = r.absorbedFlux.x;
+                        if (r.left) {
+                            const double nz = glm::normalize(bvh.normal(r.exitTriangle)).z, w = path.weight().x;
+                            x4[nz > 0.5 ? 0 : nz < -0.5 ? 1 : 3] = w;
+                        }
+                    }
+                    blockSums[b - first].add(x4);
+                    ++traced;
+                }
+            });
+        });
+        for (uint64_t b = 0; b < count; ++b) total.add(blockSums[b]);
+    }
+    if (stuck)
+        throw InputError("slab: a photon scattered " + std::to_string(kMaxSlabEvents) + " times without leaving or being absorbed (--tau " +
+                         number(p.tau) + ", --albedo " + number(p.albedo) + ", --g " + number(p.g) + "): too thick to simulate; use a smaller --tau");
+    if (late)
+        throw InputError("slab: " + std::to_string(traced.load()) + " of " + std::to_string(p.photons) + " photons traced in --time " +
+                         number(p.timeLimit) + " s: ask for fewer photons or more time");
     SlabResult result;
     const double n = double(p.photons);
     result.reflectance = tally(total.value[0], total.square[0], n);

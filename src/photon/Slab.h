@@ -10,6 +10,7 @@ struct SlabParams {
     double tau = 2, albedo = 0.9, g = 0.75;
     uint64_t photons = 1000000, seed = 1;
     int threads = 0;  // 0: all cores
+    double timeLimit = 0;  // > 0: an InputError when the photons are not all traced by then (seconds)
 };
 
 struct Tally {
@@ -24,7 +25,10 @@ struct SlabResult {
     double seconds = 0;
 };
 
-// Throws InputError for parameters outside tau > 0, 0 <= albedo <= 1, -1 < g < 1, photons >= 1.
+// Throws InputError for parameters outside tau > 0, 0 <= albedo <= 1, -1 < g < 1, photons >= 2;
+// when a photon reaches kMaxSlabEvents scattering events inside (a slab too thick to simulate: its
+// share of the flux would be lost from every tally); and when timeLimit passes first.
+inline constexpr int kMaxSlabEvents = 1 << 20;
 SlabResult simulateSlab(const SlabParams& params);
 
 }  // namespace tetglow
