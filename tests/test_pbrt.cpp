@@ -334,5 +334,26 @@ WorldEnd
     EXPECT_EQ(warnings[1], path + ":4: warning: Shape \"trianglemesh\": parameter \"float radius\" is not used (pbrt-v3 ignores it too)");
 }
 
+// A file of nothing but AttributeBegin (2 million of them) took 1.4 GB and printed a warning for
+// each: the blocks open at once are bounded, and so are the warnings kept.
+TEST(Pbrt, BlockDepthAndWarningsAreBounded) {
+    std::string deep = "WorldBegin\n";
+    for (int i = 0; i < 1025; ++i) deep += "AttributeBegin\n";
+    const std::string path = test::writeTemp("deep.pbrt", deep + "WorldEnd\n");
+    try {
+        loadPbrtScene(path);
+        FAIL() << "1025 open blocks were accepted";
+    } catch (const InputError& e) {
+        EXPECT_EQ(std::string(e.what()), path + ":1026: AttributeBegin nested more than 1024 deep (AttributeBegin and TransformBegin together)");
+    }
+    std::string open = "WorldBegin\nLightSource \"point\"\n";
+    for (int i = 0; i < 300; ++i) open += "TransformBegin\n";
+    std::vector<std::string> warnings;
+    loadPbrtScene(test::writeTemp("open.pbrt", open + "WorldEnd\n"), &warnings);
+    ASSERT_EQ(warnings.size(), kMaxWarnings + 1);
+    EXPECT_NE(warnings[0].find("TransformBegin without an end before WorldEnd"), std::string::npos) << warnings[0];
+    EXPECT_EQ(warnings.back(), "tetglow: warning: more than 100 warnings; the rest are not shown");
+}
+
 }  // namespace
 }  // namespace tetglow

@@ -30,7 +30,7 @@ char unescape(char c, const PbrtLocation& at) {
 void pbrtError(const PbrtLocation& at, const std::string& message) { throw InputError(at.str() + ": " + message); }
 
 void pbrtWarn(std::vector<std::string>& warnings, const PbrtLocation& at, const std::string& message, const char* kind) {
-    warnings.push_back(at.str() + ": " + kind + ": " + message);
+    addWarning(warnings, at.str() + ": " + kind + ": " + message);
 }
 
 PbrtTokenizer::PbrtTokenizer(const std::string& path) { files_.push_back({path, readInputFile(path, kMaxSceneFileBytes, "a pbrt file")}); }

@@ -242,7 +242,7 @@ PlyMesh readPly(const std::string& path, std::vector<std::string>& warnings) {
         }
     }
     if (skipped)
-        warnings.push_back(path + ": warning: skipped " + std::to_string(skipped) +
+        addWarning(warnings, path + ": warning: skipped " + std::to_string(skipped) +
                            " faces that are neither triangles nor quads (as pbrt-v3 does)");
     if (out.mesh.triangles.empty()) throw InputError(path + ": no triangles (a PLY mesh needs 'vertex' and 'face' elements)");
     return out;

@@ -111,7 +111,7 @@ TriangleMesh readObj(std::istream& in, const std::string& path, std::vector<std:
             std::getline(ls >> std::ws, lib);
             std::error_code ec;  // a name the system refuses (too long) is as missing as an absent one
             if (warnings && !std::filesystem::exists(dir / lib, ec))
-                warnings->push_back(where(path, line) + "material library '" + lib + "' not found; ignored");
+                addWarning(*warnings, where(path, line) + "material library '" + lib + "' not found; ignored");
         } else if (key == "vn" || key == "vt" || key == "vp" || key == "o" || key == "g" || key == "s" ||
                    key == "usemtl" || key == "l" || key == "p") {
             continue;  // attributes that do not change the shape of the medium

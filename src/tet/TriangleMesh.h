@@ -31,6 +31,14 @@ inline std::string shorten(const std::string& s, size_t max = 80) {
     return s.substr(0, max / 2) + "...(" + std::to_string(s.size()) + " characters)..." + s.substr(s.size() - max / 4);
 }
 
+// Adds a warning for the user, shortened like an error; a machine-made file can repeat one mistake
+// a million times, so after the first kMaxWarnings only one line says that more were dropped.
+inline constexpr size_t kMaxWarnings = 100;
+inline void addWarning(std::vector<std::string>& warnings, const std::string& message) {
+    if (warnings.size() < kMaxWarnings) warnings.push_back(shorten(oneLine(message), 400));
+    else if (warnings.size() == kMaxWarnings) warnings.push_back("tetglow: warning: more than 100 warnings; the rest are not shown");
+}
+
 // x rounded to float precision. Through a volatile: GCC 12's SLP vectorizer at -O2 was seen
 // to drop the rounding of (double)(float)x for some vector lanes.
 inline double roundToFloat(double x) {
