@@ -13,6 +13,7 @@
 
 #include "TestMeshes.h"
 #include "scene/FishGenerator.h"
+#include "tet/Nesting.h"
 #include "tet/SelfIntersection.h"
 
 namespace tetglow {
@@ -71,6 +72,34 @@ void expectValidMedium(const TriangleMesh& m) {
     EXPECT_EQ(distinct.size(), m.positions.size()) << "duplicate vertices";
     const auto hit = findSelfIntersection(m);
     EXPECT_FALSE(hit) << "triangles " << hit->first << " and " << hit->second << " intersect";
+}
+
+// The showcase's organs: valid media of their own, nested in the body (every vertex inside it,
+// exactly, and no triangle of theirs crossing one of the body's), at the default resolution and a
+// coarse one; a body too coarse to hold them is an error, not organs poking out.
+TEST(FishGenerator, OrgansAreValidAndNestedInTheBody) {
+    for (const FishParams& p : {FishParams{}, resolution(32, 24)}) {
+        const TriangleMesh body = makeFish(p);
+        const std::pair<TriangleMesh, size_t> parts[] = {{makeFishPhotophores(p), 14}, {makeFishEyes(p), 2}, {makeFishLureCore(p), 1}};
+        for (const auto& [organ, expectedShells] : parts) {
+            expectValidMedium(organ);
+            uint32_t count = 0;
+            shells(organ, count);
+            EXPECT_EQ(count, expectedShells);
+            for (const auto& v : organ.positions) ASSERT_EQ(classifyPoint(body, v), PointSide::Inside);
+            TriangleMesh both = body;
+            const auto base = static_cast<uint32_t>(both.positions.size());
+            both.positions.insert(both.positions.end(), organ.positions.begin(), organ.positions.end());
+            for (const auto& t : organ.triangles) both.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+            EXPECT_FALSE(findSelfIntersection(both)) << "an organ crosses the body";
+        }
+    }
+    try {
+        makeFishPhotophores(resolution(8, 8));
+        FAIL() << "photophores placed in an 8 x 8 body";
+    } catch (const InputError& e) {
+        EXPECT_EQ(std::string(e.what()), "fish: photophores do not fit inside the fish at 8 rings and 8 segments: use more of either");
+    }
 }
 
 TEST(FishGenerator, DefaultIsAValidMedium) {
@@ -165,18 +194,25 @@ TEST(FishGenerator, RejectsParametersOutOfRange) {
     EXPECT_THROW(makeFish(p), InputError);
 }
 
-TEST(FishGenerator, CommittedObjIsTheDefaultFish) {
-    const TriangleMesh expected = makeFish();
-    const TriangleMesh committed = readMesh(TETGLOW_SOURCE_DIR "/scenes/meshes/fish.obj");
-    ASSERT_EQ(committed.positions.size(), expected.positions.size()) << "regenerate: tetglow generate fish -o scenes/meshes/fish.obj";
-    ASSERT_EQ(committed.triangles.size(), expected.triangles.size());
-    // Nine digits bring float positions back exactly once snapped to float, as validation does.
-    for (size_t v = 0; v < expected.positions.size(); ++v) {
-        ASSERT_LT(glm::distance(committed.positions[v], expected.positions[v]), 1e-6) << "vertex " << v;
-        const glm::dvec3& c = committed.positions[v];
-        ASSERT_EQ(glm::dvec3(roundToFloat(c.x), roundToFloat(c.y), roundToFloat(c.z)), expected.positions[v]) << "vertex " << v;
+// The committed meshes of the demo (scenes/meshes) are exactly what the generator makes by default.
+TEST(FishGenerator, CommittedObjsAreTheDefaultFishAndItsOrgans) {
+    const std::pair<std::string, TriangleMesh (*)(const FishParams&)> parts[] = {
+        {"fish", makeFish}, {"fish-photophores", makeFishPhotophores}, {"fish-eyes", makeFishEyes}, {"fish-lure-core", makeFishLureCore}};
+    for (const auto& [name, make] : parts) {
+        SCOPED_TRACE(name);
+        const TriangleMesh expected = make({});
+        const std::string file = "scenes/meshes/" + name + ".obj";
+        const TriangleMesh committed = readMesh(TETGLOW_SOURCE_DIR "/" + file);
+        ASSERT_EQ(committed.positions.size(), expected.positions.size()) << "regenerate: tetglow generate " << name << " -o " << file;
+        ASSERT_EQ(committed.triangles.size(), expected.triangles.size());
+        // Nine digits bring float positions back exactly once snapped to float, as validation does.
+        for (size_t v = 0; v < expected.positions.size(); ++v) {
+            ASSERT_LT(glm::distance(committed.positions[v], expected.positions[v]), 1e-6) << "vertex " << v;
+            const glm::dvec3& c = committed.positions[v];
+            ASSERT_EQ(glm::dvec3(roundToFloat(c.x), roundToFloat(c.y), roundToFloat(c.z)), expected.positions[v]) << "vertex " << v;
+        }
+        EXPECT_EQ(committed.triangles, expected.triangles);
     }
-    EXPECT_EQ(committed.triangles, expected.triangles);
 }
 
 }  // namespace

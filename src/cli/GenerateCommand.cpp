@@ -1,4 +1,4 @@
-// tetglow generate fish|cloud|sphere [-o FILE.obj] [--PARAMETER VALUE ...]: procedural meshes.
+// tetglow generate fish|fish-photophores|fish-eyes|fish-lure-core|cloud|sphere [-o FILE.obj] [--PARAMETER VALUE ...]: procedural meshes.
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -88,17 +88,27 @@ void addGenerateCommand(CLI::App& app) {
     CLI::App* generate = app.add_subcommand("generate", "Write a procedural demo mesh");
     generate->require_subcommand(1);
 
-    // makeFish and makeCloud throw InputError for out-of-range parameters.
-    Generator<FishParams>(*generate, "fish",
-                          "A deep-sea fish with fins and a glowing lure (two closed shells), about 2 units long, "
-                          "nose at +x. About 1.1 * rings * segments triangles.",
-                          makeFish)
-        .option("--rings", &FishParams::rings, "Cross-sections from nose to tail, 8 to 2048")
-        .option("--segments", &FishParams::segments,
-                "Vertices around the largest cross-section, 8 to 2048, within a factor of 4 of --rings")
-        .option("--fin-thickness", &FishParams::finThickness, "Thickness of the fins, 0.02 to 0.08")
-        .option("--tail-fork", &FishParams::tailFork, "How far the tail lobes reach behind the fork, 0 to 0.3")
-        .option("--lure-radius", &FishParams::lureRadius, "Radius of the lure, 0.02 to 0.1, or 0 for none");
+    // makeFish, its organs and makeCloud throw InputError for out-of-range parameters. The organs
+    // take the body's parameters, so that they fit the body generated with the same ones.
+    const struct {
+        const char* name;
+        const char* description;
+        TriangleMesh (*make)(const FishParams&);
+    } fishParts[] = {
+        {"fish", "A deep-sea fish with fins and a glowing lure (two closed shells), about 2 units long, nose at +x. "
+                 "About 1.1 * rings * segments triangles.", makeFish},
+        {"fish-photophores", "The fish's light organs: two rows of small spheres along the belly, inside the body", makeFishPhotophores},
+        {"fish-eyes", "The fish's two eyes, inside the head", makeFishEyes},
+        {"fish-lure-core", "The glowing core inside the fish's lure bulb", makeFishLureCore},
+    };
+    for (const auto& part : fishParts)
+        Generator<FishParams>(*generate, part.name, part.description, part.make)
+            .option("--rings", &FishParams::rings, "Cross-sections from nose to tail, 8 to 2048")
+            .option("--segments", &FishParams::segments,
+                    "Vertices around the largest cross-section, 8 to 2048, within a factor of 4 of --rings")
+            .option("--fin-thickness", &FishParams::finThickness, "Thickness of the fins, 0.02 to 0.08")
+            .option("--tail-fork", &FishParams::tailFork, "How far the tail lobes reach behind the fork, 0 to 0.3")
+            .option("--lure-radius", &FishParams::lureRadius, "Radius of the lure, 0.02 to 0.1, or 0 for none");
 
     Generator<CloudParams>(*generate, "cloud",
                            "A cumulus cloud: puffs on a flat-ish base, 2 units wide along x and 1.2 tall, "

@@ -12,6 +12,9 @@
 #include <glm/vec2.hpp>
 #include <glm/vec4.hpp>
 
+#include "tet/Nesting.h"
+#include "tet/Shapes.h"
+
 namespace tetglow {
 namespace {
 
@@ -331,6 +334,9 @@ std::vector<double> ringStations(const FishParams& p) {
     return stations;
 }
 
+// The lure bulb's centre: just ahead of and above the nose.
+glm::dvec3 lureCentre(const FishParams& p) { return {kNoseX + 0.06 + p.lureRadius, 0.3, 0}; }
+
 void check(bool ok, const std::string& what) {
     if (!ok) throw InputError("fish: " + what);
 }
@@ -383,7 +389,7 @@ TriangleMesh makeFish(const FishParams& p) {
     if (p.lureRadius > 0) {
         // The lure: a sphere just ahead of and above the nose, a shell of its own.
         const double r = p.lureRadius;
-        const glm::dvec3 centre{kNoseX + 0.06 + r, 0.3, 0};
+        const glm::dvec3 centre = lureCentre(p);
         const int n = std::max(4, static_cast<int>(std::lround(kPi * r / edge)));
         std::vector<Ring> lure{pole(centre + glm::dvec3(r, 0, 0))};
         for (int i = 1; i < n; ++i) {
@@ -395,6 +401,54 @@ TriangleMesh makeFish(const FishParams& p) {
         appendLoft(mesh, lure);
     }
     return mesh;
+}
+
+namespace {
+
+// A point inside the body's own lobe (the first) at station s: `up` in [-1, 1] of its depth
+// above (or, negative, below) the centre line, `side` in (-1, 1) of its half-width there.
+glm::dvec3 insideBody(double s, double up, double side, const FishParams& p) {
+    const Lobe body = fishSection(s, p).lobes.front();
+    const double y = body.centre + up * (up >= 0 ? body.up : body.down);
+    return {fishX(s), y, side * body.halfWidthAt(y)};
+}
+
+// Organs as icospheres, every vertex checked against `container` exactly (classifyPoint).
+TriangleMesh organs(const std::vector<glm::dvec3>& centres, double radius, int subdivisions, const TriangleMesh& container,
+                    const FishParams& p, const char* what) {
+    TriangleMesh mesh;
+    for (const auto& c : centres) {
+        const TriangleMesh sphere = icosphere(subdivisions, radius, c);
+        const auto base = static_cast<uint32_t>(mesh.positions.size());
+        for (const auto& v : sphere.positions) {
+            const glm::dvec3 q = toFloat(v);
+            check(classifyPoint(container, q) == PointSide::Inside,
+                  std::string(what) + " do not fit inside the fish at " + std::to_string(p.rings) + " rings and " +
+                      std::to_string(p.segments) + " segments: use more of either");
+            mesh.positions.push_back(q);
+        }
+        for (const auto& t : sphere.triangles) mesh.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+    }
+    return mesh;
+}
+
+}  // namespace
+
+TriangleMesh makeFishPhotophores(const FishParams& p) {
+    // Two rows along the lower flanks from behind the head to the anal fin, as in lanternfish.
+    std::vector<glm::dvec3> centres;
+    for (int i = 0; i < 7; ++i)
+        for (const double side : {0.55, -0.55}) centres.push_back(insideBody(0.2 + 0.05 * i, -0.62, side, p));
+    return organs(centres, 0.022, 1, makeFish(p), p, "photophores");
+}
+
+TriangleMesh makeFishEyes(const FishParams& p) {
+    return organs({insideBody(0.1, 0.3, 0.55, p), insideBody(0.1, 0.3, -0.55, p)}, 0.045, 2, makeFish(p), p, "eyes");
+}
+
+TriangleMesh makeFishLureCore(const FishParams& p) {
+    check(p.lureRadius > 0, "the lure core needs a lure (lure radius > 0)");
+    return organs({lureCentre(p)}, 0.45 * p.lureRadius, 2, makeFish(p), p, "the lure core");
 }
 
 }  // namespace tetglow

@@ -22,4 +22,12 @@ struct FishParams {
 // positions rounded to float. Throws InputError for parameters outside the ranges above.
 TriangleMesh makeFish(const FishParams& params = {});
 
+// The showcase's organs, for the same params as the body they go in, each a set of closed icosphere
+// shells nested inside makeFish(params) with clearance: every vertex is checked to lie inside the
+// body (exactly), and an InputError says so when the body is too coarse to hold them (below about
+// 24 rings or segments).
+TriangleMesh makeFishPhotophores(const FishParams& params = {});  // two rows of light organs along the belly
+TriangleMesh makeFishEyes(const FishParams& params = {});         // one large eye on each side of the head
+TriangleMesh makeFishLureCore(const FishParams& params = {});     // the glowing core inside the lure bulb
+
 }  // namespace tetglow
