@@ -68,7 +68,7 @@ SceneDesc furnace(TriangleMesh boundary, const RGB& sigmaA, const RGB& sigmaS, d
 TEST(StabilityRender, RaysThroughVerticesEdgesAndGrazingEveryIntegrator) {
     const double sigma = 1.5;
     const Scene scene(furnace(tiltedPolyhedron(2), RGB(sigma), RGB(0), 0));
-    const TriangleMesh surface = scene.media()[0].medium->mesh().surfaceMesh();
+    const TriangleMesh surface = scene.volumes()[0].medium->mesh().surfaceMesh();
     for (const auto& mode : modes(0.01)) {
         const auto integrator = makeIntegrator(scene, mode.desc);
         integrator->beginPass(0);
