@@ -105,38 +105,25 @@ Scene::Scene(const SceneDesc& desc) : desc_(desc), camera_(desc.camera) {
     }
 
     scene_ = rtcNewScene(embreeDevice());
-    surfaces_ = rtcNewScene(embreeDevice());
     rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
-    rtcSetSceneFlags(surfaces_, RTC_SCENE_FLAG_ROBUST);
     auto add = [&](HitKind kind, uint32_t index, const std::vector<glm::dvec3>& positions, const std::vector<std::array<uint32_t, 3>>& triangles) {
         const unsigned id = attachTriangles(scene_, positions, triangles);
         if (geometries_.size() <= id) geometries_.resize(id + 1), normals_.resize(id + 1);
-        geometries_[id] = {kind, index, id};
+        geometries_[id] = {kind, index};
         normals_[id] = unitNormals(positions, triangles);
-        if (kind == HitKind::MediumBoundary) return id;
-        const unsigned own = attachTriangles(surfaces_, positions, triangles);
-        if (surfaceGeometries_.size() <= own) surfaceGeometries_.resize(own + 1);
-        surfaceGeometries_[own] = geometries_[id];
-        return id;
     };
     for (uint32_t i = 0; i < desc.surfaces.size(); ++i) {
         TriangleMesh mesh = desc.surfaces[i].mesh;
         for (auto& p : mesh.positions) p = {roundToFloat(p.x), roundToFloat(p.y), roundToFloat(p.z)};
         add(HitKind::Surface, i, mesh.positions, mesh.triangles);
     }
-    // The boundary exactly as the tets have it: surface triangle ids are Embree primitive ids.
-    for (uint32_t i = 0; i < volumes_.size(); ++i)
-        volumes_[i].geometry = add(HitKind::MediumBoundary, i, volumes_[i].medium->mesh().vertices, volumes_[i].medium->mesh().surface);
     for (uint32_t i = 0; i < lights_.size(); ++i)
         if (const TriangleMesh* shape = lights_[i]->shape()) add(HitKind::Light, i, shape->positions, shape->triangles);
     rtcCommitScene(scene_);
-    rtcCommitScene(surfaces_);
+    for (SceneVolume& v : volumes_) v.normals = unitNormals(v.medium->mesh().vertices, v.medium->mesh().surface);
 }
 
-Scene::~Scene() {
-    rtcReleaseScene(scene_);
-    rtcReleaseScene(surfaces_);
-}
+Scene::~Scene() { rtcReleaseScene(scene_); }
 
 void Scene::retuneMedia(const std::vector<MediumDesc>& media) {
     if (media.size() != media_.size()) throw std::invalid_argument("Scene::retuneMedia: a different number of media");
@@ -157,7 +144,7 @@ void Scene::setCamera(const CameraDesc& camera) {
     camera_ = Camera(camera);
 }
 
-std::optional<Intersection> Scene::intersect(RTCScene scene, const std::vector<Geometry>& geometries, const Ray& ray, double tMax) const {
+std::optional<Intersection> Scene::intersectSurfaces(const Ray& ray, double tMax) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRayHit rh{};
@@ -167,23 +154,31 @@ std::optional<Intersection> Scene::intersect(RTCScene scene, const std::vector<G
     rh.ray.tfar = tMax < 1e30 ? float(tMax) : INFINITY;
     rh.ray.mask = ~0u;
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(scene, &context, &rh);
+    rtcIntersect1(scene_, &context, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
-    const Geometry& g = geometries[rh.hit.geomID];
     Intersection hit;
     hit.t = rh.ray.tfar;
     hit.p = ray.at(hit.t);
     hit.triangle = rh.hit.primID;
-    hit.kind = g.kind;
-    hit.index = g.index;
-    hit.n = normals_[g.id][rh.hit.primID];
+    hit.kind = geometries_[rh.hit.geomID].kind;
+    hit.index = geometries_[rh.hit.geomID].index;
+    hit.n = normals_[rh.hit.geomID][rh.hit.primID];
     return hit;
 }
 
-std::optional<Intersection> Scene::intersect(const Ray& ray, double tMax) const { return intersect(scene_, geometries_, ray, tMax); }
+std::optional<Intersection> Scene::intersect(const Ray& ray, double tMax) const {
+    auto hit = intersectSurfaces(ray, tMax);
+    for (size_t v = 0; v < volumes_.size(); ++v) {
+        const auto entry = volumes_[v].medium->volume().firstEntry(ray, epsilon_, hit ? hit->t : tMax);
+        if (!entry) continue;
+        hit = Intersection{entry->exitT(), ray.at(entry->exitT()), volumes_[v].normals[entry->entryTriangle()], entry->entryTriangle(),
+                           HitKind::MediumBoundary, uint32_t(v)};
+    }
+    return hit;
+}
 
 std::optional<Intersection> Scene::intersect(const Ray& ray, const MediumState& state, double tMax) const {
-    return state.inside() ? intersect(surfaces_, surfaceGeometries_, ray, tMax) : intersect(ray, tMax);
+    return state.inside() ? intersectSurfaces(ray, tMax) : intersect(ray, tMax);
 }
 
 Intersection Scene::boundaryHit(int v, const Ray& ray, const WalkExit& exit) const {
@@ -194,7 +189,7 @@ Intersection Scene::boundaryHit(int v, const Ray& ray, const WalkExit& exit) con
     hit.touch = exit.tet == WalkExit::kTouch;
     hit.kind = HitKind::MediumBoundary;
     hit.index = uint32_t(v);
-    hit.n = normals_[volumes_[v].geometry][exit.triangle];
+    hit.n = volumes_[v].normals[exit.triangle];
     return hit;
 }
 

@@ -1,5 +1,7 @@
-// The scene ready to render: camera, lights, surfaces and tetrahedralized media, with one
-// Embree scene over every surface, every medium boundary and every area light.
+// The scene ready to render: camera, lights, surfaces and tetrahedralized media. Embree holds
+// the surfaces and area lights; where a ray enters a medium comes from the tets' exact tests
+// (TetVolume::firstEntry), and where it leaves from the walk, so no float hit ever places a
+// medium's boundary.
 #pragma once
 #include <memory>
 #include <optional>
@@ -53,7 +55,7 @@ struct SceneVolume {
     // their indices of refraction are equal, else a dielectric with their ratio.
     std::vector<uint32_t> triangleMaterial;  // into materials
     std::vector<MaterialDesc> materials;
-    unsigned geometry = 0;  // its boundary's Embree geometry
+    std::vector<glm::dvec3> normals;  // per surface triangle, unit
 };
 
 class Scene {
@@ -78,7 +80,8 @@ public:
     // Rays leave a surface this far beyond it, so they do not hit it again.
     double rayEpsilon() const { return epsilon_; }
 
-    // Closest hit with t in (rayEpsilon, tMax); the ray's direction is unit length.
+    // Closest hit with t in (rayEpsilon, tMax), a medium's entry exact; the ray's direction is
+    // unit length.
     std::optional<Intersection> intersect(const Ray& ray, double tMax = INFINITY) const;
     // The closest hit for a path in `state`: outside the media every surface; inside a volume
     // only the surfaces and lights, as the walk finds its boundary and interfaces exactly.
@@ -114,9 +117,8 @@ private:
     struct Geometry {
         HitKind kind;
         uint32_t index;
-        unsigned id;  // in scene_ (where surfaces_ has it too, its id there maps to this)
     };
-    std::optional<Intersection> intersect(RTCScene scene, const std::vector<Geometry>& geometries, const Ray& ray, double tMax) const;
+    std::optional<Intersection> intersectSurfaces(const Ray& ray, double tMax) const;
     void buildVolumes();
     void setCoefficients(SceneVolume& volume) const;
 
@@ -126,10 +128,9 @@ private:
     const Light* environment_ = nullptr;
     std::vector<SceneMedium> media_;
     std::vector<SceneVolume> volumes_;
-    std::vector<Geometry> geometries_, surfaceGeometries_;  // by Embree geometry id in scene_, surfaces_
-    std::vector<std::vector<glm::dvec3>> normals_;  // per scene_ geometry, per triangle (unit)
-    RTCScene scene_ = nullptr;     // everything
-    RTCScene surfaces_ = nullptr;  // surfaces and lights, not the media's boundaries
+    std::vector<Geometry> geometries_;              // by Embree geometry id
+    std::vector<std::vector<glm::dvec3>> normals_;  // per geometry, per triangle (unit)
+    RTCScene scene_ = nullptr;                      // surfaces and area lights
     double epsilon_ = 1e-6, tetSeconds_ = 0;
 };
 

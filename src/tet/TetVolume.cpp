@@ -136,6 +136,14 @@ std::vector<TetWalk> TetVolume::entriesAlong(const Ray& ray, double tnear) const
     return entries;
 }
 
+std::optional<TetWalk> TetVolume::firstEntry(const Ray& ray, double tnear, double tfar) const {
+    for (const TetWalk& w : entriesAlong(ray, tnear)) {
+        if (w.exitT() > tfar) break;
+        if (w.exitT() >= tnear) return w;
+    }
+    return std::nullopt;
+}
+
 namespace {
 
 uint64_t splitmix64(uint64_t& state) {

@@ -42,6 +42,10 @@ public:
     template <class Visitor>
     bool traverse(const Ray& ray, double tmin, double tmax, Visitor&& visit, int64_t start = kUnknown) const;
 
+    // The ray's first entry into the medium with tnear <= t <= tfar, by the exact tests (as
+    // traverse() finds entries: Embree only proposes triangles); its exitT() is the entry's t.
+    std::optional<TetWalk> firstEntry(const Ray& ray, double tnear, double tfar) const;
+
 private:
     uint32_t gridTet(const glm::dvec3& p) const;
     // Walks from t towards p; true with t holding p, false when a surface face blocks the way.
