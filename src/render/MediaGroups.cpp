@@ -2,7 +2,6 @@
 
 #include <numeric>
 
-#include "tet/MeshValidation.h"
 #include "tet/RegionComplex.h"
 
 namespace tetglow {
@@ -19,16 +18,8 @@ std::vector<std::vector<int>> groupMedia(const std::vector<MediumDesc>& media) {
     if (n > 1 || (n == 1 && media[0].cavity)) {
         std::vector<TriangleMesh> surfaces;
         std::vector<std::string> names;
-        for (const MediumDesc& m : media) {
-            surfaces.push_back(m.boundary);
-            names.push_back(m.name);
-            try {
-                validateAndRepair(surfaces.back());
-            } catch (const InputError& e) {
-                throw InputError(m.name + ": " + e.what());
-            }
-        }
-        const RegionComplex complex = buildRegionComplex(surfaces, names);
+        for (const MediumDesc& m : media) surfaces.push_back(m.boundary), names.push_back(m.name);
+        const RegionComplex complex = validatedComplex(std::move(surfaces), names);
         parent = complex.parent;
         for (int i = 0; i < n; ++i)
             if (parent[i] >= 0) root[find(i)] = find(parent[i]);
