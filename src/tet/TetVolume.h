@@ -53,9 +53,9 @@ private:
     // p strictly on the outer side of face j of tet t (exact).
     bool beyondFace(uint32_t t, int j, const glm::dvec3& p) const;
     int64_t lineLocate(uint32_t from, const glm::dvec3& p) const;
-    // The ray's entries into the medium for t >= tnear, in order, each through its own triangle:
+    // The ray's entries into the medium for t >= tnear (up to about tfar), in order, each through its own triangle:
     // those the exact tests find among Embree's candidates and around the candidates they reject.
-    std::vector<TetWalk> entriesAlong(const Ray& ray, double tnear) const;
+    std::vector<TetWalk> entriesAlong(const Ray& ray, double tnear, double tfar = INFINITY) const;
 
     TetMesh mesh_;
     SurfaceBVH bvh_;
