@@ -108,6 +108,30 @@ TEST(NestedRender, VolpathSeesTheClosedFormThroughNestedAbsorbers) {
     EXPECT_LE(worst, 1e-9);
 }
 
+TEST(NestedRender, EachRegionHasItsOwnDensity) {
+    // The core's density rises along z; the body around it is constant. Tets are linear in
+    // each region's own field, also at the vertices the two share, so along a line of constant
+    // z the core's density is 1 + 2 z exactly.
+    SceneDesc desc = sceneWith(absorber("body", icosphere(3, 1.0), 0.5), 8);
+    desc.media.push_back(absorber("core", icosphere(2, 0.5, {0.1, 0, 0.05}), 1.5));
+    desc.media[1].density.type = DensityDesc::Type::Linear;
+    desc.media[1].density.gradient = {0, 0, 2};
+    const Scene scene(desc);
+    ASSERT_FALSE(scene.volumes()[0].medium->homogeneous());
+    std::mt19937_64 gen(12);
+    std::uniform_real_distribution<double> u(-0.4, 0.4), angle(0, 2 * kPi);
+    double worst = 0;
+    for (int i = 0; i < 2000; ++i) {
+        const double z = u(gen), a = angle(gen);
+        const glm::dvec3 d(std::cos(a), std::sin(a), 0), o = glm::dvec3(u(gen), u(gen), z) - 2.0 * d;
+        const Ray ray{o, d};
+        const double core = convexChord(desc.media[1].boundary, ray), body = convexChord(desc.media[0].boundary, ray) - core;
+        const double exact = std::exp(-(0.5 * body + 1.5 * (1 + 2 * z) * core));
+        worst = std::max(worst, std::abs(scene.transmittance(ray, INFINITY, {}).x / exact - 1));
+    }
+    EXPECT_LE(worst, 1e-12);
+}
+
 TEST(NestedRender, TouchingBoxesShareAFaceExactly) {
     SceneDesc desc = sceneWith(absorber("left", box({-1, -0.5, -0.5}, {0, 0.5, 0.5}), 0.8), 8);
     desc.media.push_back(absorber("right", box({0, -0.5, -0.5}, {1.5, 0.5, 0.5}), 0.3));

@@ -60,7 +60,7 @@ void Scene::buildVolumes() {
             surfaces.push_back(media[i].boundary);
             names.push_back(media[i].name);
             v.name += (v.name.empty() ? "" : " + ") + media[i].name;
-            media_[i] = {media[i].name, int(volumes_.size()), int32_t(v.media.size()), media[i].cavity};
+            media_[i] = {media[i].name, int(volumes_.size()), int32_t(v.media.size())};
             v.media.push_back(i);
         }
         // One medium alone names itself in its errors (as the loader names it), a group each of its meshes.

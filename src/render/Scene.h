@@ -40,7 +40,6 @@ struct SceneMedium {
     std::string name;
     int volume = 0;
     int32_t region = 0;
-    bool cavity = false;
 };
 
 // Media that nest or touch, found from their meshes and tetrahedralized together: one Medium
