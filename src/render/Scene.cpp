@@ -104,26 +104,44 @@ Scene::Scene(const SceneDesc& desc) : desc_(desc), camera_(desc.camera) {
         else if (!environment_) lights_.push_back(makeLight(sky, geometry)), environment_ = lights_.back().get();
     }
 
-    scene_ = rtcNewScene(embreeDevice());
-    rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
-    auto add = [&](HitKind kind, uint32_t index, const std::vector<glm::dvec3>& positions, const std::vector<std::array<uint32_t, 3>>& triangles) {
-        const unsigned id = attachTriangles(scene_, positions, triangles);
-        if (geometries_.size() <= id) geometries_.resize(id + 1), normals_.resize(id + 1);
-        geometries_[id] = {kind, index};
-        normals_[id] = unitNormals(positions, triangles);
+    for (SceneVolume& v : volumes_) v.normals = unitNormals(v.medium->mesh().vertices, v.medium->mesh().surface);
+    surfaces_ = rtcNewScene(embreeDevice());
+    all_ = rtcNewScene(embreeDevice());
+    for (RTCScene s : {surfaces_, all_}) rtcSetSceneFlags(s, RTC_SCENE_FLAG_ROBUST);
+    const auto attach = [](RTCScene scene, std::vector<Geometry>& table, const Geometry& g, const std::vector<glm::dvec3>& positions,
+                           const std::vector<std::array<uint32_t, 3>>& triangles) {
+        const unsigned id = attachTriangles(scene, positions, triangles);
+        if (table.size() <= id) table.resize(id + 1);
+        table[id] = g;
     };
+    // Every normal list first, so that the geometries' pointers into normals_ stay valid.
+    std::vector<std::pair<HitKind, uint32_t>> shapes;
+    std::vector<TriangleMesh> meshes;
     for (uint32_t i = 0; i < desc.surfaces.size(); ++i) {
         TriangleMesh mesh = desc.surfaces[i].mesh;
         for (auto& p : mesh.positions) p = {roundToFloat(p.x), roundToFloat(p.y), roundToFloat(p.z)};
-        add(HitKind::Surface, i, mesh.positions, mesh.triangles);
+        shapes.push_back({HitKind::Surface, i}), meshes.push_back(std::move(mesh));
     }
     for (uint32_t i = 0; i < lights_.size(); ++i)
-        if (const TriangleMesh* shape = lights_[i]->shape()) add(HitKind::Light, i, shape->positions, shape->triangles);
-    rtcCommitScene(scene_);
-    for (SceneVolume& v : volumes_) v.normals = unitNormals(v.medium->mesh().vertices, v.medium->mesh().surface);
+        if (const TriangleMesh* shape = lights_[i]->shape()) shapes.push_back({HitKind::Light, i}), meshes.push_back(*shape);
+    for (const TriangleMesh& m : meshes) normals_.push_back(unitNormals(m.positions, m.triangles));
+    for (size_t k = 0; k < meshes.size(); ++k) {
+        const Geometry g{shapes[k].first, shapes[k].second, &normals_[k]};
+        attach(surfaces_, surfaceGeometries_, g, meshes[k].positions, meshes[k].triangles);
+        attach(all_, allGeometries_, g, meshes[k].positions, meshes[k].triangles);
+    }
+    // The boundary exactly as the tets have it: surface triangle ids are Embree primitive ids.
+    for (uint32_t i = 0; i < volumes_.size(); ++i)
+        attach(all_, allGeometries_, {HitKind::MediumBoundary, i, &volumes_[i].normals}, volumes_[i].medium->mesh().vertices,
+               volumes_[i].medium->mesh().surface);
+    rtcCommitScene(surfaces_);
+    rtcCommitScene(all_);
 }
 
-Scene::~Scene() { rtcReleaseScene(scene_); }
+Scene::~Scene() {
+    rtcReleaseScene(surfaces_);
+    rtcReleaseScene(all_);
+}
 
 void Scene::retuneMedia(const std::vector<MediumDesc>& media) {
     if (media.size() != media_.size()) throw std::invalid_argument("Scene::retuneMedia: a different number of media");
@@ -144,7 +162,7 @@ void Scene::setCamera(const CameraDesc& camera) {
     camera_ = Camera(camera);
 }
 
-std::optional<Intersection> Scene::intersectSurfaces(const Ray& ray, double tMax) const {
+std::optional<Intersection> Scene::intersect(RTCScene scene, const std::vector<Geometry>& geometries, const Ray& ray, double tMax) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRayHit rh{};
@@ -154,20 +172,21 @@ std::optional<Intersection> Scene::intersectSurfaces(const Ray& ray, double tMax
     rh.ray.tfar = tMax < 1e30 ? float(tMax) : INFINITY;
     rh.ray.mask = ~0u;
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(scene_, &context, &rh);
+    rtcIntersect1(scene, &context, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
+    const Geometry& g = geometries[rh.hit.geomID];
     Intersection hit;
     hit.t = rh.ray.tfar;
     hit.p = ray.at(hit.t);
     hit.triangle = rh.hit.primID;
-    hit.kind = geometries_[rh.hit.geomID].kind;
-    hit.index = geometries_[rh.hit.geomID].index;
-    hit.n = normals_[rh.hit.geomID][rh.hit.primID];
+    hit.kind = g.kind;
+    hit.index = g.index;
+    hit.n = (*g.normals)[rh.hit.primID];
     return hit;
 }
 
 std::optional<Intersection> Scene::intersect(const Ray& ray, double tMax) const {
-    auto hit = intersectSurfaces(ray, tMax);
+    auto hit = intersect(surfaces_, surfaceGeometries_, ray, tMax);
     for (size_t v = 0; v < volumes_.size(); ++v) {
         const auto entry = volumes_[v].medium->volume().firstEntry(ray, epsilon_, hit ? hit->t : tMax);
         if (!entry) continue;
@@ -178,7 +197,7 @@ std::optional<Intersection> Scene::intersect(const Ray& ray, double tMax) const 
 }
 
 std::optional<Intersection> Scene::intersect(const Ray& ray, const MediumState& state, double tMax) const {
-    return state.inside() ? intersectSurfaces(ray, tMax) : intersect(ray, tMax);
+    return state.inside() ? intersect(surfaces_, surfaceGeometries_, ray, tMax) : intersect(ray, tMax);
 }
 
 Intersection Scene::boundaryHit(int v, const Ray& ray, const WalkExit& exit) const {
@@ -272,7 +291,7 @@ RGB Scene::transmittance(Ray ray, double tMax, MediumState state) const {
 std::optional<Intersection> Scene::intersectOpaque(const Ray& ray, double tMax) const {
     double t0 = 0;
     for (int crossings = 0; crossings < 256; ++crossings) {
-        auto hit = intersect(Ray{ray.at(t0), ray.d}, tMax - t0);
+        auto hit = intersect(all_, allGeometries_, Ray{ray.at(t0), ray.d}, tMax - t0);
         if (!hit) return std::nullopt;
         hit->t += t0;
         if (!indexMatched(*hit)) return hit;

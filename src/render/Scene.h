@@ -107,7 +107,9 @@ public:
     // Transmittance along ray (unit direction) up to tMax, starting in `state`: index-matched
     // boundaries and interfaces and media pass light; anything else blocks it.
     RGB transmittance(Ray ray, double tMax, MediumState state) const;
-    // The closest hit that is not an index-matched boundary (those pass light unchanged).
+    // The closest hit that is not an index-matched boundary (those pass light unchanged), as
+    // the seed found it: Embree's float hits on every surface, media boundaries and interfaces
+    // included, whatever medium the ray is in (for the single-scattering baseline).
     std::optional<Intersection> intersectOpaque(const Ray& ray, double tMax = INFINITY) const;
     // No surface but index-matched boundaries between ray.o and ray.at(tMax) (media ignored).
     bool unoccluded(const Ray& ray, double tMax) const { return !intersectOpaque(ray, tMax); }
@@ -116,8 +118,10 @@ private:
     struct Geometry {
         HitKind kind;
         uint32_t index;
+        const std::vector<glm::dvec3>* normals;
     };
-    std::optional<Intersection> intersectSurfaces(const Ray& ray, double tMax) const;
+    std::vector<std::vector<glm::dvec3>> normals_;  // per surface and area light: unit, per triangle
+    std::optional<Intersection> intersect(RTCScene scene, const std::vector<Geometry>& geometries, const Ray& ray, double tMax) const;
     void buildVolumes();
     void setCoefficients(SceneVolume& volume) const;
 
@@ -127,9 +131,11 @@ private:
     const Light* environment_ = nullptr;
     std::vector<SceneMedium> media_;
     std::vector<SceneVolume> volumes_;
-    std::vector<Geometry> geometries_;              // by Embree geometry id
-    std::vector<std::vector<glm::dvec3>> normals_;  // per geometry, per triangle (unit)
-    RTCScene scene_ = nullptr;                      // surfaces and area lights
+    // By Embree geometry id in surfaces_ and in all_: kind and index, and per triangle the unit
+    // normal (for a medium boundary, the volume's own).
+    std::vector<Geometry> surfaceGeometries_, allGeometries_;
+    RTCScene surfaces_ = nullptr;  // surfaces and area lights
+    RTCScene all_ = nullptr;       // those and the media's boundaries: intersectOpaque only
     double epsilon_ = 1e-6, tetSeconds_ = 0;
 };
 
