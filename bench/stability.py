@@ -16,6 +16,8 @@ from benchlib import ROOT, fail, machine, replace_section, tetglow
 TESTS = [
     ("StabilityRender.RaysThroughVerticesEdgesAndGrazingEveryIntegrator",
      "Camera rays exactly through vertices and edges and grazing faces of an absorbing polyhedron, every renderer"),
+    ("StabilityRender.RaysThroughVerticesEdgesAndGrazingAnInterface",
+     "The same lines through the vertices and edges of a polyhedron nested in another and grazing its faces (an interface), every renderer"),
     ("Stability.DegenerateLinesThroughAConvexPolyhedron", "The same lines, boundary methods alone"),
     ("Stability.SliverTets", "Sliver tets of a boundary-only tetrahedralization"),
     ("Stability.SelfIntersectionHidesTheOverlapFromParity", "A self-intersecting mesh"),

@@ -7,6 +7,7 @@
 #include "TestMeshes.h"
 #include "scene/PbrtParser.h"
 #include "scene/SceneLoader.h"
+#include "scene/SceneWriter.h"
 
 namespace tetglow {
 namespace {
@@ -257,7 +258,8 @@ TEST(Pbrt, UnsupportedInputIsAnErrorNamingFileAndLine) {
         {R"(Texture "checks" "spectrum" "checkerboard")", "Texture is not supported"},
         {R"(ObjectBegin "tree")", "ObjectBegin is not supported"},
         {R"(MakeNamedMedium "smoke" "string type" "heterogeneous")", "MakeNamedMedium \"smoke\": type \"heterogeneous\" is not supported (supported: homogeneous)"},
-        {"MediumInterface \"fog\" \"air\"\nShape \"trianglemesh\" \"point P\" [0 0 0 1 0 0 0 1 0]", "Shape: MediumInterface with outside medium \"air\" is not supported"},
+        {"MediumInterface \"fog\" \"air\"\nShape \"trianglemesh\" \"point P\" [0 0 0 1 0 0 0 1 0]", "Shape: MediumInterface names medium \"air\", which no MakeNamedMedium made"},
+        {"MediumInterface \"fog\" \"fog\"\nMaterial \"\"\nShape \"trianglemesh\" " + kCube, "Shape: MediumInterface \"fog\" \"fog\" says the shape lies in medium \"fog\", but it lies in no medium"},
         {"MediumInterface \"smoke\" \"\"\nShape \"trianglemesh\" \"point P\" [0 0 0 1 0 0 0 1 0]", "Shape: MediumInterface names medium \"smoke\", which no MakeNamedMedium made"},
         {"MediumInterface \"fog\" \"\"\nMaterial \"\"\nReverseOrientation\nShape \"trianglemesh\" " + kCube, "the normals around medium \"fog\" point inwards"},
         {"NamedMaterial \"velvet\"\nShape \"trianglemesh\" \"point P\" [0 0 0 1 0 0 0 1 0]", "Shape: NamedMaterial \"velvet\" was not made by MakeNamedMaterial"},
@@ -292,6 +294,64 @@ TEST(Pbrt, UnsupportedInputIsAnErrorNamingFileAndLine) {
             EXPECT_NE(message.find(c.message), std::string::npos) << message;
             EXPECT_EQ(message.find('\n'), std::string::npos) << message;
         }
+    }
+}
+
+// Shapes inside shapes, each MediumInterface naming its inside and outside: the media nest as
+// the meshes do, a shape with only an outside medium is a cavity, and a stated outside that the
+// meshes contradict is an error naming the shape.
+std::string nestedPbrt(const std::string& middleInterface) {
+    return R"(Camera "perspective"
+Integrator "volpath"
+MakeNamedMedium "water" "string type" "homogeneous" "rgb sigma_a" [0.1 0.1 0.1] "rgb sigma_s" [1 1 1]
+MakeNamedMedium "ink" "string type" "homogeneous" "rgb sigma_a" [2 2 2] "rgb sigma_s" [0 0 0]
+WorldBegin
+LightSource "point"
+AttributeBegin
+  MediumInterface "water" ""
+  Material "glass"
+  Scale 2 2 2
+  Shape "trianglemesh" )" + kCube + R"(
+AttributeEnd
+AttributeBegin
+  MediumInterface )" + middleInterface + R"(
+  Material "none"
+  Shape "trianglemesh" )" + kCube + R"(
+AttributeEnd
+AttributeBegin
+  MediumInterface "" "ink"
+  Material "glass" "float index" 1
+  Scale 0.3 0.3 0.3
+  Shape "trianglemesh" )" + kCube + R"(
+AttributeEnd
+WorldEnd
+)";
+}
+
+TEST(Pbrt, NestedShapesWithMediumInterfacesBecomeRegions) {
+    const SceneDesc s = loadPbrtScene(test::writeTemp("nested.pbrt", nestedPbrt(R"("ink" "water")")));
+    ASSERT_EQ(s.media.size(), 3u);
+    EXPECT_FALSE(s.media[0].cavity);
+    EXPECT_EQ(s.media[1].sigmaA, RGB(2));
+    EXPECT_TRUE(s.media[2].cavity);
+    EXPECT_EQ(s.media[2].sigmaS, RGB(0));
+    EXPECT_EQ(s.media[2].boundaryMaterial.type, MaterialType::Dielectric);
+    // Converted, the cavity is a cavity of the JSON scene.
+    const std::string json = test::tempDir() + "/nested-converted.json";
+    writeScene(s, json);
+    const SceneDesc back = loadScene(json);
+    ASSERT_EQ(back.media.size(), 3u);
+    EXPECT_TRUE(back.media[2].cavity);
+}
+
+TEST(Pbrt, AStatedOutsideMediumTheMeshesContradictIsAnErrorNamingTheShape) {
+    const std::string path = test::writeTemp("nested.pbrt", nestedPbrt(R"("ink" "")"));
+    try {
+        loadPbrtScene(path);
+        ADD_FAILURE() << "no error";
+    } catch (const InputError& e) {
+        EXPECT_EQ(std::string(e.what()), path + ":17: Shape: MediumInterface \"ink\" \"\" says the shape lies in no medium, but it lies inside " + path +
+                                             ":11 (Shape \"trianglemesh\"), medium \"water\" (the nesting is found from the meshes)");
     }
 }
 

@@ -47,7 +47,7 @@ TEST(Render, AbsorbingSphereMatchesChords) {
     SceneDesc desc = sceneWith(sphereMedium(sigmaA, RGB(0)), 48);
     desc.lights.push_back(environment(1));
     const Scene scene(desc);
-    const SurfaceBVH& bvh = scene.media()[0].medium->volume().bvh();
+    const SurfaceBVH& bvh = scene.volumes()[0].medium->volume().bvh();
     for (IntegratorType type : {IntegratorType::VolPath, IntegratorType::Single}) {
         IntegratorDesc integ;
         integ.type = type;
@@ -92,9 +92,9 @@ void expectFurnace(const MediumDesc& medium) {
     SceneDesc desc = sceneWith(medium, 12);
     desc.lights.push_back(environment(1));
     const Scene scene(desc);
-    ASSERT_EQ(scene.media()[0].medium->homogeneous(), medium.density.isConstant());
+    ASSERT_EQ(scene.volumes()[0].medium->homogeneous(), medium.density.isConstant());
     if (!medium.density.isConstant()) {
-        ASSERT_GT(scene.media()[0].steinerPoints, 50u);  // the density varies inside
+        ASSERT_GT(scene.volumes()[0].steinerPoints, 50u);  // the density varies inside
     }
     IntegratorDesc integ;
     integ.maxDepth = 1 << 20;  // a furnace is only white without truncation

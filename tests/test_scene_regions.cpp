@@ -1,6 +1,6 @@
-// Scenes with several media: media that cross are refused (naming both and a triangle pair);
-// nested or touching media, which the integrators do not render yet, are refused too, rather
-// than rendered wrong (a path leaving the inner one used to count as outside every medium).
+// Scenes with several media: media that cross are refused (naming both and a triangle pair), so
+// is an open inner mesh (naming it) and a cavity in no medium; nested and touching media render
+// as regions of one tet mesh, found from the meshes.
 #include <filesystem>
 
 #include <gtest/gtest.h>
@@ -38,16 +38,45 @@ TEST(SceneRegions, AMediumCrossingItsContainerIsRefused) {
                   "/media/0 and /media/1 cross");
 }
 
-TEST(SceneRegions, NestedMediaAreRefusedUntilTheyRender) {
-    expectRefused("nested", sceneWithMedia(kBig, R"({"type": "sphere", "center": [0.1, 0, 0], "radius": 0.4, "subdivisions": 1})"),
-                  "/media/1 lies inside /media/0: nested media are not rendered yet");
+void expectRenders(const std::string& name, const std::string& scene, const std::string& expected) {
+    const std::string path = writeTemp(name + ".json", scene), out = tempDir() + "/" + name + ".exr";
+    const auto r = runTetglow("render " + path + " -o " + out);
+    EXPECT_EQ(r.exitCode, 0) << name << ": " << r.err;
+    EXPECT_NE(r.err.find(expected), std::string::npos) << name << ": " << r.err;
+    EXPECT_TRUE(std::filesystem::exists(out)) << name;
 }
 
-TEST(SceneRegions, TouchingMediaAreRefusedUntilTheyRender) {
-    expectRefused("touching",
+TEST(SceneRegions, NestedMediaRenderAsOneTetMesh) {
+    expectRenders("nested", sceneWithMedia(kBig, R"({"type": "sphere", "center": [0.1, 0, 0], "radius": 0.4, "subdivisions": 1})"),
+                  "medium /media/0 + /media/1: ");
+}
+
+TEST(SceneRegions, TouchingMediaRenderAsOneTetMesh) {
+    expectRenders("touching",
                   sceneWithMedia(R"({"type": "box", "min": [0, 0, 0], "max": [1, 1, 1]})",
                                  R"({"type": "box", "min": [1, 0, 0], "max": [2, 1, 1]})"),
-                  "/media/0 and /media/1 share triangles: touching media are not rendered yet");
+                  "medium /media/0 + /media/1: ");
+}
+
+TEST(SceneRegions, ACavityRendersInsideItsMedium) {
+    std::string scene = sceneWithMedia(kBig, R"({"type": "sphere", "center": [3, 0, 0], "radius": 0.5})");
+    scene.insert(scene.rfind('}'), R"(, "cavities": [{"shape": {"type": "sphere", "center": [0, 0, 0], "radius": 0.5}, "boundary": {"type": "dielectric", "ior": 1}}])");
+    expectRenders("cavity", scene, "medium /media/0 + /cavities/0: ");
+}
+
+TEST(SceneRegions, ACavityInNoMediumIsRefused) {
+    std::string scene = sceneWithMedia(kBig, R"({"type": "sphere", "center": [3, 0, 0], "radius": 0.5})");
+    scene.insert(scene.rfind('}'), R"(, "cavities": [{"shape": {"type": "sphere", "center": [0, 3, 0], "radius": 0.5}}])");
+    expectRefused("stray-cavity", scene, "/cavities/0: a cavity must lie inside a medium");
+}
+
+TEST(SceneRegions, AnOpenInnerMeshIsRefusedNamingIt) {
+    // A box without its top face inside the sphere.
+    const std::string obj = writeTemp("open-box.obj", "v -0.2 -0.2 -0.2\nv 0.2 -0.2 -0.2\nv 0.2 0.2 -0.2\nv -0.2 0.2 -0.2\n"
+                                                       "v -0.2 -0.2 0.2\nv 0.2 -0.2 0.2\nv 0.2 0.2 0.2\nv -0.2 0.2 0.2\n"
+                                                       "f 1 3 2\nf 1 4 3\nf 1 2 6\nf 1 6 5\nf 2 3 7\nf 2 7 6\n"
+                                                       "f 3 4 8\nf 3 8 7\nf 4 1 5\nf 4 5 8\n");
+    expectRefused("open-inner", sceneWithMedia(kBig, R"({"type": "mesh", "file": ")" + obj + R"("})"), "/media/1 (");
 }
 
 TEST(SceneRegions, MediaApartStillRender) {

@@ -47,10 +47,10 @@ Subject loadSceneSubject(const std::string& path) {
     const SceneDesc desc = loadScene(path);
     if (desc.media.empty()) throw InputError(path + ": the scene has no media to compare");
     s.scene = std::make_unique<Scene>(desc);
-    for (const auto& m : s.scene->media()) {
+    for (const auto& m : s.scene->volumes()) {
         s.volumes.push_back(&m.medium->volume());
         MediumReport r = describe(m.name, m.medium->volume());
-        r.sigmaT = average(m.medium->sigmaT());
+        r.sigmaT = average(m.medium->region(0).sigmaT);
         r.sigmaSource = "the mean over R, G, B";
         r.homogeneous = m.medium->homogeneous();
         s.reports.push_back(std::move(r));

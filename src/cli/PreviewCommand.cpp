@@ -218,7 +218,7 @@ void run(const Options& o) {
     PreviewServer server(o.scene, desc);
     const int port = server.bind(o.host, o.port);
     auto scene = std::make_unique<Scene>(desc);
-    for (const auto& m : scene->media())
+    for (const auto& m : scene->volumes())
         std::fprintf(stderr, "medium %s: %zu tets, %s in %.2f s\n", m.name.c_str(), m.medium->mesh().tets.size(),
                      m.stats.fromCache ? "read from the cache" : "tetrahedralized", m.stats.seconds);
     std::signal(SIGINT, onStop);

@@ -79,7 +79,7 @@ void run(const Options& o) {
     }
 
     const Scene scene(desc);
-    for (const auto& m : scene.media())
+    for (const auto& m : scene.volumes())
         std::fprintf(stderr, "medium %s: %zu tets, %zu Steiner points, %s in %.2f s\n", m.name.c_str(), m.medium->mesh().tets.size(),
                      m.steinerPoints, m.stats.fromCache ? "read from the cache" : "tetrahedralized", m.stats.seconds);
     if (o.tetsOnly) return;

@@ -5,23 +5,34 @@
 namespace tetglow {
 
 ColumnProfile::ColumnProfile(const Medium& medium, const Ray& ray, WalkStart start, double tMax) : medium_(medium), ray_(ray) {
-    TetWalk walk = medium.beginWalk(ray, start);
-    for (WalkSegment s; walk.next(s);) {
+    const TetWalk walk = medium.walk(ray, start, [&](const WalkSegment& s) {
         const double tIn = std::max(s.tIn, 0.0), tOut = std::min(s.tOut, tMax);
         if (tOut > tIn) {
-            pieces_.push_back({tIn, tOut, s.tet, total_});
-            total_ += medium.densityIntegral(s.tet, ray, tIn, tOut);
+            pieces_.push_back({tIn, tOut, s.tet, total_, depth_});
+            const double piece = medium.densityIntegral(s.tet, ray, tIn, tOut);
+            total_ += piece;
+            depth_ += medium.at(s.tet).sigmaT * piece;
         }
-        if (s.tOut >= tMax) break;
-    }
+        return s.tOut < tMax;
+    });
+    exit_ = WalkExit::of(walk, tMax);
+}
+
+const ColumnProfile::Piece* ColumnProfile::pieceAt(double t) const {
+    const auto it = std::upper_bound(pieces_.begin(), pieces_.end(), t, [](double x, const Piece& p) { return x < p.tIn; });
+    return it == pieces_.begin() ? nullptr : &*(it - 1);
 }
 
 double ColumnProfile::column(double t) const {
-    const auto it = std::upper_bound(pieces_.begin(), pieces_.end(), t, [](double x, const Piece& p) { return x < p.tIn; });
-    if (it == pieces_.begin()) return 0;
-    const Piece& p = *(it - 1);
-    if (t >= p.tOut) return p.columnIn + medium_.densityIntegral(p.tet, ray_, p.tIn, p.tOut);
-    return p.columnIn + medium_.densityIntegral(p.tet, ray_, p.tIn, t);
+    const Piece* p = pieceAt(t);
+    if (!p) return 0;
+    return p->columnIn + medium_.densityIntegral(p->tet, ray_, p->tIn, std::min(t, p->tOut));
+}
+
+RGB ColumnProfile::transmittance(double t) const {
+    const Piece* p = pieceAt(t);
+    if (!p) return RGB(1);
+    return exp(-(p->depthIn + medium_.at(p->tet).sigmaT * medium_.densityIntegral(p->tet, ray_, p->tIn, std::min(t, p->tOut))));
 }
 
 }  // namespace tetglow

@@ -26,18 +26,31 @@ glm::dvec4 affineThrough(const TetMesh& mesh, uint32_t t, const std::vector<doub
 }  // namespace
 
 Medium::Medium(const MediumParams& params, TetMesh mesh, std::vector<double> vertexDensity) : volume_(std::move(mesh)) {
-    setParams(params, std::move(vertexDensity));
+    std::vector<RegionMedium> regions(std::max<size_t>(1, this->mesh().regionCount()), RegionMedium{params, {}});
+    for (RegionMedium& r : regions) r.vertexDensity = vertexDensity;
+    setRegions(std::move(regions));
 }
 
-void Medium::setParams(const MediumParams& params, std::vector<double> vertexDensity) {
+Medium::Medium(TetMesh mesh, std::vector<RegionMedium> regions) : volume_(std::move(mesh)) { setRegions(std::move(regions)); }
+
+void Medium::setRegions(std::vector<RegionMedium> regions) {
     const TetMesh& m = volume_.mesh();
-    if (!vertexDensity.empty() && vertexDensity.size() != m.vertices.size())
-        throw std::invalid_argument("Medium: one density per tet vertex expected");
-    params_ = params;
-    sigmaT_ = params.sigmaA + params.sigmaS;
-    phase_ = HenyeyGreenstein(params.g);
-    densityPlane_.assign(vertexDensity.empty() ? 0 : m.tets.size(), glm::dvec4(0));
-    for (uint32_t t = 0; t < densityPlane_.size(); ++t) densityPlane_[t] = affineThrough(m, t, vertexDensity);
+    if (regions.size() != std::max<size_t>(1, m.regionCount())) throw std::invalid_argument("Medium: one medium per region expected");
+    regions_.clear();
+    emissive_ = scatters_ = false;
+    bool varying = false;
+    for (const RegionMedium& r : regions) {
+        if (!r.vertexDensity.empty() && r.vertexDensity.size() != m.vertices.size())
+            throw std::invalid_argument("Medium: one density per tet vertex expected");
+        regions_.emplace_back(r.params);
+        emissive_ |= maxComponent(r.params.emission) > 0;
+        scatters_ |= maxComponent(r.params.sigmaS) > 0;
+        varying |= !r.vertexDensity.empty();
+    }
+    densityPlane_.assign(varying ? m.tets.size() : 0, glm::dvec4(0, 0, 0, 1));
+    for (uint32_t t = 0; t < densityPlane_.size(); ++t)
+        if (const auto& density = regions[size_t(std::max(0, m.region(t)))].vertexDensity; !density.empty())
+            densityPlane_[t] = affineThrough(m, t, density);
 }
 
 double Medium::density(uint32_t tet, const glm::dvec3& p) const {
@@ -56,22 +69,19 @@ TetWalk Medium::beginWalk(const Ray& ray, WalkStart start) const {
     return start.throughSurface ? TetWalk::enter(mesh(), ray, start.index) : TetWalk::start(mesh(), ray, start.index, 0);
 }
 
-FreeFlight Medium::sampleFlight(const Ray& ray, WalkStart start, double tMax, int hero, double u) const {
-    // The distance solves integral(density) = target, target = -ln(1 - u) / sigmaT[hero].
-    const double target = sigmaT_[hero] > 0 ? -std::log1p(-u) / sigmaT_[hero] : INFINITY;
-    double column = 0;  // density integrated so far
+FreeFlight Medium::sampleFlight(const Ray& ray, WalkStart start, double tMax, int hero, double u, const RGB& ratios) const {
+    // The distance solves the hero channel's optical depth = -ln(1 - u), region by region.
+    const double target = -std::log1p(-u);
+    RGB depth(0);  // optical depth so far
     FreeFlight flight;
-    TetWalk walk = beginWalk(ray, start);
-    for (WalkSegment s; walk.next(s);) {
+    const TetWalk walk = this->walk(ray, start, [&](const WalkSegment& s) {
         const double tIn = std::max(s.tIn, 0.0), tOut = std::min(s.tOut, tMax);
-        if (tOut <= tIn) {
-            if (s.tIn >= tMax) break;
-            continue;
-        }
-        const double piece = densityIntegral(s.tet, ray, tIn, tOut);
-        if (column + piece >= target) {
-            const double need = target - column;
-            double x;  // distance into the segment where the column reaches the target
+        if (tOut <= tIn) return s.tIn < tMax;
+        const RegionOptics& optics = at(s.tet);
+        const double piece = densityIntegral(s.tet, ray, tIn, tOut), sigma = optics.sigmaT[hero];
+        if (sigma > 0 && depth[hero] + sigma * piece >= target) {
+            const double need = (target - depth[hero]) / sigma;  // column still to go
+            double x;  // distance into the segment where the column reaches it
             if (homogeneous()) {
                 x = need;
             } else {
@@ -84,16 +94,20 @@ FreeFlight Medium::sampleFlight(const Ray& ray, WalkStart start, double tMax, in
             flight.t = std::min(tIn + x, tOut);
             flight.tet = s.tet;
             flight.density = density(s.tet, ray.at(flight.t));
-            flight.transmittance = exp(-sigmaT_ * target);
-            flight.column = target;
-            return flight;
+            depth += optics.sigmaT * need;
+            return false;
         }
-        column += piece;
-        if (s.tOut >= tMax) break;
-    }
-    flight.transmittance = exp(-sigmaT_ * column);
-    flight.column = column;
-    if (walk.exited() && walk.exitT() < tMax) flight.left = true, flight.exitTriangle = walk.exitTriangle(), flight.exitT = walk.exitT();
+        if (isBlack(optics.sigmaT) && maxComponent(optics.params.emission) > 0) {
+            // The transmittance is constant here: the emission integrates exactly, weighted
+            // like a path that passed the stretch (SpectralPath::pass) against its pdf ratios.
+            const RGB tr = exp(-depth);
+            flight.glow += optics.params.emission * piece * tr / average(ratios * tr);
+        }
+        depth += optics.sigmaT * piece;
+        return s.tOut < tMax;
+    });
+    flight.transmittance = exp(-depth);
+    if (!flight.scattered) flight.exit = WalkExit::of(walk, tMax);
     return flight;
 }
 

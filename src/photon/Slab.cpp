@@ -96,8 +96,8 @@ SlabResult simulateSlab(const SlabParams& p) {
                                                         [](const PhotonEvent&) {});
                         if (r.events >= kMaxSlabEvents) stuck = true;
                         x4[2] = r.absorbedFlux.x;
-                        if (r.left) {
-                            const double nz = glm::normalize(bvh.normal(r.exitTriangle)).z, w = path.weight().x;
+                        if (r.exit.left) {
+                            const double nz = glm::normalize(bvh.normal(r.exit.triangle)).z, w = path.weight().x;
                             x4[nz > 0.5 ? 0 : nz < -0.5 ? 1 : 3] = w;
                         }
                     }

@@ -41,11 +41,11 @@ inline auto phaseScattering(const HenyeyGreenstein& phase, const glm::dvec3& d) 
     };
 }
 
-// Light scattered at p, inside tet `tet` of medium m, into the direction -d: one light
+// Light scattered at p, inside tet `tet` of volume v, into the direction -d: one light
 // sample without MIS, its shadow ray walking the tets (Scene::transmittance).
-inline RGB directInMedium(const Scene& scene, int m, const glm::dvec3& p, const glm::dvec3& d, uint32_t tet, Rng& rng) {
-    const MediumState here{m, WalkStart::inside(tet)};
-    return sampleDirect(scene, p, rng, false, phaseScattering(scene.media()[m].medium->phase(), d),
+inline RGB directInMedium(const Scene& scene, int v, const glm::dvec3& p, const glm::dvec3& d, uint32_t tet, Rng& rng) {
+    const MediumState here{v, WalkStart::inside(tet)};
+    return sampleDirect(scene, p, rng, false, phaseScattering(scene.volumes()[v].medium->at(tet).phase, d),
                         [&](const Ray& r, double t) { return scene.transmittance(r, t, here); });
 }
 

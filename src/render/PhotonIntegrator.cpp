@@ -26,10 +26,18 @@ PhotonIntegrator::PhotonIntegrator(const Scene& scene, const IntegratorDesc& des
     // A pass stores about one photon per path: whether the machine holds them is known now.
     checkMemory(double(desc.photons) * sizeof(Photon), std::to_string(desc.photons) + " photon paths per pass (a 32-byte photon each)");
     Bounds3 all;
-    for (const auto& m : scene.media()) {
-        balls_.emplace_back(m.medium->volume().bvh());
+    for (const SceneMedium& m : scene.media()) {
+        const TetMesh& mesh = scene.volumes()[m.volume].medium->mesh();
+        std::vector<std::array<uint32_t, 3>> triangles;
+        Bounds3 box;
+        for (size_t s = 0; s < mesh.surface.size(); ++s)
+            if (mesh.surfaceRegions[s][0] == m.region || mesh.surfaceRegions[s][1] == m.region) {
+                triangles.push_back(mesh.surface[s]);
+                for (uint32_t v : mesh.surface[s]) box.extend(mesh.vertices[v]);
+            }
+        regionBoundaries_.push_back(std::make_unique<SurfaceBVH>(mesh.vertices, triangles));
+        balls_.emplace_back(*regionBoundaries_.back());
         MediumPhotons photons;
-        const Bounds3 box = m.medium->volume().bounds();
         photons.maxRadius = float(kMaxRadiusFraction * box.diagonal());
         media_.push_back(std::move(photons));
         all.extend(box);
@@ -98,12 +106,15 @@ RGB PhotonIntegrator::radiance(const Ray& cameraRay, Rng& rng) const {
     // Index-matched boundaries do not count as events; the cap only guards against rays that
     // graze a boundary forever.
     for (int crossings = 0; crossings < 100000; ++crossings) {
-        const auto hit = scene_.intersect(ray);
+        auto hit = scene_.intersect(ray, state);
         if (state.inside()) {
-            RGB tr;
-            L += beta * inMedium(state.medium, ray, state.start, hit ? hit->t : INFINITY, rng, tr);
-            beta *= tr;
+            const double tMax = hit ? hit->t : INFINITY;
+            const ColumnProfile column(*scene_.volumes()[state.volume].medium, ray, state.start, tMax);
+            L += beta * inMedium(state.volume, ray, state.start, tMax, column, rng);
+            beta *= exp(-column.depth());
             if (isBlack(beta)) break;
+            // Out of the volume or at a dielectric interface: the walk's exit face is the surface.
+            if (column.exit().left) hit = scene_.boundaryHit(state.volume, ray, column.exit());
         }
         if (!hit || hit->kind == HitKind::Light) {
             L += beta * scene_.emitted(ray, hit ? &*hit : nullptr);
@@ -134,34 +145,48 @@ RGB PhotonIntegrator::radiance(const Ray& cameraRay, Rng& rng) const {
     return L;
 }
 
-RGB PhotonIntegrator::inMedium(int m, const Ray& ray, WalkStart start, double tMax, Rng& rng, RGB& tr) const {
-    const Medium& medium = *scene_.media()[m].medium;
-    const MediumParams& params = medium.params();
-    const ColumnProfile column(medium, ray, start, tMax);
-    const RGB sigmaT = medium.sigmaT();
-    tr = exp(-sigmaT * column.total());
-    RGB L(0);
-    // Emission: the integral of emission * density * transmittance is emission (1 - tr) / sigma_t.
-    for (int c = 0; c < 3; ++c) L[c] = params.emission[c] * (sigmaT[c] > 0 ? (1 - tr[c]) / sigmaT[c] : column.total());
-    if (isBlack(params.sigmaS) || column.pieces().empty()) return L;
-    if (desc_.estimate == PhotonEstimate::KnnMarch) return L + marchKnn(m, ray, column, rng);
-    return L + directAlong(m, ray, start, tMax, column, rng) + beamEstimate(m, ray, column);
+int PhotonIntegrator::mediumOf(int v, uint32_t tet) const {
+    const SceneVolume& volume = scene_.volumes()[v];
+    return volume.media[size_t(volume.medium->mesh().region(tet))];
 }
 
-RGB PhotonIntegrator::marchKnn(int m, const Ray& ray, const ColumnProfile& column, Rng& rng) const {
-    const Medium& medium = *scene_.media()[m].medium;
-    const RGB sigmaS = medium.params().sigmaS;
+RGB PhotonIntegrator::inMedium(int v, const Ray& ray, WalkStart start, double tMax, const ColumnProfile& column, Rng& rng) const {
+    const Medium& medium = *scene_.volumes()[v].medium;
+    const auto& pieces = column.pieces();
+    RGB L(0);
+    // Emission, piece by piece: the integral of emission * density * transmittance over a piece
+    // is emission * tr(piece start) * (1 - tr(piece)) / sigma_t.
+    for (size_t i = 0; i < pieces.size(); ++i) {
+        const RegionOptics& optics = medium.at(pieces[i].tet);
+        if (!(maxComponent(optics.params.emission) > 0)) continue;
+        const double piece = (i + 1 < pieces.size() ? pieces[i + 1].columnIn : column.total()) - pieces[i].columnIn;
+        const RGB trIn = exp(-pieces[i].depthIn);
+        for (int c = 0; c < 3; ++c) {
+            const double sigma = optics.sigmaT[c];
+            L[c] += optics.params.emission[c] * trIn[c] * (sigma > 0 ? -std::expm1(-sigma * piece) / sigma : piece);
+        }
+    }
+    if (!medium.scatters() || pieces.empty()) return L;
+    if (desc_.estimate == PhotonEstimate::KnnMarch) return L + marchKnn(v, ray, column, rng);
+    return L + directAlong(v, ray, start, tMax, column, rng) + beamEstimate(v, ray, column);
+}
+
+RGB PhotonIntegrator::marchKnn(int v, const Ray& ray, const ColumnProfile& column, Rng& rng) const {
+    const Medium& medium = *scene_.volumes()[v].medium;
     const double u = rng.uniform();
     RGB L(0);
     // Each exact piece is split into equal steps no longer than the step size, one jittered
     // sample per step: the seed's march, without its boundary error.
     for (const ColumnProfile::Piece& piece : column.pieces()) {
+        const RGB sigmaS = medium.at(piece.tet).params.sigmaS;
+        if (isBlack(sigmaS)) continue;
         const int n = std::max(1, int(std::ceil((piece.tOut - piece.tIn) / desc_.stepSize)));
         const double h = (piece.tOut - piece.tIn) / n;
         for (int i = 0; i < n; ++i) {
             const double t = piece.tIn + (i + u) * h;
             const glm::dvec3 p = ray.at(t);
-            const RGB scattered = sigmaS * medium.density(piece.tet, p) * directInMedium(scene_, m, p, ray.d, piece.tet, rng) + knnEstimate(m, p, ray.d);
+            const RGB scattered = sigmaS * medium.density(piece.tet, p) * directInMedium(scene_, v, p, ray.d, piece.tet, rng) +
+                                  knnEstimate(v, piece.tet, p, ray.d);
             L += column.transmittance(t) * h * scattered;
         }
     }
@@ -180,12 +205,13 @@ double PhotonIntegrator::gather(const PhotonMap& map, const glm::dvec3& p, doubl
     return scale * (near.size() == size_t(desc_.k) ? std::sqrt(double(near.back().distance2)) : double(maxRadius));
 }
 
-RGB PhotonIntegrator::knnEstimate(int m, const glm::dvec3& p, const glm::dvec3& d) const {
+RGB PhotonIntegrator::knnEstimate(int v, uint32_t tet, const glm::dvec3& p, const glm::dvec3& d) const {
+    const int m = mediumOf(v, tet);
     const MediumPhotons& mp = media_[m];
     if (!mp.map) return RGB(0);
     thread_local std::vector<Neighbour> near;
     const double r = gather(*mp.map, p, volumeScale_, mp.maxRadius, near);
-    const HenyeyGreenstein& phase = scene_.media()[m].medium->phase();
+    const HenyeyGreenstein& phase = scene_.volumes()[v].medium->at(tet).phase;
     const auto& photons = mp.map->photons();
     RGB sum(0);
     for (const Neighbour& n : near) {
@@ -199,48 +225,56 @@ RGB PhotonIntegrator::knnEstimate(int m, const glm::dvec3& p, const glm::dvec3& 
     return sum / volume;
 }
 
-RGB PhotonIntegrator::beamEstimate(int m, const Ray& ray, const ColumnProfile& column) const {
-    const MediumPhotons& mp = media_[m];
-    if (!mp.beams) return RGB(0);
-    const HenyeyGreenstein& phase = scene_.media()[m].medium->phase();
-    const auto& photons = mp.map->photons();
+RGB PhotonIntegrator::beamEstimate(int v, const Ray& ray, const ColumnProfile& column) const {
+    const auto& pieces = column.pieces();
     RGB L(0);
-    // Each photon's ball kernel integrated along the stretch: the chord of the ball within
-    // [begin, end] over the ball's volume (inside the medium, with boundary correction). Unlike
-    // the disc kernel 1 / (pi r^2), which assumes the whole chord lies in the medium, this stays
-    // right where the ball reaches past the stretch's ends, however large the radius.
-    const double begin = column.begin(), end = column.end();
-    mp.beams->query(ray.o, ray.d, begin - mp.largestRadius, end + mp.largestRadius, [&](uint32_t i, double t, double distance2) {
-        const Photon& photon = photons[i];
-        const double half = std::sqrt(std::max(0.0, double(photon.radius) * photon.radius - distance2));
-        const double chord = std::min(end, t + half) - std::max(begin, t - half);
-        if (chord <= 0) return;
-        const double f = phase.eval(-glm::dot(glm::dvec3(unpackDirection(photon.direction)), ray.d));
-        L += column.transmittance(std::clamp(t, begin, end)) * RGB(photon.power) * (f * chord * mp.invBallVolume[i]);
-    });
+    // Each run of pieces in one region sees that region's photons only. Each photon's ball
+    // kernel is integrated along the run: the chord of the ball within [begin, end] over the
+    // ball's volume (inside its region, with boundary correction). Unlike the disc kernel
+    // 1 / (pi r^2), which assumes the whole chord lies in the medium, this stays right where the
+    // ball reaches past the run's ends, however large the radius.
+    for (size_t first = 0, last; first < pieces.size(); first = last) {
+        const int m = mediumOf(v, pieces[first].tet);
+        for (last = first + 1; last < pieces.size() && mediumOf(v, pieces[last].tet) == m;) ++last;
+        const MediumPhotons& mp = media_[m];
+        if (!mp.beams) continue;
+        const HenyeyGreenstein& phase = scene_.volumes()[v].medium->at(pieces[first].tet).phase;
+        const auto& photons = mp.map->photons();
+        const double begin = pieces[first].tIn, end = pieces[last - 1].tOut;
+        mp.beams->query(ray.o, ray.d, begin - mp.largestRadius, end + mp.largestRadius, [&](uint32_t i, double t, double distance2) {
+            const Photon& photon = photons[i];
+            const double half = std::sqrt(std::max(0.0, double(photon.radius) * photon.radius - distance2));
+            const double chord = std::min(end, t + half) - std::max(begin, t - half);
+            if (chord <= 0) return;
+            const double f = phase.eval(-glm::dot(glm::dvec3(unpackDirection(photon.direction)), ray.d));
+            L += column.transmittance(std::clamp(t, begin, end)) * RGB(photon.power) * (f * chord * mp.invBallVolume[i]);
+        });
+    }
     return L;
 }
 
-RGB PhotonIntegrator::directAlong(int m, const Ray& ray, WalkStart start, double tMax, const ColumnProfile& column, Rng& rng) const {
+RGB PhotonIntegrator::directAlong(int v, const Ray& ray, WalkStart start, double tMax, const ColumnProfile& column, Rng& rng) const {
     if (scene_.lights().empty()) return RGB(0);
-    const Medium& medium = *scene_.media()[m].medium;
-    const RGB sigmaT = medium.sigmaT();
+    const Medium& medium = *scene_.volumes()[v].medium;
     // The distance follows one channel's transmittance, truncated to the stretch; the channels
     // with extinction share the sample by one-sample MIS, so no channel's weight blows up.
+    const RGB depth = column.depth();
     int channels[3], count = 0;
     for (int c = 0; c < 3; ++c)
-        if (sigmaT[c] > 0) channels[count++] = c;
-    const RGB trEnd = exp(-sigmaT * column.total());
+        if (depth[c] > 0) channels[count++] = c;
+    if (count == 0) return RGB(0);
+    const RGB trEnd = exp(-depth);
     const int hero = channels[std::min(count - 1, int(rng.uniform() * count))];
     const FreeFlight flight = medium.sampleFlight(ray, start, tMax, hero, rng.uniform() * (1 - trEnd[hero]));
     if (!flight.scattered) return RGB(0);
+    const RegionOptics& optics = medium.at(flight.tet);
     double pdf = 0;  // mean over the channels of sigma_t tr / (1 - tr(end)), per unit column
     for (int i = 0; i < count; ++i) {
         const int c = channels[i];
-        pdf += sigmaT[c] * flight.transmittance[c] / (1 - trEnd[c]) / count;
+        pdf += optics.sigmaT[c] * flight.transmittance[c] / (1 - trEnd[c]) / count;
     }
-    const RGB weight = flight.transmittance * medium.params().sigmaS / pdf;
-    return weight * directInMedium(scene_, m, ray.at(flight.t), ray.d, flight.tet, rng);
+    const RGB weight = flight.transmittance * optics.params.sigmaS / pdf;
+    return weight * directInMedium(scene_, v, ray.at(flight.t), ray.d, flight.tet, rng);
 }
 
 RGB PhotonIntegrator::caustics(const Intersection& hit, const glm::dvec3& d, const MaterialDesc& material) const {

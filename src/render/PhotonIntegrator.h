@@ -2,16 +2,19 @@
 // Each pass traces a fresh photon set (PhotonTracer) and takes one eye sample per pixel; the
 // image is the mean of the passes while the radii shrink, so the error keeps falling with time.
 //
-// Eye rays follow specular chains and never scatter in a medium. Along each stretch of medium
-// the integrator adds, against the exact transmittance of the tet walk:
+// Eye rays follow specular chains and never scatter in a medium. Along each stretch of a volume
+// (through its regions, up to where it leaves or meets a dielectric interface) the integrator
+// adds, against the exact transmittance of the tet walk:
 //   - emission, integrated in closed form;
 //   - single scattering by next-event estimation;
 //   - multiple scattering (and light that reached the medium through glass) from the volume
 //     photons, by the seed's ray march with a k-NN lookup per step (`knn-march`, optionally
 //     dividing by the part of the ball inside the medium) or by the beam radiance estimate
 //     (`beam`: every photon ball the ray crosses, integrated exactly along the ray, no step).
-// A diffuse surface gets direct light by next-event estimation and caustics from the surface
-// photons with a cone filter.
+// Photons are kept per medium (region): a photon is only ever found from the region that
+// scattered it, and a kernel's volume is its volume inside that region (its boundary and the
+// meshes nested in it stop it). A diffuse surface gets direct light by next-event estimation and
+// caustics from the surface photons with a cone filter.
 #pragma once
 #include <memory>
 #include <vector>
@@ -55,27 +58,28 @@ private:
         float maxRadius = 0;
     };
 
-    // Light scattered and emitted towards ray.o by medium m along [0, tMax] from `start`; `tr`
-    // receives the transmittance of that stretch.
-    RGB inMedium(int m, const Ray& ray, WalkStart start, double tMax, Rng& rng, RGB& tr) const;
-    RGB marchKnn(int m, const Ray& ray, const ColumnProfile& column, Rng& rng) const;
-    RGB beamEstimate(int m, const Ray& ray, const ColumnProfile& column) const;
+    // Light scattered and emitted towards ray.o along the stretch `column` of volume v.
+    RGB inMedium(int v, const Ray& ray, WalkStart start, double tMax, const ColumnProfile& column, Rng& rng) const;
+    RGB marchKnn(int v, const Ray& ray, const ColumnProfile& column, Rng& rng) const;
+    RGB beamEstimate(int v, const Ray& ray, const ColumnProfile& column) const;
     // Single scattering at a distance drawn along the stretch (one-sample spectral MIS).
-    RGB directAlong(int m, const Ray& ray, WalkStart start, double tMax, const ColumnProfile& column, Rng& rng) const;
+    RGB directAlong(int v, const Ray& ray, WalkStart start, double tMax, const ColumnProfile& column, Rng& rng) const;
     // The photons of `map` around p, nearest first: those within the fixed radius times `scale`,
     // or the k nearest within maxRadius. Returns the gather radius: the fixed one, or `scale`
     // times the k-th distance (maxRadius when fewer than k are within reach).
     double gather(const PhotonMap& map, const glm::dvec3& p, double scale, float maxRadius, std::vector<Neighbour>& near) const;
-    // sigma_s times in-scattered radiance from the volume photons at p, seen along d.
-    RGB knnEstimate(int m, const glm::dvec3& p, const glm::dvec3& d) const;
+    // sigma_s times in-scattered radiance from the volume photons at p in tet `tet` of volume v, seen along d.
+    RGB knnEstimate(int v, uint32_t tet, const glm::dvec3& p, const glm::dvec3& d) const;
+    int mediumOf(int v, uint32_t tet) const;  // the scene medium whose region holds the tet
     RGB caustics(const Intersection& hit, const glm::dvec3& d, const MaterialDesc& material) const;
 
     const Scene& scene_;
     IntegratorDesc desc_;
     MediumState cameraMedium_;
     PhotonSource source_;
-    std::vector<BallVolume> balls_;  // per medium
-    std::vector<MediumPhotons> media_;
+    std::vector<std::unique_ptr<SurfaceBVH>> regionBoundaries_;  // per scene medium: its region's triangles
+    std::vector<BallVolume> balls_;  // per scene medium, over its region's boundary
+    std::vector<MediumPhotons> media_;  // per scene medium
     std::unique_ptr<PhotonMap> surface_;
     float surfaceMaxRadius_ = 0;
     double volumeScale_ = 1, surfaceScale_ = 1;  // this pass's radius factors

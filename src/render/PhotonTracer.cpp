@@ -43,16 +43,17 @@ public:
         for (int crossings = 0; crossings < 100000; ++crossings) {
             std::optional<Intersection> hit;
             if (state.inside()) {
-                const Medium& medium = *scene_.media()[state.medium].medium;
-                auto& store = out_.volume[state.medium];
+                const SceneVolume& volume = scene_.volumes()[state.volume];
                 const WalkResult walk = photonWalk(
-                    medium, ray, state.start, e.flux, path, rng, options_.maxDepth - depth,
+                    *volume.medium, ray, state.start, e.flux, path, rng, options_.maxDepth - depth,
                     [&](const Ray& r) {
-                        hit = scene_.intersect(r);
+                        hit = scene_.intersect(r, state);
                         return hit ? hit->t : INFINITY;
                     },
                     [&](const PhotonEvent& event) {
-                        if (!direct) store.push_back(makePhoton(event.position, event.power, event.direction));
+                        // Stored in the photon map of the medium that scattered it.
+                        const int m = volume.media[size_t(volume.medium->mesh().region(event.tet))];
+                        if (!direct) out_.volume[m].push_back(makePhoton(event.position, event.power, event.direction));
                         direct = false;
                     });
                 energy.absorbedInMedia += walk.absorbedFlux;
@@ -62,6 +63,8 @@ public:
                     break;
                 }
                 ray = walk.ray;
+                // Out of the volume or at a dielectric interface: the walk's exit face is the surface.
+                if (walk.exit.left) hit = scene_.boundaryHit(state.volume, ray, walk.exit);
             } else {
                 hit = scene_.intersect(ray);
             }
@@ -114,15 +117,18 @@ void EnergyBalance::add(const EnergyBalance& o) {
 PhotonSource::PhotonSource(const Scene& scene) {
     for (int i = 0; i < int(scene.lights().size()); ++i) emitters_.push_back({i, -1, scene.lights()[i]->power(), {}});
     for (int m = 0; m < int(scene.media().size()); ++m) {
-        const Medium& medium = *scene.media()[m].medium;
-        if (!medium.emissive()) continue;
-        Emitter e{-1, m, RGB(0), {}};
+        const SceneMedium& sm = scene.media()[m];
+        const Medium& medium = *scene.volumes()[sm.volume].medium;
+        const RegionOptics& optics = medium.region(sm.region);
+        if (!(maxComponent(optics.params.emission) > 0)) continue;
+        Emitter e{-1, m, RGB(0), {}, medium.mesh().regionTets[sm.region]};
         const TetMesh& mesh = medium.mesh();
         double total = 0;
         // Density is linear in a tet: its value at the centroid is its mean.
-        for (uint32_t t = 0; t < mesh.tets.size(); ++t) e.tetCdf.push_back(total += mesh.tetVolume(t) * medium.density(t, mesh.centroid(t)));
+        for (uint32_t t = e.firstTet; t < mesh.regionTets[sm.region + 1]; ++t)
+            e.tetCdf.push_back(total += mesh.tetVolume(t) * medium.density(t, mesh.centroid(t)));
         // Isotropic emission of radiance `emission` per unit length: 4 pi emission per unit volume.
-        e.power = medium.params().emission * (4 * kPi * total);
+        e.power = optics.params.emission * (4 * kPi * total);
         if (total > 0) emitters_.push_back(std::move(e));
     }
     double total = 0;
@@ -142,9 +148,10 @@ PhotonSource::Emission PhotonSource::sample(const Scene& scene, Rng& rng) const 
         out.medium = scene.mediumAt(p.ray.o);
         return out;
     }
-    const Medium& medium = *scene.media()[e.medium].medium;
+    const int volume = scene.media()[e.medium].volume;
+    const Medium& medium = *scene.volumes()[volume].medium;
     const TetMesh& mesh = medium.mesh();
-    const auto tet = uint32_t(sampleCdf(e.tetCdf, rng.uniform()));
+    const auto tet = e.firstTet + uint32_t(sampleCdf(e.tetCdf, rng.uniform()));
     const auto& v = mesh.tets[tet];
     const glm::dvec3 p0 = mesh.vertices[v[0]];
     const double u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
@@ -154,7 +161,7 @@ PhotonSource::Emission PhotonSource::sample(const Scene& scene, Rng& rng) const 
     out.ray = {p, sampleUniformSphere({u3, u4})};
     // The point is uniform in the tet; its density relative to the tet's mean corrects for that.
     out.flux = e.power * (medium.density(tet, p) / medium.density(tet, mesh.centroid(tet)) / chosen);
-    out.medium = {e.medium, WalkStart::inside(tet)};
+    out.medium = {volume, WalkStart::inside(tet)};
     out.fromMedium = true;
     return out;
 }

@@ -32,7 +32,7 @@ struct EnergyBalance {
 };
 
 struct TracedPhotons {
-    std::vector<std::vector<Photon>> volume;  // per medium
+    std::vector<std::vector<Photon>> volume;  // per scene medium (region), by the medium that scattered them
     std::vector<Photon> surface;              // on diffuse surfaces
     EnergyBalance energy;
     uint64_t paths = 0;
@@ -47,7 +47,7 @@ public:
     struct Emission {
         Ray ray;
         RGB flux{0};
-        MediumState medium;     // the medium the photon starts in
+        MediumState medium;     // the volume the photon starts in
         bool fromMedium = false;
     };
     Emission sample(const Scene& scene, Rng& rng) const;
@@ -56,7 +56,8 @@ private:
     struct Emitter {
         int light = -1, medium = -1;
         RGB power{0};
-        std::vector<double> tetCdf;  // media: integrated density per tet, cumulative
+        std::vector<double> tetCdf;  // media: integrated density per tet of its region, cumulative
+        uint32_t firstTet = 0;       // media: its region's first tet
     };
     std::vector<Emitter> emitters_;
     std::vector<double> cdf_;  // over emitters, by mean power

@@ -5,9 +5,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "render/MediaGroups.h"
 #include "scene/DensityField.h"
-#include "tet/MeshValidation.h"
-#include "tet/RegionComplex.h"
 #include "tet/SurfaceBVH.h"
 
 namespace tetglow {
@@ -22,60 +21,6 @@ std::vector<glm::dvec3> unitNormals(const std::vector<glm::dvec3>& positions, co
     return normals;
 }
 
-// The description's coefficients and density on the medium's tets.
-void setCoefficients(Medium& medium, const MediumDesc& desc) {
-    MediumParams params{desc.sigmaA, desc.sigmaS, desc.g, desc.emission};
-    std::vector<double> density;
-    if (desc.density.isConstant()) {
-        // A constant density only scales the coefficients.
-        params.sigmaA *= desc.density.offset, params.sigmaS *= desc.density.offset, params.emission *= desc.density.offset;
-    } else {
-        density = evaluateDensity(desc.density, medium.mesh().vertices);
-    }
-    medium.setParams(params, std::move(density));
-}
-
-SceneMedium buildMedium(const MediumDesc& desc) {
-    SceneMedium m;
-    m.name = desc.name;
-    m.boundary = desc.boundaryMaterial;
-    try {
-        TetMesh mesh = tetrahedralize(desc.boundary, desc.tetOptions, &m.stats);
-        m.steinerPoints = mesh.vertices.size() - mesh.surfaceVertexCount;
-        m.medium = std::make_unique<Medium>(MediumParams{}, std::move(mesh));
-        setCoefficients(*m.medium, desc);
-    } catch (const InputError& e) {
-        throw InputError(desc.name + ": " + e.what());
-    }
-    return m;
-}
-
-// Media must lie apart. Crossing media are an error in any case (naming both and a triangle
-// pair); nested or touching ones would be regions of one tet mesh, which the integrators do not
-// render yet, so they are refused rather than rendered wrong.
-void checkMediaApart(const std::vector<MediumDesc>& media) {
-    if (media.size() < 2) return;
-    std::vector<TriangleMesh> surfaces;
-    std::vector<std::string> names;
-    for (const auto& m : media) {
-        surfaces.push_back(m.boundary);
-        names.push_back(m.name);
-        try {
-            validateAndRepair(surfaces.back());
-        } catch (const InputError& e) {
-            throw InputError(m.name + ": " + e.what());
-        }
-    }
-    const RegionComplex regions = buildRegionComplex(surfaces, names);
-    for (size_t i = 0; i < media.size(); ++i)
-        if (const int32_t p = regions.parent[i]; p >= 0)
-            throw InputError(names[i] + " lies inside " + names[p] + ": nested media are not rendered yet");
-    for (size_t s = 0; s < regions.sides.size(); ++s)
-        if (const int32_t front = regions.sides[s][1]; front >= 0)
-            throw InputError(names[regions.sides[s][0]] + " and " + names[front] +
-                             " share triangles: touching media are not rendered yet");
-}
-
 double sceneScale(const SceneDesc& desc) {
     double scale = glm::length(desc.camera.position);
     auto extend = [&](const TriangleMesh& mesh) {
@@ -88,16 +33,65 @@ double sceneScale(const SceneDesc& desc) {
 
 }  // namespace
 
+void Scene::setCoefficients(SceneVolume& volume) const {
+    std::vector<RegionMedium> regions;
+    for (int i : volume.media) {
+        const MediumDesc& desc = desc_.media[i];
+        RegionMedium r{{desc.sigmaA, desc.sigmaS, desc.g, desc.emission}, {}};
+        if (desc.density.isConstant()) {
+            // A constant density only scales the coefficients.
+            r.params.sigmaA *= desc.density.offset, r.params.sigmaS *= desc.density.offset, r.params.emission *= desc.density.offset;
+        } else {
+            r.vertexDensity = evaluateDensity(desc.density, volume.medium->mesh().vertices);
+        }
+        regions.push_back(std::move(r));
+    }
+    volume.medium->setRegions(std::move(regions));
+}
+
+void Scene::buildVolumes() {
+    const std::vector<MediumDesc>& media = desc_.media;
+    media_.resize(media.size());
+    for (const std::vector<int>& group : groupMedia(media)) {
+        SceneVolume v;
+        std::vector<TriangleMesh> surfaces;
+        std::vector<std::string> names;
+        for (int i : group) {
+            surfaces.push_back(media[i].boundary);
+            names.push_back(media[i].name);
+            v.name += (v.name.empty() ? "" : " + ") + media[i].name;
+            media_[i] = {media[i].name, int(volumes_.size()), int32_t(v.media.size())};
+            v.media.push_back(i);
+        }
+        // One medium alone names itself in its errors (as the loader names it), a group each of its meshes.
+        try {
+            TetMesh mesh = tetrahedralize(std::move(surfaces), group.size() == 1 ? std::vector<std::string>{""} : names,
+                                          groupTetOptions(media, group), &v.stats);
+            v.steinerPoints = mesh.vertices.size() - mesh.surfaceVertexCount;
+            interfaceMaterials(mesh, media, group, v.triangleMaterial, v.materials);
+            std::vector<bool> stops;
+            for (size_t s = 0; s < mesh.surface.size(); ++s)
+                stops.push_back(mesh.surfaceRegions[s][1] >= 0 && v.materials[v.triangleMaterial[s]].type != MaterialType::Interface);
+            v.medium = std::make_unique<Medium>(MediumParams{}, std::move(mesh));
+            v.medium->setStops(std::move(stops));
+        } catch (const InputError& e) {
+            if (group.size() > 1) throw;
+            throw InputError(media[group[0]].name + ": " + e.what());
+        }
+        setCoefficients(v);
+        volumes_.push_back(std::move(v));
+    }
+}
+
 Scene::Scene(const SceneDesc& desc) : desc_(desc), camera_(desc.camera) {
     // 64 float ulps at the scene's largest coordinate: beyond Embree's rounding of hit points.
     epsilon_ = 64 * 0x1.0p-23 * sceneScale(desc);
     const auto start = std::chrono::steady_clock::now();
-    checkMediaApart(desc.media);
-    for (const auto& m : desc.media) media_.push_back(buildMedium(m));
+    buildVolumes();
     tetSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     Bounds3 geometry;
     for (const auto& surface : desc.surfaces) geometry.extend(bounds(surface.mesh));
-    for (const auto& m : media_) geometry.extend(m.medium->volume().bounds());
+    for (const auto& v : volumes_) geometry.extend(v.medium->volume().bounds());
     if (geometry.empty()) geometry.extend(desc.camera.position);  // nothing but lights
     // Constant environments add up: they become one light with the summed radiance, in the
     // place of the first, so that rays escaping and light samples see the same sky.
@@ -110,27 +104,44 @@ Scene::Scene(const SceneDesc& desc) : desc_(desc), camera_(desc.camera) {
         else if (!environment_) lights_.push_back(makeLight(sky, geometry)), environment_ = lights_.back().get();
     }
 
-    scene_ = rtcNewScene(embreeDevice());
-    rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
-    auto add = [&](HitKind kind, uint32_t index, const std::vector<glm::dvec3>& positions, const std::vector<std::array<uint32_t, 3>>& triangles) {
-        const unsigned id = attachTriangles(scene_, positions, triangles);
-        if (geometries_.size() <= id) geometries_.resize(id + 1), normals_.resize(id + 1);
-        geometries_[id] = {kind, index};
-        normals_[id] = unitNormals(positions, triangles);
+    for (SceneVolume& v : volumes_) v.normals = unitNormals(v.medium->mesh().vertices, v.medium->mesh().surface);
+    surfaces_ = rtcNewScene(embreeDevice());
+    all_ = rtcNewScene(embreeDevice());
+    for (RTCScene s : {surfaces_, all_}) rtcSetSceneFlags(s, RTC_SCENE_FLAG_ROBUST);
+    const auto attach = [](RTCScene scene, std::vector<Geometry>& table, const Geometry& g, const std::vector<glm::dvec3>& positions,
+                           const std::vector<std::array<uint32_t, 3>>& triangles) {
+        const unsigned id = attachTriangles(scene, positions, triangles);
+        if (table.size() <= id) table.resize(id + 1);
+        table[id] = g;
     };
+    // Every normal list first, so that the geometries' pointers into normals_ stay valid.
+    std::vector<std::pair<HitKind, uint32_t>> shapes;
+    std::vector<TriangleMesh> meshes;
     for (uint32_t i = 0; i < desc.surfaces.size(); ++i) {
         TriangleMesh mesh = desc.surfaces[i].mesh;
         for (auto& p : mesh.positions) p = {roundToFloat(p.x), roundToFloat(p.y), roundToFloat(p.z)};
-        add(HitKind::Surface, i, mesh.positions, mesh.triangles);
+        shapes.push_back({HitKind::Surface, i}), meshes.push_back(std::move(mesh));
+    }
+    for (uint32_t i = 0; i < lights_.size(); ++i)
+        if (const TriangleMesh* shape = lights_[i]->shape()) shapes.push_back({HitKind::Light, i}), meshes.push_back(*shape);
+    for (const TriangleMesh& m : meshes) normals_.push_back(unitNormals(m.positions, m.triangles));
+    for (size_t k = 0; k < meshes.size(); ++k) {
+        const Geometry g{shapes[k].first, shapes[k].second, &normals_[k]};
+        attach(surfaces_, surfaceGeometries_, g, meshes[k].positions, meshes[k].triangles);
+        attach(all_, allGeometries_, g, meshes[k].positions, meshes[k].triangles);
     }
     // The boundary exactly as the tets have it: surface triangle ids are Embree primitive ids.
-    for (uint32_t i = 0; i < media_.size(); ++i) add(HitKind::MediumBoundary, i, media_[i].medium->mesh().vertices, media_[i].medium->mesh().surface);
-    for (uint32_t i = 0; i < lights_.size(); ++i)
-        if (const TriangleMesh* shape = lights_[i]->shape()) add(HitKind::Light, i, shape->positions, shape->triangles);
-    rtcCommitScene(scene_);
+    for (uint32_t i = 0; i < volumes_.size(); ++i)
+        attach(all_, allGeometries_, {HitKind::MediumBoundary, i, &volumes_[i].normals}, volumes_[i].medium->mesh().vertices,
+               volumes_[i].medium->mesh().surface);
+    rtcCommitScene(surfaces_);
+    rtcCommitScene(all_);
 }
 
-Scene::~Scene() { rtcReleaseScene(scene_); }
+Scene::~Scene() {
+    rtcReleaseScene(surfaces_);
+    rtcReleaseScene(all_);
+}
 
 void Scene::retuneMedia(const std::vector<MediumDesc>& media) {
     if (media.size() != media_.size()) throw std::invalid_argument("Scene::retuneMedia: a different number of media");
@@ -138,11 +149,12 @@ void Scene::retuneMedia(const std::vector<MediumDesc>& media) {
         const MediumDesc& old = desc_.media[i];
         const MediumDesc& m = media[i];
         if (m.boundary.positions != old.boundary.positions || m.boundary.triangles != old.boundary.triangles ||
-            m.tetOptions.radiusEdgeRatio != old.tetOptions.radiusEdgeRatio || m.tetOptions.maxVolume != old.tetOptions.maxVolume)
+            m.tetOptions.radiusEdgeRatio != old.tetOptions.radiusEdgeRatio || m.tetOptions.maxVolume != old.tetOptions.maxVolume ||
+            m.cavity != old.cavity)
             throw std::invalid_argument("Scene::retuneMedia: medium " + m.name + " has other tets");
-        setCoefficients(*media_[i].medium, m);
         desc_.media[i] = m;
     }
+    for (SceneVolume& v : volumes_) setCoefficients(v);
 }
 
 void Scene::setCamera(const CameraDesc& camera) {
@@ -150,7 +162,7 @@ void Scene::setCamera(const CameraDesc& camera) {
     camera_ = Camera(camera);
 }
 
-std::optional<Intersection> Scene::intersect(const Ray& ray, double tMax) const {
+std::optional<Intersection> Scene::intersect(RTCScene scene, const std::vector<Geometry>& geometries, const Ray& ray, double tMax) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRayHit rh{};
@@ -160,43 +172,86 @@ std::optional<Intersection> Scene::intersect(const Ray& ray, double tMax) const 
     rh.ray.tfar = tMax < 1e30 ? float(tMax) : INFINITY;
     rh.ray.mask = ~0u;
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(scene_, &context, &rh);
+    rtcIntersect1(scene, &context, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
+    const Geometry& g = geometries[rh.hit.geomID];
     Intersection hit;
     hit.t = rh.ray.tfar;
     hit.p = ray.at(hit.t);
     hit.triangle = rh.hit.primID;
-    hit.kind = geometries_[rh.hit.geomID].kind;
-    hit.index = geometries_[rh.hit.geomID].index;
-    hit.n = normals_[rh.hit.geomID][rh.hit.primID];
+    hit.kind = g.kind;
+    hit.index = g.index;
+    hit.n = (*g.normals)[rh.hit.primID];
+    return hit;
+}
+
+std::optional<Intersection> Scene::intersect(const Ray& ray, double tMax) const {
+    auto hit = intersect(surfaces_, surfaceGeometries_, ray, tMax);
+    for (size_t v = 0; v < volumes_.size(); ++v) {
+        const auto entry = volumes_[v].medium->volume().firstEntry(ray, epsilon_, hit ? hit->t : tMax);
+        if (!entry) continue;
+        hit = Intersection{entry->exitT(), ray.at(entry->exitT()), volumes_[v].normals[entry->entryTriangle()], entry->entryTriangle(),
+                           HitKind::MediumBoundary, uint32_t(v)};
+    }
+    return hit;
+}
+
+std::optional<Intersection> Scene::intersect(const Ray& ray, const MediumState& state, double tMax) const {
+    return state.inside() ? intersect(surfaces_, surfaceGeometries_, ray, tMax) : intersect(ray, tMax);
+}
+
+Intersection Scene::boundaryHit(int v, const Ray& ray, const WalkExit& exit) const {
+    Intersection hit;
+    hit.t = exit.t;
+    hit.p = ray.at(exit.t);
+    hit.triangle = exit.triangle;
+    hit.touch = exit.tet == WalkExit::kTouch;
+    hit.kind = HitKind::MediumBoundary;
+    hit.index = uint32_t(v);
+    hit.n = volumes_[v].normals[exit.triangle];
     return hit;
 }
 
 const MaterialDesc& Scene::material(const Intersection& hit) const {
-    static const MaterialDesc black{MaterialType::Diffuse, RGB(0)};
+    static const MaterialDesc black{MaterialType::Diffuse, RGB(0)}, pass{MaterialType::Interface};
+    if (hit.touch) return pass;
     switch (hit.kind) {
         case HitKind::Surface: return desc_.surfaces[hit.index].material;
-        case HitKind::MediumBoundary: return media_[hit.index].boundary;
+        case HitKind::MediumBoundary: {
+            const SceneVolume& v = volumes_[hit.index];
+            return v.materials[v.triangleMaterial[hit.triangle]];
+        }
         case HitKind::Light: return black;
     }
     return black;
 }
 
 MediumState Scene::afterHit(const Intersection& hit, const glm::dvec3& d, const MediumState& before) const {
+    if (hit.touch) return {};
     if (hit.kind == HitKind::MediumBoundary) {
-        if (glm::dot(d, hit.n) < 0) return {int(hit.index), WalkStart::surface(hit.triangle)};
-        return {};
+        const TetMesh& mesh = volumes_[hit.index].medium->mesh();
+        const bool behind = glm::dot(d, hit.n) < 0;
+        if (mesh.surfaceRegions[hit.triangle][behind ? 0 : 1] < 0) return {};
+        // From outside, the walk enters through the triangle by its exact tests; from a walk's
+        // exit face, it starts in the tet on the chosen side.
+        if (!before.inside() && mesh.surfaceRegions[hit.triangle][1] < 0) return {int(hit.index), WalkStart::surface(hit.triangle)};
+        const uint32_t face = behind ? mesh.surfaceFace[hit.triangle] : mesh.surfaceFaceFront[hit.triangle];
+        return {int(hit.index), WalkStart::inside(face >> 2)};
     }
     if (!before.inside()) return before;
-    // A surface inside a medium: the path goes on in the same medium, from the tet at the hit.
-    const int64_t tet = media_[before.medium].medium->volume().locate(hit.p);
-    return tet >= 0 ? MediumState{before.medium, WalkStart::inside(uint32_t(tet))} : MediumState{};
+    // A surface inside a medium: the path goes on in the same volume, from the tet at the hit.
+    const int64_t tet = volumes_[before.volume].medium->volume().locate(hit.p);
+    return tet >= 0 ? MediumState{before.volume, WalkStart::inside(uint32_t(tet))} : MediumState{};
 }
 
-bool Scene::crossInterface(const Intersection& hit, Ray& ray, MediumState& state) const {
+bool Scene::crossInterface(const Intersection& hit, Ray& ray, MediumState& state, double* moved) const {
+    if (moved) *moved = 0;
     if (!indexMatched(hit)) return false;
+    const bool entering = !state.inside();
     state = afterHit(hit, ray.d, state);
+    if (entering && state.inside() && state.start.throughSurface) return true;
     ray.o = hit.p;
+    if (moved) *moved = hit.t;
     return true;
 }
 
@@ -206,22 +261,29 @@ RGB Scene::emitted(const Ray& ray, const Intersection* hit) const {
 }
 
 MediumState Scene::mediumAt(const glm::dvec3& p) const {
-    for (size_t m = 0; m < media_.size(); ++m)
-        if (const int64_t tet = media_[m].medium->volume().locate(p); tet >= 0) return {int(m), WalkStart::inside(uint32_t(tet))};
+    for (size_t v = 0; v < volumes_.size(); ++v)
+        if (const int64_t tet = volumes_[v].medium->volume().locate(p); tet >= 0) return {int(v), WalkStart::inside(uint32_t(tet))};
     return {};
 }
 
 RGB Scene::transmittance(Ray ray, double tMax, MediumState state) const {
     RGB tr(1);
     for (int crossings = 0; crossings < 256; ++crossings) {
-        const auto hit = intersect(ray, tMax);
+        auto hit = intersect(ray, state, tMax);
         // An opaque or specular surface blocks the ray whatever lies before it: no walk needed.
         if (hit && !indexMatched(*hit)) return RGB(0);
-        if (state.inside()) tr *= media_[state.medium].medium->transmittance(ray, state.start, hit ? hit->t : tMax);
+        if (state.inside()) {
+            const FreeFlight f = volumes_[state.volume].medium->sampleFlight(ray, state.start, hit ? hit->t : tMax, 0, 1.0);
+            tr *= f.transmittance;
+            if (f.exit.left) {  // out of the volume, or at a dielectric interface (which blocks)
+                hit = boundaryHit(state.volume, ray, f.exit);
+                if (!indexMatched(*hit)) return RGB(0);
+            }
+        }
         if (!hit) return tr;
-        state = afterHit(*hit, ray.d, state);
-        ray.o = hit->p;
-        tMax -= hit->t;
+        double moved = 0;
+        crossInterface(*hit, ray, state, &moved);
+        tMax -= moved;
     }
     return RGB(0);
 }
@@ -229,7 +291,7 @@ RGB Scene::transmittance(Ray ray, double tMax, MediumState state) const {
 std::optional<Intersection> Scene::intersectOpaque(const Ray& ray, double tMax) const {
     double t0 = 0;
     for (int crossings = 0; crossings < 256; ++crossings) {
-        auto hit = intersect(Ray{ray.at(t0), ray.d}, tMax - t0);
+        auto hit = intersect(all_, allGeometries_, Ray{ray.at(t0), ray.d}, tMax - t0);
         if (!hit) return std::nullopt;
         hit->t += t0;
         if (!indexMatched(*hit)) return hit;

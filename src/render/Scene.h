@@ -1,5 +1,7 @@
-// The scene ready to render: camera, lights, surfaces and tetrahedralized media, with one
-// Embree scene over every surface, every medium boundary and every area light.
+// The scene ready to render: camera, lights, surfaces and tetrahedralized media. Embree holds
+// the surfaces and area lights; where a ray enters a medium comes from the tets' exact tests
+// (TetVolume::firstEntry), and where it leaves from the walk, so no float hit ever places a
+// medium's boundary.
 #pragma once
 #include <memory>
 #include <optional>
@@ -22,22 +24,37 @@ struct Intersection {
     glm::dvec3 p{0}, n{0};  // n: unit geometric normal, outward for a medium boundary
     uint32_t triangle = 0;
     HitKind kind = HitKind::Surface;
-    uint32_t index = 0;     // which surface, medium or light
+    uint32_t index = 0;     // which surface, volume or light
+    bool touch = false;     // a walk found that the ray only touches this volume here: it passes
 };
 
-// The medium a path is in, and where its next walk through that medium's tets begins.
+// The volume a path is in, and where its next walk through that volume's tets begins.
 struct MediumState {
-    int medium = -1;  // -1: outside every medium
+    int volume = -1;  // -1: outside every medium
     WalkStart start;
-    bool inside() const { return medium >= 0; }
+    bool inside() const { return volume >= 0; }
 };
 
+// A medium of the description (or a cavity: a region with no medium), as a region of a volume.
 struct SceneMedium {
     std::string name;
+    int volume = 0;
+    int32_t region = 0;
+};
+
+// Media that nest or touch, found from their meshes and tetrahedralized together: one Medium
+// whose region r is the scene medium media[r]. A medium apart from all others is a volume alone.
+struct SceneVolume {
+    std::string name;  // its media's names, joined by " + "
     std::unique_ptr<Medium> medium;
-    MaterialDesc boundary;  // Dielectric or Interface
+    std::vector<int> media;  // per region
     TetStats stats;
     size_t steinerPoints = 0;
+    // Per surface triangle, what lies between the regions on its two sides: index-matched where
+    // their indices of refraction are equal, else a dielectric with their ratio.
+    std::vector<uint32_t> triangleMaterial;  // into materials
+    std::vector<MaterialDesc> materials;
+    std::vector<glm::dvec3> normals;  // per surface triangle, unit
 };
 
 class Scene {
@@ -56,31 +73,43 @@ public:
     const Camera& camera() const { return camera_; }
     const std::vector<std::unique_ptr<Light>>& lights() const { return lights_; }
     const std::vector<SceneMedium>& media() const { return media_; }
+    const std::vector<SceneVolume>& volumes() const { return volumes_; }
     const Light* environment() const { return environment_; }
     double tetrahedralizeSeconds() const { return tetSeconds_; }
     // Rays leave a surface this far beyond it, so they do not hit it again.
     double rayEpsilon() const { return epsilon_; }
 
-    // Closest hit with t in (rayEpsilon, tMax); the ray's direction is unit length.
+    // Closest hit with t in (rayEpsilon, tMax), a medium's entry exact; the ray's direction is
+    // unit length.
     std::optional<Intersection> intersect(const Ray& ray, double tMax = INFINITY) const;
+    // The closest hit for a path in `state`: outside the media every surface; inside a volume
+    // only the surfaces and lights, as the walk finds its boundary and interfaces exactly.
+    std::optional<Intersection> intersect(const Ray& ray, const MediumState& state, double tMax = INFINITY) const;
+    // Where a walk through volume v left it or stopped at an interface: the point, normal and
+    // triangle of the walk's exit face, not a float hit.
+    Intersection boundaryHit(int v, const Ray& ray, const WalkExit& exit) const;
     // The material at a hit (surfaces and medium boundaries; lights are black diffuse).
     const MaterialDesc& material(const Intersection& hit) const;
     // The medium state after the path leaves `hit` in direction `d`, having been in `before`.
     MediumState afterHit(const Intersection& hit, const glm::dvec3& d, const MediumState& before) const;
     // Whether `hit` is index-matched (material "interface"): every ray crosses it unchanged.
     bool indexMatched(const Intersection& hit) const { return material(hit).type == MaterialType::Interface; }
-    // Passes an index-matched boundary: when `hit` is one, moves the ray's origin to it,
-    // updates `state` and returns true.
-    bool crossInterface(const Intersection& hit, Ray& ray, MediumState& state) const;
+    // Passes an index-matched boundary: when `hit` is one, updates `state` and the ray and
+    // returns true. Entering a volume from outside keeps the ray, so that the walk finds the
+    // exact entry on it (Embree's float hit only says which triangle); anywhere else the ray
+    // restarts at the hit, and *moved receives how far along it that is (else 0).
+    bool crossInterface(const Intersection& hit, Ray& ray, MediumState& state, double* moved = nullptr) const;
     // Radiance reaching ray.o from an emitter the ray ends at: the environment where it
     // escapes (hit null), an area light it hit. (A camera path's weight applies.)
     RGB emitted(const Ray& ray, const Intersection* hit) const;
-    // The medium that holds point p (the camera), for starting paths.
+    // The volume and tet that hold point p (the camera), for starting paths.
     MediumState mediumAt(const glm::dvec3& p) const;
     // Transmittance along ray (unit direction) up to tMax, starting in `state`: index-matched
-    // boundaries and media pass light; anything else blocks it.
+    // boundaries and interfaces and media pass light; anything else blocks it.
     RGB transmittance(Ray ray, double tMax, MediumState state) const;
-    // The closest hit that is not an index-matched boundary (those pass light unchanged).
+    // The closest hit that is not an index-matched boundary (those pass light unchanged), as
+    // the seed found it: Embree's float hits on every surface, media boundaries and interfaces
+    // included, whatever medium the ray is in (for the single-scattering baseline).
     std::optional<Intersection> intersectOpaque(const Ray& ray, double tMax = INFINITY) const;
     // No surface but index-matched boundaries between ray.o and ray.at(tMax) (media ignored).
     bool unoccluded(const Ray& ray, double tMax) const { return !intersectOpaque(ray, tMax); }
@@ -89,15 +118,24 @@ private:
     struct Geometry {
         HitKind kind;
         uint32_t index;
+        const std::vector<glm::dvec3>* normals;
     };
+    std::vector<std::vector<glm::dvec3>> normals_;  // per surface and area light: unit, per triangle
+    std::optional<Intersection> intersect(RTCScene scene, const std::vector<Geometry>& geometries, const Ray& ray, double tMax) const;
+    void buildVolumes();
+    void setCoefficients(SceneVolume& volume) const;
+
     SceneDesc desc_;
     Camera camera_;
     std::vector<std::unique_ptr<Light>> lights_;
     const Light* environment_ = nullptr;
     std::vector<SceneMedium> media_;
-    std::vector<Geometry> geometries_;  // by Embree geometry id
-    std::vector<std::vector<glm::dvec3>> normals_;  // per geometry, per triangle (unit)
-    RTCScene scene_ = nullptr;
+    std::vector<SceneVolume> volumes_;
+    // By Embree geometry id in surfaces_ and in all_: kind and index, and per triangle the unit
+    // normal (for a medium boundary, the volume's own).
+    std::vector<Geometry> surfaceGeometries_, allGeometries_;
+    RTCScene surfaces_ = nullptr;  // surfaces and area lights
+    RTCScene all_ = nullptr;       // those and the media's boundaries: intersectOpaque only
     double epsilon_ = 1e-6, tetSeconds_ = 0;
 };
 

@@ -1,94 +1,126 @@
 #include "render/SingleScatterIntegrator.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "render/DirectLighting.h"
 #include "render/Material.h"
+#include "tet/MeshValidation.h"
 
 namespace tetglow {
 
 SingleScatterIntegrator::SingleScatterIntegrator(const Scene& scene, const IntegratorDesc& desc)
     : scene_(scene), mode_(desc.boundary), step_(desc.stepSize), parityRays_(desc.parityRays), maxDepth_(desc.maxDepth) {
-    for (const auto& m : scene.media()) {
-        if (mode_ != BoundaryMode::Tet && !m.medium->homogeneous())
-            throw InputError(m.name + ": the parity and bbox boundary modes need a homogeneous medium (no per-vertex density)");
-        boxes_.push_back(m.medium->volume().bounds());
+    for (const SceneVolume& v : scene.volumes()) {
+        if (mode_ != BoundaryMode::Tet && !v.medium->homogeneous())
+            throw InputError(v.name + ": the parity and bbox boundary modes need a homogeneous medium (no per-vertex density)");
+        boxes_.push_back(v.medium->volume().bounds());
+        const TetMesh& mesh = v.medium->mesh();
+        std::vector<int> depth(v.media.size(), 0);
+        for (size_t r = 0; r < depth.size(); ++r)
+            for (int32_t p = mesh.regionParent[r]; p >= 0; p = mesh.regionParent[size_t(p)]) ++depth[r];
+        std::vector<int> order(v.media.begin(), v.media.end());
+        std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+            return depth[size_t(scene.media()[a].region)] > depth[size_t(scene.media()[b].region)];
+        });
+        innermostFirst_.push_back(std::move(order));
+    }
+    if (mode_ == BoundaryMode::Tet) return;
+    for (const MediumDesc& m : scene.desc().media) {
+        TriangleMesh own = m.boundary;
+        validateAndRepair(own);  // the mesh as its tets have it
+        mediumBoxes_.push_back(bounds(own));
+        parity_.push_back(mode_ == BoundaryMode::Parity ? std::make_unique<SurfaceBVH>(own.positions, own.triangles) : nullptr);
     }
 }
 
-bool SingleScatterIntegrator::inside(size_t m, const glm::dvec3& p) const {
-    if (mode_ == BoundaryMode::Bbox) return true;  // the march already stays within the box
-    return insideByParity(scene_.media()[m].medium->volume().bvh(), p, parityRays_);
+SingleScatterIntegrator::~SingleScatterIntegrator() = default;
+
+int SingleScatterIntegrator::pick(size_t v, const glm::dvec3& p) const {
+    for (int m : innermostFirst_[v]) {
+        if (mode_ == BoundaryMode::Bbox ? mediumBoxes_[m].contains(p) : insideByParity(*parity_[m], p, parityRays_)) return m;
+    }
+    return -1;
 }
 
 RGB SingleScatterIntegrator::visibility(const Ray& ray, double tMax, Rng& rng) const {
     if (mode_ == BoundaryMode::Tet) return scene_.transmittance(ray, tMax, scene_.mediumAt(ray.o));
     if (!scene_.unoccluded(ray, tMax)) return RGB(0);
-    // The seed's shadow ray: march through each medium's box, asking the boundary test per step.
+    // The seed's shadow ray: march through each volume's box, asking the boundary test per step.
     RGB tau(0);
-    for (size_t m = 0; m < boxes_.size(); ++m) {
+    for (size_t v = 0; v < boxes_.size(); ++v) {
         double t0 = 0, t1 = tMax;
-        if (!clip(boxes_[m], ray, t0, t1)) continue;
-        const RGB sigmaT = scene_.media()[m].medium->sigmaT();
+        if (!clip(boxes_[v], ray, t0, t1)) continue;
         if (mode_ == BoundaryMode::Bbox) {
-            tau += sigmaT * (t1 - t0);
+            // Exactly: between consecutive box faces along the ray, one medium is picked.
+            std::vector<double> cuts{t0, t1};
+            for (int m : innermostFirst_[v]) {
+                double a = t0, b = t1;
+                if (clip(mediumBoxes_[m], ray, a, b)) cuts.push_back(a), cuts.push_back(b);
+            }
+            std::sort(cuts.begin(), cuts.end());
+            for (size_t i = 0; i + 1 < cuts.size(); ++i)
+                if (const int m = pick(v, ray.at(0.5 * (cuts[i] + cuts[i + 1]))); m >= 0)
+                    tau += scene_.volumes()[v].medium->region(scene_.media()[m].region).sigmaT * (cuts[i + 1] - cuts[i]);
             continue;
         }
         for (double t = t0 + rng.uniform() * step_; t < t1; t += step_)
-            if (inside(m, ray.at(t))) tau += sigmaT * step_;
+            if (const int m = pick(v, ray.at(t)); m >= 0) tau += scene_.volumes()[v].medium->region(scene_.media()[m].region).sigmaT * step_;
     }
     return exp(-tau);
 }
 
-RGB SingleScatterIntegrator::inScattered(size_t m, const glm::dvec3& p, const glm::dvec3& d, int64_t tet, Rng& rng) const {
-    if (mode_ == BoundaryMode::Tet) return directInMedium(scene_, int(m), p, d, uint32_t(tet), rng);
-    return sampleDirect(scene_, p, rng, false, phaseScattering(scene_.media()[m].medium->phase(), d),
+RGB SingleScatterIntegrator::inScattered(size_t v, const RegionOptics& optics, const glm::dvec3& p, const glm::dvec3& d, int64_t tet, Rng& rng) const {
+    if (mode_ == BoundaryMode::Tet) return directInMedium(scene_, int(v), p, d, uint32_t(tet), rng);
+    return sampleDirect(scene_, p, rng, false, phaseScattering(optics.phase, d),
                         [&](const Ray& r, double t) { return visibility(r, t, rng); });
 }
 
-RGB SingleScatterIntegrator::marchTets(size_t m, const Ray& ray, double tMax, const RGB& beta, Rng& rng, RGB& L) const {
-    const Medium& medium = *scene_.media()[m].medium;
-    const MediumParams& params = medium.params();
-    // One sample every step_ of the medium's own length along the ray (random offset), across
-    // tet faces: as many samples as the parity march takes inside, each with the exact
-    // transmittance up to it. Each sample stands for step_, an unbiased estimate of the integral.
-    double next = rng.uniform() * step_, walked = 0;  // medium length: of the next sample, before this segment
+RGB SingleScatterIntegrator::marchTets(size_t v, const Ray& ray, double tMax, const RGB& beta, Rng& rng, RGB& L) const {
+    const Medium& medium = *scene_.volumes()[v].medium;
+    // One sample every step_ of the volume's own length along the ray (random offset), across
+    // tet faces and interfaces: as many samples as the parity march takes inside, each with the
+    // exact transmittance up to it. Each sample stands for step_, an unbiased estimate of the integral.
+    double next = rng.uniform() * step_, walked = 0;  // length in the volume: of the next sample, before this segment
     RGB tr(1);
     medium.volume().traverse(ray, 0, tMax, [&](const WalkSegment& s) {
+        const RegionOptics& optics = medium.at(s.tet);
         const double length = s.tOut - s.tIn;
         for (; next < walked + length; next += step_) {
             const double t = s.tIn + (next - walked);
             const glm::dvec3 p = ray.at(t);
-            const RGB trHere = tr * exp(-medium.sigmaT() * medium.densityIntegral(s.tet, ray, s.tIn, t));
-            L += beta * trHere * (step_ * medium.density(s.tet, p)) * (params.sigmaS * inScattered(m, p, ray.d, s.tet, rng) + params.emission);
+            const RGB trHere = tr * exp(-optics.sigmaT * medium.densityIntegral(s.tet, ray, s.tIn, t));
+            L += beta * trHere * (step_ * medium.density(s.tet, p)) *
+                 (optics.params.sigmaS * inScattered(v, optics, p, ray.d, s.tet, rng) + optics.params.emission);
         }
         walked += length;
-        tr *= exp(-medium.sigmaT() * medium.densityIntegral(s.tet, ray, s.tIn, s.tOut));
+        tr *= exp(-optics.sigmaT * medium.densityIntegral(s.tet, ray, s.tIn, s.tOut));
         return true;
     });
     return tr;
 }
 
-RGB SingleScatterIntegrator::marchSteps(size_t m, const Ray& ray, double tMax, const RGB& beta, Rng& rng, RGB& L) const {
+RGB SingleScatterIntegrator::marchSteps(size_t v, const Ray& ray, double tMax, const RGB& beta, Rng& rng, RGB& L) const {
     double t0 = 0, t1 = tMax;
-    if (!clip(boxes_[m], ray, t0, t1)) return RGB(1);
-    const MediumParams& params = scene_.media()[m].medium->params();
-    const RGB sigmaT = params.sigmaA + params.sigmaS;
+    if (!clip(boxes_[v], ray, t0, t1)) return RGB(1);
+    const Medium& medium = *scene_.volumes()[v].medium;
     RGB tau(0);
     // pbrt-v2's march: each step's sample stands for the whole step.
     for (double t = t0 + rng.uniform() * step_; t < t1; t += step_) {
         const glm::dvec3 p = ray.at(t);
-        if (!inside(m, p)) continue;
-        tau += sigmaT * step_;
-        L += beta * exp(-tau) * step_ * (params.sigmaS * inScattered(m, p, ray.d, -1, rng) + params.emission);
+        const int m = pick(v, p);
+        if (m < 0) continue;
+        const RegionOptics& optics = medium.region(scene_.media()[m].region);
+        tau += optics.sigmaT * step_;
+        L += beta * exp(-tau) * step_ * (optics.params.sigmaS * inScattered(v, optics, p, ray.d, -1, rng) + optics.params.emission);
     }
     return exp(-tau);
 }
 
 RGB SingleScatterIntegrator::march(const Ray& ray, double tMax, const RGB& beta, Rng& rng, RGB& L) const {
     RGB tr(1);
-    for (size_t m = 0; m < boxes_.size(); ++m)
-        tr *= mode_ == BoundaryMode::Tet ? marchTets(m, ray, tMax, beta * tr, rng, L) : marchSteps(m, ray, tMax, beta * tr, rng, L);
+    for (size_t v = 0; v < boxes_.size(); ++v)
+        tr *= mode_ == BoundaryMode::Tet ? marchTets(v, ray, tMax, beta * tr, rng, L) : marchSteps(v, ray, tMax, beta * tr, rng, L);
     return tr;
 }
 

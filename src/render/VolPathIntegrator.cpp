@@ -38,39 +38,42 @@ RGB VolPathIntegrator::radiance(const Ray& cameraRay, Rng& rng) const {
     // Index-matched boundaries do not count as events; the cap only guards against rays that
     // graze a boundary forever.
     for (int crossings = 0; crossings < 100000; ++crossings) {
-        const auto hit = scene_.intersect(ray);
+        auto hit = scene_.intersect(ray, state);
         if (state.inside()) {
-            const Medium& medium = *scene_.media()[state.medium].medium;
+            const Medium& medium = *scene_.volumes()[state.volume].medium;
             const double tMax = hit ? hit->t : INFINITY;
-            if (isBlack(medium.params().sigmaS) && !medium.emissive()) {
+            FreeFlight flight;
+            if (!medium.scatters() && !medium.emissive()) {
                 // Nothing scatters or glows: attenuate exactly instead of sampling where light dies.
-                path.beta *= medium.transmittance(ray, state.start, tMax);
+                flight = medium.sampleFlight(ray, state.start, tMax, 0, 1.0);
+                path.beta *= flight.transmittance;
                 if (!path.alive()) break;
             } else {
-                const FreeFlight flight = medium.sampleFlight(ray, state.start, tMax, path.hero, rng.uniform());
+                flight = medium.sampleFlight(ray, state.start, tMax, path.hero, rng.uniform(), path.r);
+                // Regions without extinction glow along the whole stretch they hold, exactly.
+                L += path.beta * flight.glow;
                 if (!flight.scattered) {
                     path.pass(flight.transmittance);
-                    // Without extinction nothing collides, so the emission is collected here,
-                    // exactly: emission times the density along the stretch.
-                    if (isBlack(medium.sigmaT())) L += path.weight() * flight.column * medium.params().emission;
                 } else {
-                    path.interact(flight.transmittance, medium.sigmaT() * flight.density);
-                    if (medium.emissive()) L += path.weight() * flight.density * medium.params().emission;
-                    path.beta *= flight.density * medium.params().sigmaS;
+                    const RegionOptics& optics = medium.at(flight.tet);
+                    path.interact(flight.transmittance, optics.sigmaT * flight.density);
+                    L += path.weight() * flight.density * optics.params.emission;
+                    path.beta *= flight.density * optics.params.sigmaS;
                     if (++depth >= maxDepth_) break;
                     const glm::dvec3 p = ray.at(flight.t);
-                    const MediumState here{state.medium, WalkStart::inside(flight.tet)};
-                    const HenyeyGreenstein& phase = medium.phase();
-                    L += path.weight() * sampleDirect(scene_, p, rng, true, phaseScattering(phase, ray.d), visibility(here));
+                    const MediumState here{state.volume, WalkStart::inside(flight.tet)};
+                    L += path.weight() * sampleDirect(scene_, p, rng, true, phaseScattering(optics.phase, ray.d), visibility(here));
                     const double u0 = rng.uniform(), u1 = rng.uniform();
-                    const glm::dvec3 wi = phase.sample(ray.d, {u0, u1});
-                    specular = false, lastPdf = phase.eval(glm::dot(ray.d, wi)), lastPoint = p;
+                    const glm::dvec3 wi = optics.phase.sample(ray.d, {u0, u1});
+                    specular = false, lastPdf = optics.phase.eval(glm::dot(ray.d, wi)), lastPoint = p;
                     ray = {p, wi};
                     state = here;
                     if (!survives()) break;
                     continue;
                 }
             }
+            // Out of the volume or at a dielectric interface: the walk's exit face is the surface.
+            if (flight.exit.left) hit = scene_.boundaryHit(state.volume, ray, flight.exit);
         }
         if (!hit) {
             if (const Light* env = scene_.environment())

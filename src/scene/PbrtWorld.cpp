@@ -1,5 +1,7 @@
 #include "scene/PbrtWorld.h"
 
+#include <algorithm>
+
 #include <cmath>
 #include <set>
 
@@ -7,6 +9,7 @@
 
 #include "scene/PbrtShapes.h"
 #include "scene/PbrtTransform.h"
+#include "tet/RegionComplex.h"
 
 namespace tetglow {
 namespace {
@@ -197,25 +200,30 @@ void PbrtWorld::shape(PbrtCall& c, const glm::dmat4& objectToWorld, const PbrtAt
     const std::string name = c.where.str() + " (Shape \"" + c.type + "\")";
     if (m.hasNormals && mat.type != MaterialType::Interface)
         warn(c.where, "Shape: \"N\" only orients the triangles; tetglow shades with the flat triangle normal where pbrt-v3 interpolates N");
-    if (!a.outsideMedium.empty())
-        pbrtError(c.where, "Shape: MediumInterface with outside medium \"" + a.outsideMedium +
-                               "\" is not supported: tetglow's media fill closed meshes, with nothing (\"\") outside");
-    if (!a.insideMedium.empty()) {
-        const auto medium = namedMedia_.find(a.insideMedium);
-        if (medium == namedMedia_.end()) pbrtError(c.where, "Shape: MediumInterface names medium \"" + a.insideMedium + "\", which no MakeNamedMedium made");
+    for (const std::string& named : {a.insideMedium, a.outsideMedium})
+        if (!named.empty() && !namedMedia_.count(named))
+            pbrtError(c.where, "Shape: MediumInterface names medium \"" + named + "\", which no MakeNamedMedium made");
+    // A medium fills the shape; a shape with only an outside medium is a cavity in it.
+    if (!a.insideMedium.empty() || !a.outsideMedium.empty()) {
+        const bool cavity = a.insideMedium.empty();
+        const std::string& medium = cavity ? a.outsideMedium : a.insideMedium;
         if (a.areaLight) pbrtError(c.where, "Shape: an area light around a medium is not supported");
         if (mat.type == MaterialType::Diffuse) {
-            warn(c.where, "Shape: medium \"" + a.insideMedium + "\" is inside an opaque \"matte\" surface: no light reaches it (as in pbrt-v3)");
+            warn(c.where, "Shape: medium \"" + medium + "\" is " + (cavity ? "around" : "inside") +
+                              " an opaque \"matte\" surface: no light crosses it (as in pbrt-v3)");
             surfaces.push_back({name, std::move(m.mesh), mat});
             return;
         }
-        requireOutward(m.mesh, c.where, a.insideMedium);
+        requireOutward(m.mesh, c.where, medium);
         MediumDesc d;
         d.name = name;
         d.boundary = std::move(m.mesh);
-        d.sigmaA = medium->second.sigmaA, d.sigmaS = medium->second.sigmaS, d.g = medium->second.g;
+        d.cavity = cavity;
+        if (cavity) d.sigmaA = d.sigmaS = RGB(0);
+        else d.sigmaA = namedMedia_[medium].sigmaA, d.sigmaS = namedMedia_[medium].sigmaS, d.g = namedMedia_[medium].g;
         d.boundaryMaterial = mat;
         media.push_back(std::move(d));
+        interfaces_.push_back({a.insideMedium, a.outsideMedium, c.where});
         return;
     }
     if (a.areaLight) {
@@ -233,6 +241,26 @@ void PbrtWorld::shape(PbrtCall& c, const glm::dmat4& objectToWorld, const PbrtAt
     } else if (mat.type != MaterialType::Interface) {
         surfaces.push_back({name, std::move(m.mesh), mat});
     }  // else: no material, no light, no medium: pbrt-v3 does not see it either
+}
+
+void PbrtWorld::checkNesting() const {
+    const bool nestingMatters = media.size() > 1 || std::any_of(interfaces_.begin(), interfaces_.end(), [](const Interface& i) {
+        return !i.outside.empty();
+    });
+    if (!nestingMatters) return;
+    std::vector<TriangleMesh> meshes;
+    std::vector<std::string> names;
+    for (const MediumDesc& m : media) meshes.push_back(m.boundary), names.push_back(m.name);
+    const RegionComplex complex = validatedComplex(std::move(meshes), names);
+    for (size_t i = 0; i < media.size(); ++i) {
+        const int32_t p = complex.parent[i];
+        const std::string found = p < 0 ? "" : interfaces_[size_t(p)].inside;
+        if (found == interfaces_[i].outside) continue;
+        pbrtError(interfaces_[i].where, "Shape: MediumInterface \"" + interfaces_[i].inside + "\" \"" + interfaces_[i].outside +
+                                            "\" says the shape lies in " + (interfaces_[i].outside.empty() ? "no medium" : "medium \"" + interfaces_[i].outside + "\"") +
+                                            ", but it lies " + (p < 0 ? "in no medium" : "inside " + media[size_t(p)].name + (found.empty() ? ", a cavity" : ", medium \"" + found + "\"")) +
+                                            " (the nesting is found from the meshes)");
+    }
 }
 
 }  // namespace tetglow

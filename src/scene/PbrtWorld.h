@@ -45,6 +45,9 @@ public:
     MaterialDesc namedMaterial(PbrtCall& call);  // MakeNamedMaterial: call.type is the name
     void namedMedium(PbrtCall& call);           // MakeNamedMedium: call.type is the name
     void shape(PbrtCall& call, const glm::dmat4& objectToWorld, const PbrtAttributes& attributes);
+    // Once the world is read: every medium's (and cavity's) stated outside medium is the one the
+    // meshes put around it, else an error naming the shape.
+    void checkNesting() const;
 
     std::vector<LightDesc> lights;
     std::vector<SurfaceDesc> surfaces;
@@ -61,6 +64,11 @@ private:
     std::filesystem::path searchDir_;
     std::vector<std::string>& warnings_;
     std::map<std::string, Medium> namedMedia_;
+    struct Interface {
+        std::string inside, outside;  // as the MediumInterface named them
+        PbrtLocation where;           // of the Shape
+    };
+    std::vector<Interface> interfaces_;  // per entry of `media`
 };
 
 }  // namespace tetglow

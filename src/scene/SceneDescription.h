@@ -92,6 +92,9 @@ struct MediumDesc {
     DensityDesc density;
     MaterialDesc boundaryMaterial{MaterialType::Interface};  // Dielectric or Interface
     TetOptions tetOptions;     // Steiner points only when asked (heterogeneous density)
+    // A cavity: a region with no medium (a bubble, an eye socket), its coefficients all zero;
+    // it must lie inside a medium.
+    bool cavity = false;
 };
 
 enum class IntegratorType { VolPath, Single, Photon };

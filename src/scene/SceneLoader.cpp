@@ -180,17 +180,31 @@ TetOptions readTetOptions(JsonObject& o) {
     return t;
 }
 
-MediumDesc readMedium(JsonObject& o, const fs::path& dir) {
+// The shape and boundary a medium and a cavity both have.
+MediumDesc readRegion(JsonObject& o, const fs::path& dir) {
     Shape shape = o["shape"].readObject([&](JsonObject& s) { return readShape(s, dir, true); });
     MediumDesc m;
     m.name = nameOf(o.self(), shape);
     m.boundary = std::move(shape.mesh);
-    readMediumCoefficients(o, m);
     if (auto f = o["boundary"])
         m.boundaryMaterial = f.readObject([](JsonObject& b) {
             return readMaterial(b, {{"interface", MaterialType::Interface}, {"dielectric", MaterialType::Dielectric}});
         });
     if (auto f = o["tetgen"]) m.tetOptions = f.readObject(readTetOptions);
+    return m;
+}
+
+MediumDesc readMedium(JsonObject& o, const fs::path& dir) {
+    MediumDesc m = readRegion(o, dir);
+    readMediumCoefficients(o, m);
+    return m;
+}
+
+// A region with no medium inside a medium: nothing to read but its shape and boundary.
+MediumDesc readCavity(JsonObject& o, const fs::path& dir) {
+    MediumDesc m = readRegion(o, dir);
+    m.cavity = true;
+    m.sigmaA = m.sigmaS = RGB(0);
     return m;
 }
 
@@ -208,6 +222,8 @@ SceneDesc readScene(JsonObject& o, const std::string& path) {
         s.surfaces.push_back(v.readObject([&](JsonObject& x) { return readSurface(x, dir); }));
     for (const JsonValue& v : optionalArray(o["media"]))
         s.media.push_back(v.readObject([&](JsonObject& x) { return readMedium(x, dir); }));
+    for (const JsonValue& v : optionalArray(o["cavities"]))
+        s.media.push_back(v.readObject([&](JsonObject& x) { return readCavity(x, dir); }));
     if (!emitsLight(s))
         o["lights"].error("nothing emits light: add a light with non-zero intensity, irradiance or radiance, or give a medium an \"emission\"");
     return s;

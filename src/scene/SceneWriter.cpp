@@ -73,7 +73,10 @@ public:
         for (size_t i = 0; i < scene_.surfaces.size(); ++i)
             j["surfaces"].push_back({{"shape", mesh(scene_.surfaces[i].mesh, "surface", i)}, {"material", material(scene_.surfaces[i].material)}});
         j["media"] = Json::array();
-        for (size_t i = 0; i < scene_.media.size(); ++i) j["media"].push_back(medium(scene_.media[i], i));
+        for (size_t i = 0; i < scene_.media.size(); ++i)
+            if (!scene_.media[i].cavity) j["media"].push_back(medium(scene_.media[i], i));
+        for (size_t i = 0; i < scene_.media.size(); ++i)
+            if (scene_.media[i].cavity) j["cavities"].push_back(region(scene_.media[i], i));
         return j;
     }
 
@@ -116,11 +119,16 @@ private:
         return {{"type", "environment"}, {"radiance", vec(l.radiance)}};
     }
 
+    // What a medium and a cavity both have.
+    Json region(const MediumDesc& m, size_t index) {
+        return {{"shape", mesh(m.boundary, m.cavity ? "cavity" : "medium", index)},
+                {"boundary", material(m.boundaryMaterial)},
+                {"tetgen", {{"quality", m.tetOptions.radiusEdgeRatio}, {"max_volume", m.tetOptions.maxVolume}}}};
+    }
+
     Json medium(const MediumDesc& m, size_t index) {
-        Json j = {{"shape", mesh(m.boundary, "medium", index)}};
+        Json j = region(m, index);
         j.update(mediumCoefficientsJson(m));
-        j["boundary"] = material(m.boundaryMaterial);
-        j["tetgen"] = {{"quality", m.tetOptions.radiusEdgeRatio}, {"max_volume", m.tetOptions.maxVolume}};
         return j;
     }
 

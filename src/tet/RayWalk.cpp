@@ -95,9 +95,10 @@ bool TetWalk::tryEnter(uint32_t s, bool* exits) {
 TetWalk TetWalk::enter(const TetMesh& mesh, const Ray& ray, uint32_t s) {
     TetWalk w(mesh, ray);
     if (w.tryEnter(s) || anyAround(mesh, s, [&](uint32_t t) { return w.tryEnter(t); })) return w;
-    // The exact tests say the ray only touches the surface here: an empty walk.
+    // The exact tests say the ray only touches the surface here: an empty walk, which ends
+    // past the triangle's corners, where the ray surely goes on outside.
     const auto [a, b, c] = w.projectSurface(s);
-    w.tIn_ = w.faceT(a, b, c, 0, 0, 0);
+    w.tIn_ = std::max({a.t, b.t, c.t});
     w.state_ = State::Exited;
     w.exitTriangle_ = s;
     return w;

@@ -63,7 +63,8 @@ class TetWalk {
 public:
     // The ray enters the medium through surface triangle `s` (as found by Embree). At an edge or
     // vertex the exact tests may place the entry in a neighbouring triangle; that one is used,
-    // and if they find none, the ray only touches the surface: the walk is empty.
+    // and if they find none, the ray only touches the surface: the walk is empty, its exitT()
+    // past the triangle.
     static TetWalk enter(const TetMesh& mesh, const Ray& ray, uint32_t s);
     // The ray starts at ray.at(tStart), inside tet `tet`.
     static TetWalk start(const TetMesh& mesh, const Ray& ray, uint32_t tet, double tStart);

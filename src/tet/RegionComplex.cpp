@@ -8,6 +8,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "tet/MeshValidation.h"
 #include "tet/Nesting.h"
 #include "tet/SelfIntersection.h"
 
@@ -141,6 +142,17 @@ RegionComplex buildRegionComplex(const std::vector<TriangleMesh>& surfaces, cons
     for (size_t t = 0; t < c.surface.triangles.size(); ++t) c.sides.push_back(sidesOf(holders[t], c.parent, depth));
 
     return c;
+}
+
+RegionComplex validatedComplex(std::vector<TriangleMesh> surfaces, const std::vector<std::string>& names) {
+    for (size_t i = 0; i < surfaces.size(); ++i) {
+        try {
+            validateAndRepair(surfaces[i]);
+        } catch (const InputError& e) {
+            throw InputError(names[i] + ": " + e.what());
+        }
+    }
+    return buildRegionComplex(surfaces, names);
 }
 
 void placeSeeds(RegionComplex& complex, const std::vector<TriangleMesh>& surfaces, const std::vector<std::string>& names) {

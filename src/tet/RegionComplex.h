@@ -33,6 +33,10 @@ RegionComplex singleRegion(const TriangleMesh& surface);
 // both and one pair of triangles) or have the same inside.
 RegionComplex buildRegionComplex(const std::vector<TriangleMesh>& surfaces, const std::vector<std::string>& names);
 
+// Validates and repairs each surface (validateAndRepair; errors prefixed with its name), then
+// builds their complex as above.
+RegionComplex validatedComplex(std::vector<TriangleMesh> surfaces, const std::vector<std::string>& names);
+
 // Fills complex.seeds; the surfaces and names are the ones it was built from. Throws InputError
 // naming a region that its children leave no room.
 void placeSeeds(RegionComplex& complex, const std::vector<TriangleMesh>& surfaces, const std::vector<std::string>& names);

@@ -178,17 +178,19 @@ int SurfaceBVH::crossings(const Ray& ray) const {
     return count;
 }
 
-std::vector<SurfaceHit> SurfaceBVH::candidates(const Ray& ray, double tnear) const {
-    // Embree's ray starts where the ray enters the bounds, a margin early: its float rounding is
-    // then relative to the mesh, however far away the ray's own origin is.
-    double t0 = tnear, t1 = INFINITY;
+std::vector<SurfaceHit> SurfaceBVH::candidates(const Ray& ray, double tnear, double tfar) const {
+    // Embree's ray starts where the ray enters the bounds, a margin early, and ends a margin
+    // late: its float rounding is then relative to the mesh, however far away the ray's own
+    // origin is, and no crossing within [tnear, tfar] is cut off.
+    const double margin = margin_ / glm::length(ray.d);
+    double t0 = tnear, t1 = tfar + margin;
     std::vector<SurfaceHit> hits;
     if (!clip(grownBounds_, ray, t0, t1)) return hits;
-    const double shift = t0 - margin_ / glm::length(ray.d);
+    const double shift = t0 - margin;
     QueryContext ctx{{}, this, ray, shift, tnear, Facing::Any, &hits, nullptr};
     rtcInitIntersectContext(&ctx.base);
     ctx.base.filter = filter;
-    RTCRayHit rh = makeRay(ray, shift, INFINITY, shift);
+    RTCRayHit rh = makeRay(ray, shift, t1 + margin, shift);
     ++tQueries;
     rtcIntersect1(grown_, &ctx.base, &rh);
     return hits;

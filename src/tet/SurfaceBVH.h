@@ -2,6 +2,7 @@
 // shapes, and the crossing counts of the parity test.
 #pragma once
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -35,11 +36,11 @@ public:
     std::vector<SurfaceHit> allHits(const Ray& ray, double tnear = 0) const;
     // How many triangles the ray crosses for t > 0 (one traversal): the parity test's count.
     int crossings(const Ray& ray) const;
-    // Every triangle the ray may cross for t >= tnear, in no order and possibly twice, a superset
+    // Every triangle the ray may cross for tnear <= t <= tfar, in no order and possibly twice, a superset
     // for exact tests to decide (the caller orders what they accept): Embree over the triangles grown in their planes by a margin far above its float
     // error, so that a crossing exactly through an edge or a vertex, which Embree can miss on the
     // triangles themselves, is never left out.
-    std::vector<SurfaceHit> candidates(const Ray& ray, double tnear = 0) const;
+    std::vector<SurfaceHit> candidates(const Ray& ray, double tnear = 0, double tfar = INFINITY) const;
 
     const glm::dvec3& normal(uint32_t triangle) const { return normals_[triangle]; }  // outward, not unit
     // The ray parameter of the triangle's plane, in double precision.

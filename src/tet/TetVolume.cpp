@@ -122,9 +122,9 @@ int64_t TetVolume::lineLocate(uint32_t from, const glm::dvec3& p) const {
     return found;
 }
 
-std::vector<TetWalk> TetVolume::entriesAlong(const Ray& ray, double tnear) const {
+std::vector<TetWalk> TetVolume::entriesAlong(const Ray& ray, double tnear, double tfar) const {
     std::vector<TetWalk> entries;
-    for (const SurfaceHit& c : bvh_.candidates(ray, tnear)) TetWalk::entriesNear(mesh_, ray, c.triangle, entries);
+    for (const SurfaceHit& c : bvh_.candidates(ray, tnear, tfar)) TetWalk::entriesNear(mesh_, ray, c.triangle, entries);
     // Around neighbouring candidates, and from a candidate Embree reports twice, the same entry is
     // found twice, with the same t: ordered by (t, triangle), the copies are adjacent.
     std::sort(entries.begin(), entries.end(), [](const TetWalk& a, const TetWalk& b) {
@@ -134,6 +134,14 @@ std::vector<TetWalk> TetVolume::entriesAlong(const Ray& ray, double tnear) const
                               [](const TetWalk& a, const TetWalk& b) { return a.entryTriangle() == b.entryTriangle(); }),
                   entries.end());
     return entries;
+}
+
+std::optional<TetWalk> TetVolume::firstEntry(const Ray& ray, double tnear, double tfar) const {
+    for (const TetWalk& w : entriesAlong(ray, tnear, tfar)) {
+        if (w.exitT() > tfar) break;
+        if (w.exitT() >= tnear) return w;
+    }
+    return std::nullopt;
 }
 
 namespace {

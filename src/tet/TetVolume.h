@@ -42,6 +42,10 @@ public:
     template <class Visitor>
     bool traverse(const Ray& ray, double tmin, double tmax, Visitor&& visit, int64_t start = kUnknown) const;
 
+    // The ray's first entry into the medium with tnear <= t <= tfar, by the exact tests (as
+    // traverse() finds entries: Embree only proposes triangles); its exitT() is the entry's t.
+    std::optional<TetWalk> firstEntry(const Ray& ray, double tnear, double tfar) const;
+
 private:
     uint32_t gridTet(const glm::dvec3& p) const;
     // Walks from t towards p; true with t holding p, false when a surface face blocks the way.
@@ -49,9 +53,9 @@ private:
     // p strictly on the outer side of face j of tet t (exact).
     bool beyondFace(uint32_t t, int j, const glm::dvec3& p) const;
     int64_t lineLocate(uint32_t from, const glm::dvec3& p) const;
-    // The ray's entries into the medium for t >= tnear, in order, each through its own triangle:
+    // The ray's entries into the medium for t >= tnear (up to about tfar), in order, each through its own triangle:
     // those the exact tests find among Embree's candidates and around the candidates they reject.
-    std::vector<TetWalk> entriesAlong(const Ray& ray, double tnear) const;
+    std::vector<TetWalk> entriesAlong(const Ray& ray, double tnear, double tfar = INFINITY) const;
 
     TetMesh mesh_;
     SurfaceBVH bvh_;
