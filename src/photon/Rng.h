@@ -53,13 +53,14 @@ public:
     }
     // Uniform in [0, 1): 53 random bits, or a Sobol point's 32.
     double uniform() {
-        if (dimension_ < sobolDimensions_) return sobolUniform();
+        if (dimension_ < sobolDimensions_) [[unlikely]] return sobolUniform();
         const uint64_t hi = next(), lo = next();
         return double(((hi << 32) | lo) >> 11) * 0x1.0p-53;
     }
 
 private:
-    double sobolUniform() {
+    // Out of line, so that uniform() stays small enough to inline for the PCG numbers.
+    [[gnu::noinline]] double sobolUniform() {
         if (dimension_++ % 2) return pairSecond_;
         const uint64_t hash = mixBits(sobolKey_ + dimension_);
         const uint32_t index = nestedUniformScramble(sobolIndex_, uint32_t(hash));

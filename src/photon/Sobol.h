@@ -21,12 +21,27 @@ inline uint32_t reverseBits(uint32_t v) {
 inline uint32_t sobolDimension0(uint32_t index) { return reverseBits(index); }
 
 // Sobol's second dimension: its generator matrix is Pascal's triangle mod 2, whose columns
-// follow from the first by v ^= v >> 1.
+// follow from the first by c ^= c >> 1. Shuffled indices use all 32 bits, so the product with
+// the matrix is taken a byte at a time from tables of the columns' sums.
+struct SobolDimension1Table {
+    uint32_t byte[4][256];
+};
+constexpr SobolDimension1Table makeSobolDimension1Table() {
+    uint32_t columns[32] = {};
+    uint32_t c = 1u << 31;
+    for (int i = 0; i < 32; ++i, c ^= c >> 1) columns[i] = c;
+    SobolDimension1Table table{};
+    for (int b = 0; b < 4; ++b)
+        for (int value = 0; value < 256; ++value)
+            for (int i = 0; i < 8; ++i)
+                if ((value >> i) & 1) table.byte[b][value] ^= columns[8 * b + i];
+    return table;
+}
+inline constexpr SobolDimension1Table kSobolDimension1 = makeSobolDimension1Table();
+
 inline uint32_t sobolDimension1(uint32_t index) {
-    uint32_t v = 0;
-    for (uint32_t column = 1u << 31; index; index >>= 1, column ^= column >> 1)
-        if (index & 1) v ^= column;
-    return v;
+    const auto& t = kSobolDimension1.byte;
+    return t[0][index & 255] ^ t[1][(index >> 8) & 255] ^ t[2][(index >> 16) & 255] ^ t[3][index >> 24];
 }
 
 // Laine and Karras's hash-based permutation, with Burley's constants: each output bit depends
