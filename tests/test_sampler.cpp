@@ -76,9 +76,31 @@ TEST(Sampler, EachSampleIsUniformAndItsPairsIndependent) {
     EXPECT_NEAR(cross / pixels, 0.5, 4 * 0.5 / std::sqrt(double(pixels)));
 }
 
+// The area of the part of the unit square where side(q) > 0, side affine: the square clipped
+// by the half-plane (Sutherland-Hodgman), then the shoelace formula.
+template <class Side>
+double areaBelow(Side&& side) {
+    const glm::dvec2 square[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    std::vector<glm::dvec2> clipped;
+    for (int i = 0; i < 4; ++i) {
+        const glm::dvec2 a = square[i], b = square[(i + 1) % 4];
+        const double sa = side(a), sb = side(b);
+        if (sa > 0) clipped.push_back(a);
+        if ((sa > 0) != (sb > 0)) clipped.push_back(a + (b - a) * (sa / (sa - sb)));
+    }
+    double twice = 0;
+    for (size_t i = 0; i < clipped.size(); ++i) {
+        const glm::dvec2 a = clipped[i], b = clipped[(i + 1) % clipped.size()];
+        twice += a.x * b.y - a.y * b.x;
+    }
+    return twice / 2;
+}
+
 // The fraction of a pixel below an edge, from n samples, in many pixels: the error of
 // stratified points falls as n^-3/4, the independent ones' as n^-1/2.
 TEST(Sampler, StratifiesAPixelEdgeBetterThanIndependentNumbers) {
+    // Any line through the centre halves the square.
+    EXPECT_NEAR(areaBelow([](const glm::dvec2& q) { return 0.3 * (q.x - 0.5) - 0.8 * (q.y - 0.5); }), 0.5, 1e-12);
     constexpr int pixels = 4000, n = 64;
     double sobolError2 = 0, independentError2 = 0;
     for (int p = 0; p < pixels; ++p) {
@@ -86,13 +108,9 @@ TEST(Sampler, StratifiesAPixelEdgeBetterThanIndependentNumbers) {
         Rng edge(99, uint64_t(p));
         const double angle = 2 * kPi * edge.uniform(), offset = edge.uniform() - 0.5;
         const glm::dvec2 normal(std::cos(angle), std::sin(angle));
-        auto below = [&](double x, double y) { return glm::dot(normal, glm::dvec2(x - 0.5, y - 0.5)) < offset; };
-        // The exact covered fraction, by a fine grid (its error is far below what is judged).
-        double exact = 0;
-        constexpr int grid = 512;
-        for (int i = 0; i < grid; ++i)
-            for (int j = 0; j < grid; ++j) exact += below((i + 0.5) / grid, (j + 0.5) / grid);
-        exact /= grid * grid;
+        auto side = [&](const glm::dvec2& q) { return offset - glm::dot(normal, q - glm::dvec2(0.5)); };
+        auto below = [&](double x, double y) { return side({x, y}) > 0; };
+        const double exact = areaBelow(side);
         double sobol = 0, independent = 0;
         for (int i = 0; i < n; ++i) {
             Rng s = Rng::pixelSample(1, uint64_t(p), uint32_t(i));
