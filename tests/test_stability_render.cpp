@@ -226,7 +226,15 @@ TEST(StabilityRender, PhotonCountsAndRadiiAtTheirExtremes) {
         std::printf("%-32s mean %+.1f%%, RMSE %.4f, non-finite %zu\n", c.name, 100 * bias, d.rmse, d.nonFinite);
         EXPECT_EQ(d.nonFinite, 0u) << c.name;
         EXPECT_GT(bias, -1) << c.name;
-        EXPECT_LT(bias, 1.5) << c.name;
+        // Beam balls of radius 1e-4 (about 38000 per pass, cross-section pi r^2, in a volume of
+        // 4.2) met by some 600 eye rays of chord about 1.5 expect a quarter of a crossing in the
+        // whole render, so its mean is the emission alone or one crossing's huge weight (seeds 0-7:
+        // one render in eight has a crossing, with independent or Sobol samples alike): no upper
+        // bound holds for it.
+        const bool rareCrossings = c.estimate == beam && c.radius > 0 && c.radius < 1e-3;
+        if (!rareCrossings) {
+            EXPECT_LT(bias, 1.5) << c.name;
+        }
         // The moderate setting, and radii beyond the medium: with enough photons, a huge kernel
         // clipped to the medium only blurs, so the mean holds.
         if (&c == cases) {

@@ -58,8 +58,9 @@ void PhotonIntegrator::beginPass(uint64_t pass) {
     const auto start = std::chrono::steady_clock::now();
     TracedPhotons traced = tracePhotons(scene_, source_, {desc_.photons, desc_.maxDepth, desc_.seed, pass});
     // k-NN balls are three-dimensional kernels, beam discs and surface discs two-dimensional.
-    volumeScale_ = radiusScale(pass, desc_.alpha, desc_.estimate == PhotonEstimate::Beam ? 2 : 3);
-    surfaceScale_ = radiusScale(pass, desc_.alpha, 2);
+    auto scale = [&](int dim) { return radiusScale(pass, desc_.alpha > 0 ? desc_.alpha : balancedAlpha(dim), dim); };
+    volumeScale_ = scale(desc_.estimate == PhotonEstimate::Beam ? 2 : 3);
+    surfaceScale_ = scale(2);
     size_t bytes = 0;
     for (size_t m = 0; m < media_.size(); ++m) {
         MediumPhotons& mp = media_[m];

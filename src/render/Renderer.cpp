@@ -35,7 +35,8 @@ RenderResult render(const Scene& scene, Integrator& integrator, const RenderOpti
                 if (cancelled()) return;
                 for (int y = tile.rows().begin(); y < tile.rows().end(); ++y)
                     for (int x = tile.cols().begin(); x < tile.cols().end(); ++x) {
-                        Rng rng(options.seed, uint64_t(y) * camera.width() + x, uint64_t(pass));
+                        // The pass is the sample's index in the pixel's sequence: passes stratify.
+                        Rng rng = Rng::pixelSample(options.seed, uint64_t(y) * camera.width() + x, uint32_t(pass));
                         const double jx = rng.uniform(), jy = rng.uniform();
                         film.add(x, y, integrator.radiance(camera.generateRay(x + jx, y + jy), rng));
                     }

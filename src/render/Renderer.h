@@ -31,8 +31,9 @@ struct RenderResult {
     double seconds = 0;
 };
 
-// Pixel (x, y) in pass s uses Rng(seed, pixel index, s) only, so the image is the same for any
-// thread count and any tile schedule.
+// Pixel (x, y) in pass s uses Rng::pixelSample(seed, pixel index, s) only, so the image is the
+// same for any thread count and any tile schedule; the first numbers it draws (the point in the
+// pixel, then the path's) are stratified over the passes.
 RenderResult render(const Scene& scene, Integrator& integrator, const RenderOptions& options);
 
 }  // namespace tetglow

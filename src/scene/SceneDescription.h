@@ -146,7 +146,9 @@ struct IntegratorDesc {
     int k = 16;                 // neighbours that set the radius (k-NN lookups, beam discs)
     double radius = 0;          // > 0: this fixed radius instead of k neighbours
     PhotonEstimate estimate = PhotonEstimate::Beam;
-    double alpha = 0.7;         // progressive radius reduction per pass (Knaus and Zwicker 2011)
+    // Progressive radius reduction per pass (Knaus and Zwicker 2011); 0: 4 / (d + 4) for each
+    // d-dimensional kernel, where squared bias and variance fall at the same rate.
+    double alpha = 0;
     bool boundaryCorrection = true;  // k-NN: divide by the part of the ball inside the medium
     double timeLimit = 0;       // > 0: stop starting passes after this many seconds
 };

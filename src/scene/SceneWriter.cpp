@@ -145,9 +145,10 @@ Json integratorJson(const IntegratorDesc& d) {
               {"boundary", nameOf(kBoundaryNames, d.boundary)}, {"step", d.stepSize},
               {"parity_rays", d.parityRays},  {"photons", d.photons},
               {"k", d.k},                     {"estimate", nameOf(kEstimateNames, d.estimate)},
-              {"alpha", d.alpha},             {"boundary_correction", d.boundaryCorrection}};
-    // 0 means "not set" for these two; the loader takes only positive values.
+              {"boundary_correction", d.boundaryCorrection}};
+    // 0 means "not set" for these three; the loader takes only positive values.
     if (d.radius > 0) j["radius"] = d.radius;
+    if (d.alpha > 0) j["alpha"] = d.alpha;
     if (d.timeLimit > 0) j["time"] = d.timeLimit;
     return j;
 }

@@ -1,0 +1,67 @@
+#!/usr/bin/env python3
+"""How to split a photon pass between photon paths and eye samples: scenes/fish.json rendered by
+the photon integrator for the same wall-clock budget with several photon counts per pass (as
+photon paths per pixel, which carries over between resolutions), each measured against a
+converged volpath reference. Writes the table into docs/RESULTS.md (section "photon-split").
+
+    bench/photon_split.py --build build --reference ref.exr [--resolution 100x100 --time 10,30]
+
+The reference must be scenes/fish.json at the same resolution (e.g. `tetglow render
+scenes/fish.json --integrator volpath --spp 8192 --resolution 100x100`).
+"""
+import argparse
+import os
+import re
+import subprocess
+import tempfile
+
+from benchlib import ROOT, diff, fail, machine, replace_section
+
+PER_PIXEL = [0.08, 0.31, 1.25, 5.0]  # the committed fish: 50000 paths over 400x400 pixels is 0.31
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--build", default=os.path.join(ROOT, "build"), help="folder with tetglow")
+    parser.add_argument("--reference", required=True, help="converged volpath render of scenes/fish.json at --resolution")
+    parser.add_argument("--resolution", default="100x100")
+    parser.add_argument("--time", default="10,30", help="seconds of rendering per run, comma-separated budgets")
+    parser.add_argument("--no-results", action="store_true", help="print the table only, leave docs/RESULTS.md")
+    args = parser.parse_args()
+    binary = os.path.join(args.build, "tetglow")
+    if not os.access(binary, os.X_OK):
+        fail(f"{binary}: not an executable tetglow")
+    width, height = (int(v) for v in args.resolution.split("x"))
+    rows = []
+    budgets = [float(t) for t in args.time.split(",")]
+    with tempfile.TemporaryDirectory() as work:
+        for budget, per_pixel in ((b, p) for b in budgets for p in PER_PIXEL):
+            photons = max(1, round(per_pixel * width * height))
+            out = os.path.join(work, f"split-{photons}.exr")
+            r = subprocess.run([binary, "render", os.path.join(ROOT, "scenes", "fish.json"), "-o", out, "--resolution", args.resolution,
+                                "--photons", str(photons), "--time", str(budget)], capture_output=True, text=True)
+            if r.returncode != 0:
+                fail(f"render with {photons} photons: {r.stderr.strip()}")
+            passes = re.search(r", (\d+) spp", r.stdout)
+            tracing = re.search(r"photon tracing ([0-9.]+) s, rendering ([0-9.]+) s", r.stdout)
+            if not passes or not tracing:
+                fail(f"no passes or times in tetglow's output: {r.stdout!r}")
+            d = diff(binary, out, args.reference)
+            trace, eye = float(tracing.group(1)), float(tracing.group(2))
+            share = trace / (trace + eye)
+            rows.append(f"| {budget:g} | {per_pixel:g} | {photons} | {passes.group(1)} | {share:.0%} | {d['rmse']:.4g} | {d['rel_mse']:.4g} |")
+            print(rows[-1], flush=True)
+    text = "\n".join([
+        f"Measured by `bench/photon_split.py --reference REF.exr --resolution {args.resolution} --time {args.time}` on {machine()}.",
+        "",
+        "| budget (s) | photon paths per pixel and pass | photons per pass | passes in the budget | photon tracing share of the time | RMSE | relative MSE |",
+        "|---:|---:|---:|---:|---:|---:|---:|",
+        *rows,
+    ])
+    if not args.no_results:
+        replace_section("photon-split", text)
+    print(text)
+
+
+if __name__ == "__main__":
+    main()

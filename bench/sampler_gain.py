@@ -1,0 +1,72 @@
+#!/usr/bin/env python3
+"""The pixel sampler's gain: the variance of a render at n samples per pixel (passes) with the
+Owen-scrambled Sobol sampler of this build, against a baseline tetglow built before it
+(independent PCG numbers; e.g. commit 6d405fe), on scenes/fish.json and scenes/blub.json.
+
+The variance needs no reference: two renders with different seeds are independent, so the
+per-pixel variance of one is half the mean squared difference between them (their bias
+cancels). Writes the table into docs/RESULTS.md (section "sampler").
+
+    bench/sampler_gain.py --build build --baseline /path/to/old/tetglow
+"""
+import argparse
+import os
+import tempfile
+
+from benchlib import ROOT, diff, fail, machine, render, replace_section
+
+SCENES = ["fish", "blub"]
+INTEGRATORS = ["volpath", "photon"]
+
+
+def spread(binary, tag, scene, integrator, spp, resolution, work):
+    """The variance per pixel and channel of one render, and the mean absolute difference of two
+    (robust where a few rare bright paths dominate the variance)."""
+    images = []
+    for seed in (1, 2):
+        out = os.path.join(work, f"{tag}-{scene}-{integrator}-{spp}-{seed}.exr")
+        render(binary, os.path.join(ROOT, "scenes", scene + ".json"), out, "--integrator", integrator, "--spp", spp, "--seed", seed,
+               "--resolution", resolution)
+        images.append(out)
+    d = diff(binary, images[0], images[1])
+    return d["rmse"] ** 2 / 2, d["mae"]
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--build", default=os.path.join(ROOT, "build"), help="folder with this build's tetglow")
+    parser.add_argument("--baseline", required=True, help="a tetglow built before the Sobol sampler")
+    parser.add_argument("--resolution", default="100x100")
+    parser.add_argument("--spp", default="4,16,64", help="samples per pixel (photon: passes), comma-separated")
+    parser.add_argument("--no-results", action="store_true", help="print the table only, leave docs/RESULTS.md")
+    args = parser.parse_args()
+    binary = os.path.join(args.build, "tetglow")
+    for b in (binary, args.baseline):
+        if not os.access(b, os.X_OK):
+            fail(f"{b}: not an executable tetglow")
+    spps = [int(s) for s in args.spp.split(",")]
+    rows = []
+    with tempfile.TemporaryDirectory() as work:
+        for scene in SCENES:
+            for integrator in INTEGRATORS:
+                for spp in spps:
+                    old, oldMae = spread(args.baseline, "old", scene, integrator, spp, args.resolution, work)
+                    new, newMae = spread(binary, "new", scene, integrator, spp, args.resolution, work)
+                    rows.append(f"| {scene} | {integrator} | {spp} | {old:.3g} | {new:.3g} | {old / new:.2f} | {oldMae / newMae:.2f} |")
+                    print(rows[-1], flush=True)
+    text = "\n".join([
+        f"Measured by `bench/sampler_gain.py --baseline OLD/tetglow` at {args.resolution} on {machine()}.",
+        "Variance per pixel and channel of one render (half the mean squared difference of two seeds), and the ratio",
+        "of the mean absolute differences (independent over Sobol).",
+        "",
+        "| scene | integrator | spp | variance, independent (PCG) | variance, Sobol | ratio | MAE ratio |",
+        "|---|---|---:|---:|---:|---:|---:|",
+        *rows,
+    ])
+    if not args.no_results:
+        replace_section("sampler", text)
+    print(text)
+
+
+if __name__ == "__main__":
+    main()
