@@ -54,6 +54,7 @@ public:
         const glm::dvec3 w = spot_->sampleCone(u);
         return {{position_, w}, intensity_ * (spot_->falloff(w) / spot_->conePdf())};
     }
+    double importance(const glm::dvec3& p) const override { return average(sample(p, {}).L); }
     RGB power() const override { return intensity_ * (spot_ ? spot_->solidAngle() : 4 * kPi); }
     bool isDelta() const override { return true; }
 
@@ -74,6 +75,7 @@ public:
     PhotonEmission emitPhoton(const glm::dvec2& u, const glm::dvec2&) const override {
         return {{disk_.sample(direction_, frame_, u), direction_}, power()};
     }
+    double importance(const glm::dvec3&) const override { return average(irradiance_); }
     RGB power() const override { return irradiance_ * disk_.area(); }
     bool isDelta() const override { return true; }
 
@@ -95,9 +97,12 @@ public:
         for (uint32_t t = 0; t < mesh_.triangles.size(); ++t) {
             const glm::dvec3 n = glm::cross(mesh_.corner(t, 1) - mesh_.corner(t, 0), mesh_.corner(t, 2) - mesh_.corner(t, 0));
             normals_.push_back(glm::normalize(n));
-            cdf_.push_back(total += 0.5 * glm::length(n));
+            const double a = 0.5 * glm::length(n);
+            cdf_.push_back(total += a);
+            centroid_ += a / 3 * (mesh_.corner(t, 0) + mesh_.corner(t, 1) + mesh_.corner(t, 2));
         }
         area_ = total;
+        centroid_ /= area_;
     }
     void setSpot(const SpotProfile& profile, const RGB& intensity) { spot_ = profile, radiance_ = intensity / area_; }
 
@@ -136,6 +141,11 @@ public:
         }
         return {{p, sampleCosineHemisphere(n, u)}, power()};
     }
+    // Radiance (at most radiance_) times a bound on the solid angle the light covers from p.
+    double importance(const glm::dvec3& p) const override {
+        const glm::dvec3 v = centroid_ - p;
+        return average(radiance_) * std::min(2 * kPi, area_ / glm::dot(v, v));
+    }
     RGB power() const override {
         if (spot_) return radiance_ * area_ * spot_->solidAngle();
         return radiance_ * (kPi * area_ * (twoSided_ ? 2 : 1));
@@ -156,6 +166,7 @@ private:
     std::vector<glm::dvec3> normals_;
     std::vector<double> cdf_;
     double area_ = 0;
+    glm::dvec3 centroid_{0};
     RGB radiance_;
     bool twoSided_;
     std::optional<SpotProfile> spot_;
@@ -175,6 +186,7 @@ public:
         const glm::dvec3 d = sampleUniformSphere(uDir);
         return {{disk_.sample(d, Frame(d), uPos), d}, power()};
     }
+    double importance(const glm::dvec3&) const override { return average(radiance_) * 4 * kPi; }
     RGB power() const override { return radiance_ * (4 * kPi * disk_.area()); }
     bool isEnvironment() const override { return true; }
 
