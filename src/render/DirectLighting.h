@@ -13,12 +13,19 @@ struct Scattering {
     double pdf = 0;  // of sampling that direction by the phase function or BSDF (for MIS)
 };
 
+// No other strategy samples the point p (see sampleDirect's distanceWeight).
+struct OnlyStrategy {
+    double operator()(const Light&, double) const { return 1; }
+};
+
 // `scatter(wi)` gives the Scattering towards wi; `visibility(ray, tMax)` the transmittance.
 // With `mis`, area and environment light samples are weighted by the power heuristic against
 // phase/BSDF sampling, which must then count emitters it hits with lightPdf() (and without
-// it, must not count them at all).
-template <class ScatterFn, class VisibilityFn>
-RGB sampleDirect(const Scene& scene, const glm::dvec3& p, Rng& rng, bool mis, ScatterFn&& scatter, VisibilityFn&& visibility) {
+// it, must not count them at all). `distanceWeight(light, choicePmf)` weights the sample of
+// that light where another strategy also chose the point p (equiangular sampling in media).
+template <class ScatterFn, class VisibilityFn, class DistanceWeightFn = OnlyStrategy>
+RGB sampleDirect(const Scene& scene, const glm::dvec3& p, Rng& rng, bool mis, ScatterFn&& scatter, VisibilityFn&& visibility,
+                 DistanceWeightFn&& distanceWeight = {}) {
     if (scene.lights().empty()) return RGB(0);
     const LightChoice choice = chooseLight(scene.lights(), p, rng.uniform());
     const double u0 = rng.uniform(), u1 = rng.uniform();
@@ -31,7 +38,7 @@ RGB sampleDirect(const Scene& scene, const glm::dvec3& p, Rng& rng, bool mis, Sc
     const RGB tr = visibility(Ray{p, ls.wi}, tMax);
     if (isBlack(tr)) return RGB(0);
     const double pdf = ls.pdf * choice.pmf;
-    const double weight = ls.delta || !mis ? 1 : powerHeuristic(pdf, s.pdf);
+    const double weight = (ls.delta || !mis ? 1 : powerHeuristic(pdf, s.pdf)) * distanceWeight(*choice.light, choice.pmf);
     return s.f * tr * ls.L * (weight / pdf);
 }
 
