@@ -107,7 +107,8 @@ TEST(SphericalRectangle, RectangleLightIrradianceMatchesClosedForm) {
     }
 }
 
-// chooseLight picks each light as often as choicePmf says, never one that cannot reach the point.
+// chooseLight picks each light as often as choicePmf says, never one that cannot reach the point,
+// and with MIS never the constant environment (phase/BSDF rays find it).
 TEST(LightSelection, ChoicesFollowTheirPmf) {
     Bounds3 bounds;
     bounds.extend(glm::dvec3(-1)), bounds.extend(glm::dvec3(1));
@@ -122,26 +123,30 @@ TEST(LightSelection, ChoicesFollowTheirPmf) {
     d.type = LightType::Environment, d.radiance = RGB(0.02);
     lights.push_back(makeLight(d, bounds));
     const glm::dvec3 p(0.2, 0, 0.1);
-    double total = 0;
-    for (const auto& l : lights) total += choicePmf(lights, *l, p);
-    EXPECT_NEAR(total, 1, 1e-12);
-    EXPECT_EQ(choicePmf(lights, *lights[1], p), 0);
-    std::vector<int> count(lights.size(), 0);
-    Rng rng(2, 3);
-    const int samples = 100000;
-    for (int i = 0; i < samples; ++i) {
-        const LightChoice c = chooseLight(lights, p, rng.uniform());
-        ASSERT_NE(c.light, nullptr);
-        for (size_t k = 0; k < lights.size(); ++k)
-            if (c.light == lights[k].get()) {
-                ++count[k];
-                EXPECT_EQ(c.pmf, choicePmf(lights, *lights[k], p));
-            }
-    }
-    EXPECT_EQ(count[1], 0);
-    for (size_t k : {0, 2, 3}) {
-        const double pmf = choicePmf(lights, *lights[k], p);
-        EXPECT_NEAR(count[k], samples * pmf, 5 * std::sqrt(samples * pmf * (1 - pmf))) << k;
+    for (bool mis : {false, true}) {
+        SCOPED_TRACE(mis ? "with MIS" : "without MIS");
+        double total = 0;
+        for (const auto& l : lights) total += choicePmf(lights, *l, p, mis);
+        EXPECT_NEAR(total, 1, 1e-12);
+        EXPECT_EQ(choicePmf(lights, *lights[1], p, mis), 0);
+        EXPECT_EQ(choicePmf(lights, *lights[3], p, mis) == 0, mis);
+        std::vector<int> count(lights.size(), 0);
+        Rng rng(2, 3);
+        const int samples = 100000;
+        for (int i = 0; i < samples; ++i) {
+            const LightChoice c = chooseLight(lights, p, mis, rng.uniform());
+            ASSERT_NE(c.light, nullptr);
+            for (size_t k = 0; k < lights.size(); ++k)
+                if (c.light == lights[k].get()) {
+                    ++count[k];
+                    EXPECT_EQ(c.pmf, choicePmf(lights, *lights[k], p, mis));
+                }
+        }
+        EXPECT_EQ(count[1], 0);
+        for (size_t k : {0, 2, 3}) {
+            const double pmf = choicePmf(lights, *lights[k], p, mis);
+            EXPECT_NEAR(count[k], samples * pmf, 5 * std::sqrt(samples * pmf * (1 - pmf)) + 1e-9) << k;
+        }
     }
 }
 

@@ -27,7 +27,7 @@ template <class ScatterFn, class VisibilityFn, class DistanceWeightFn = OnlyStra
 RGB sampleDirect(const Scene& scene, const glm::dvec3& p, Rng& rng, bool mis, ScatterFn&& scatter, VisibilityFn&& visibility,
                  DistanceWeightFn&& distanceWeight = {}) {
     if (scene.lights().empty()) return RGB(0);
-    const LightChoice choice = chooseLight(scene.lights(), p, rng.uniform());
+    const LightChoice choice = chooseLight(scene.lights(), p, mis, rng.uniform());
     const double u0 = rng.uniform(), u1 = rng.uniform();
     if (!choice.light) return RGB(0);
     const LightSample ls = choice.light->sample(p, {u0, u1});
@@ -62,7 +62,7 @@ inline RGB directInMedium(const Scene& scene, int m, const glm::dvec3& p, const 
 // light (for the MIS weight of emitters hit by those rays).
 inline double lightPdf(const Scene& scene, const Light& light, const glm::dvec3& from, const glm::dvec3& wi,
                        const glm::dvec3& point, uint32_t triangle) {
-    return light.pdf(from, wi, point, triangle) * choicePmf(scene.lights(), light, from);
+    return light.pdf(from, wi, point, triangle) * choicePmf(scene.lights(), light, from, true);
 }
 
 }  // namespace tetglow

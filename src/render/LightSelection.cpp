@@ -4,16 +4,18 @@ namespace tetglow {
 
 namespace {
 
-double totalImportance(const std::vector<std::unique_ptr<Light>>& lights, const glm::dvec3& p) {
+double weight(const Light& light, const glm::dvec3& p, bool mis) { return mis && light.isEnvironment() ? 0 : light.importance(p); }
+
+double totalWeight(const std::vector<std::unique_ptr<Light>>& lights, const glm::dvec3& p, bool mis) {
     double total = 0;
-    for (const auto& light : lights) total += light->importance(p);
+    for (const auto& light : lights) total += weight(*light, p, mis);
     return total;
 }
 
 }  // namespace
 
-LightChoice chooseLight(const std::vector<std::unique_ptr<Light>>& lights, const glm::dvec3& p, double u) {
-    const double total = totalImportance(lights, p);
+LightChoice chooseLight(const std::vector<std::unique_ptr<Light>>& lights, const glm::dvec3& p, bool mis, double u) {
+    const double total = totalWeight(lights, p, mis);
     if (!(total > 0)) return {};
     // The first light whose running sum passes u * total; the last one with weight if rounding
     // leaves u * total beyond the sum.
@@ -21,7 +23,7 @@ LightChoice chooseLight(const std::vector<std::unique_ptr<Light>>& lights, const
     double sum = 0;
     LightChoice choice;
     for (const auto& light : lights) {
-        const double w = light->importance(p);
+        const double w = weight(*light, p, mis);
         if (w <= 0) continue;
         choice = {light.get(), w / total};
         if ((sum += w) > target) break;
@@ -29,9 +31,9 @@ LightChoice chooseLight(const std::vector<std::unique_ptr<Light>>& lights, const
     return choice;
 }
 
-double choicePmf(const std::vector<std::unique_ptr<Light>>& lights, const Light& light, const glm::dvec3& p) {
-    const double total = totalImportance(lights, p);
-    return total > 0 ? light.importance(p) / total : 0;
+double choicePmf(const std::vector<std::unique_ptr<Light>>& lights, const Light& light, const glm::dvec3& p, bool mis) {
+    const double total = totalWeight(lights, p, mis);
+    return total > 0 ? weight(light, p, mis) / total : 0;
 }
 
 }  // namespace tetglow

@@ -39,7 +39,7 @@ RGB PointLightScattering::estimate(Rng& rng) const {
     if (isBlack(ls.L)) return RGB(0);
     const double density = medium.density(at.tet, p);
     const double pdf = lightChoice_ * distance_->pdf(t);
-    const double weight = powerHeuristic(pdf, choicePmf(scene_.lights(), *light_, p) * freeFlightPdf(at.transmittance, density));
+    const double weight = powerHeuristic(pdf, choicePmf(scene_.lights(), *light_, p, true) * freeFlightPdf(at.transmittance, density));
     const RGB tr = scene_.transmittance(Ray{p, ls.wi}, ls.distance - scene_.rayEpsilon(), {state_.medium, WalkStart::inside(at.tet)});
     const double phase = medium.phase().eval(glm::dot(ray_.d, ls.wi));
     return at.transmittance * medium.params().sigmaS * density * phase * ls.L * tr * (weight / pdf);
