@@ -19,9 +19,9 @@ struct OnlyStrategy {
 };
 
 // `scatter(wi)` gives the Scattering towards wi; `visibility(ray, tMax)` the transmittance.
-// With `mis`, area and environment light samples are weighted by the power heuristic against
-// phase/BSDF sampling, which must then count emitters it hits with lightPdf() (and without
-// it, must not count them at all). `distanceWeight(light, choicePmf)` weights the sample of
+// With `mis`, area light samples are weighted by the power heuristic against phase/BSDF
+// sampling, which must then count emitters it hits with lightPdf() (the constant environment,
+// never chosen then, with weight 1); without it, phase/BSDF rays must not count them at all. `distanceWeight(light, choicePmf)` weights the sample of
 // that light where another strategy also chose the point p (equiangular sampling in media).
 template <class ScatterFn, class VisibilityFn, class DistanceWeightFn = OnlyStrategy>
 RGB sampleDirect(const Scene& scene, const glm::dvec3& p, Rng& rng, bool mis, ScatterFn&& scatter, VisibilityFn&& visibility,

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
-#include <tuple>
 #include <numbers>
+#include <tuple>
 
 #include <glm/geometric.hpp>
 
@@ -156,7 +156,8 @@ public:
         }
         return {{p, sampleCosineHemisphere(n, u)}, power()};
     }
-    // Radiance (at most radiance_) times a bound on the solid angle the light covers from p.
+    // Radiance (at most radiance_) times an estimate of the solid angle the light covers from
+    // p: area / distance^2 to its centroid, at most a hemisphere.
     double importance(const glm::dvec3& p) const override {
         const glm::dvec3 v = centroid_ - p;
         return average(radiance_) * std::min(2 * kPi, area_ / glm::dot(v, v));
