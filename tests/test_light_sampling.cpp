@@ -1,12 +1,9 @@
 // Next-event estimation's samplers against closed forms: the spherical rectangle's solid angle
-// and its density, a rectangle light's irradiance, the choice of a light by importance,
-// volpath's direct light on a floor under a rectangle light and the sky, and its single
-// scattering from a point light in a medium (equiangular and free-flight distances by MIS).
+// and its density, a rectangle light's irradiance, the choice of a light by importance, and
+// volpath's direct light on a floor under a rectangle light and the sky.
 #include <cmath>
 
 #include <gtest/gtest.h>
-
-#include "TestScenes.h"
 
 #include "photon/Rng.h"
 #include "photon/Sampling.h"
@@ -14,7 +11,6 @@
 #include "render/LightSelection.h"
 #include "render/Scene.h"
 #include "render/SphericalRectangle.h"
-#include "tet/SurfaceBVH.h"
 #include "tet/Shapes.h"
 
 namespace tetglow::test {
@@ -186,55 +182,6 @@ TEST(LightSelection, VolpathDirectLightOnAFloorMatchesClosedForm) {
             const double mean = sum[c] / samples, se = std::sqrt(std::max(0.0, sum2[c] / samples - mean * mean) / samples);
             const double exact = 0.5 * (quadLight.radiance[c] * F + sky.radiance[c] * (1 - F));
             EXPECT_NEAR(mean, exact, 4 * se) << p.x << " " << p.z << " channel " << c;
-        }
-    }
-}
-
-// volpath with one event (max_depth 2) in a scattering, non-absorbing sphere with a point
-// light inside: each camera ray's radiance is the single-scattering integral, here by quadrature
-// in the equiangular angle (smooth even where the ray passes close to the light), with the
-// scene's own exact transmittances along the ray and towards the light.
-TEST(PointLightScattering, SingleScatteringMatchesQuadrature) {
-    const RGB sigmaS(0.5, 1, 2);
-    const double g = 0.3;
-    SceneDesc desc = sceneWith(sphereMedium(RGB(0), sigmaS, g), 16);
-    LightDesc point;
-    point.type = LightType::Point, point.position = {0.1, 0.2, -0.1}, point.intensity = {1, 0.8, 0.6};
-    desc.lights.push_back(point);
-    const Scene scene(desc);
-    IntegratorDesc integ;
-    integ.maxDepth = 2;
-    const auto integrator = makeIntegrator(scene, integ);
-    integrator->beginPass(0);
-    const HenyeyGreenstein phase(g);
-    for (const glm::dvec3& target : {glm::dvec3(0.1, 0.25, -0.1), glm::dvec3(-0.5, -0.3, 0.2)}) {
-        const Ray ray{desc.camera.position, glm::normalize(target - desc.camera.position)};
-        const auto hits = scene.media()[0].medium->volume().bvh().allHits(ray);
-        ASSERT_EQ(hits.size(), 2u);
-        const double tIn = hits[0].t, tOut = hits[1].t;
-        const double delta = glm::dot(point.position - ray.o, ray.d), h = glm::length(ray.at(delta) - point.position);
-        const double a = std::atan2(tIn - delta, h), b = std::atan2(tOut - delta, h);
-        const int steps = 4000;
-        RGB exact(0);
-        for (int i = 0; i < steps; ++i) {
-            const double t = delta + h * std::tan(a + (i + 0.5) / steps * (b - a));
-            const glm::dvec3 p = ray.at(t), v = point.position - p;
-            const double r = glm::length(v);
-            const RGB toLight = scene.transmittance(Ray{p, v / r}, r, scene.mediumAt(p));
-            // dt / r^2 = dtheta / h
-            exact += exp(-sigmaS * (t - tIn)) * sigmaS * phase.eval(glm::dot(ray.d, v / r)) * point.intensity * toLight * ((b - a) / steps / h);
-        }
-        const int samples = 40000;
-        RGB sum(0), sum2(0);
-        for (int i = 0; i < samples; ++i) {
-            Rng rng(7, 1, uint64_t(i));
-            const RGB L = integrator->radiance(ray, rng);
-            sum += L, sum2 += L * L;
-        }
-        for (int c = 0; c < 3; ++c) {
-            const double mean = sum[c] / samples, se = std::sqrt(std::max(0.0, sum2[c] / samples - mean * mean) / samples);
-            EXPECT_LT(se, 0.01 * exact[c]) << "channel " << c;
-            EXPECT_NEAR(mean, exact[c], 4 * se) << target.x << " channel " << c;
         }
     }
 }

@@ -68,7 +68,6 @@ FreeFlight Medium::sampleFlight(const Ray& ray, WalkStart start, double tMax, in
             if (s.tIn >= tMax) break;
             continue;
         }
-        flight.tet = s.tet;
         const double piece = densityIntegral(s.tet, ray, tIn, tOut);
         if (column + piece >= target) {
             const double need = target - column;
@@ -83,6 +82,7 @@ FreeFlight Medium::sampleFlight(const Ray& ray, WalkStart start, double tMax, in
             }
             flight.scattered = true;
             flight.t = std::min(tIn + x, tOut);
+            flight.tet = s.tet;
             flight.density = density(s.tet, ray.at(flight.t));
             flight.transmittance = exp(-sigmaT_ * target);
             flight.column = target;

@@ -30,7 +30,7 @@ struct WalkStart {
 struct FreeFlight {
     bool scattered = false;  // an interaction at t (in tet); otherwise the ray passed tMax or left the medium
     double t = 0;
-    uint32_t tet = 0;        // of the interaction; without one, where the walk stopped (at tMax unless it left)
+    uint32_t tet = 0;
     double density = 1;      // at the interaction
     RGB transmittance{1};    // from the start to the interaction, or to where the flight ended
     double column = 0;       // density integrated over the same stretch

@@ -13,19 +13,12 @@ struct Scattering {
     double pdf = 0;  // of sampling that direction by the phase function or BSDF (for MIS)
 };
 
-// No other strategy samples the point p (see sampleDirect's distanceWeight).
-struct OnlyStrategy {
-    double operator()(const Light&, double) const { return 1; }
-};
-
 // `scatter(wi)` gives the Scattering towards wi; `visibility(ray, tMax)` the transmittance.
 // With `mis`, area light samples are weighted by the power heuristic against phase/BSDF
 // sampling, which must then count emitters it hits with lightPdf() (the constant environment,
-// never chosen then, with weight 1); without it, phase/BSDF rays must not count them at all. `distanceWeight(light, choicePmf)` weights the sample of
-// that light where another strategy also chose the point p (equiangular sampling in media).
-template <class ScatterFn, class VisibilityFn, class DistanceWeightFn = OnlyStrategy>
-RGB sampleDirect(const Scene& scene, const glm::dvec3& p, Rng& rng, bool mis, ScatterFn&& scatter, VisibilityFn&& visibility,
-                 DistanceWeightFn&& distanceWeight = {}) {
+// never chosen then, with weight 1); without it, phase/BSDF rays must not count them at all.
+template <class ScatterFn, class VisibilityFn>
+RGB sampleDirect(const Scene& scene, const glm::dvec3& p, Rng& rng, bool mis, ScatterFn&& scatter, VisibilityFn&& visibility) {
     if (scene.lights().empty()) return RGB(0);
     const LightChoice choice = chooseLight(scene.lights(), p, mis, rng.uniform());
     const double u0 = rng.uniform(), u1 = rng.uniform();
@@ -38,7 +31,7 @@ RGB sampleDirect(const Scene& scene, const glm::dvec3& p, Rng& rng, bool mis, Sc
     const RGB tr = visibility(Ray{p, ls.wi}, tMax);
     if (isBlack(tr)) return RGB(0);
     const double pdf = ls.pdf * choice.pmf;
-    const double weight = (ls.delta || !mis ? 1 : powerHeuristic(pdf, s.pdf)) * distanceWeight(*choice.light, choice.pmf);
+    const double weight = ls.delta || !mis ? 1 : powerHeuristic(pdf, s.pdf);
     return s.f * tr * ls.L * (weight / pdf);
 }
 

@@ -59,7 +59,6 @@ public:
     double importance(const glm::dvec3& p) const override { return average(sample(p, {}).L); }
     RGB power() const override { return intensity_ * (spot_ ? spot_->solidAngle() : 4 * kPi); }
     bool isDelta() const override { return true; }
-    std::optional<glm::dvec3> position() const override { return position_; }
 
 private:
     glm::dvec3 position_;

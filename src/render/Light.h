@@ -2,7 +2,6 @@
 // and spot lights with a radius), and a constant environment. Each can also emit photons.
 #pragma once
 #include <memory>
-#include <optional>
 #include <vector>
 
 #include <glm/vec2.hpp>
@@ -47,8 +46,6 @@ public:
     // Total emitted power, per channel.
     virtual RGB power() const = 0;
     virtual bool isDelta() const { return false; }
-    // Where a point light (or a spot without a radius) sits; nothing for the other lights.
-    virtual std::optional<glm::dvec3> position() const { return std::nullopt; }
     virtual bool isEnvironment() const { return false; }
     // Emitting triangles, placed in the scene so that rays can hit them (empty for the others).
     virtual const TriangleMesh* shape() const { return nullptr; }

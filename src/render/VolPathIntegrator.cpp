@@ -1,11 +1,8 @@
 #include "render/VolPathIntegrator.h"
 
-#include <optional>
-
 #include "photon/SpectralPath.h"
 #include "render/DirectLighting.h"
 #include "render/Material.h"
-#include "render/PointLightScattering.h"
 
 namespace tetglow {
 
@@ -50,12 +47,6 @@ RGB VolPathIntegrator::radiance(const Ray& cameraRay, Rng& rng) const {
                 path.beta *= medium.transmittance(ray, state.start, tMax);
                 if (!path.alive()) break;
             } else {
-                // Point lights' single scattering along this stretch, when an event is left for it.
-                std::optional<PointLightScattering> pointLights;
-                if (depth + 1 < maxDepth_ && !isBlack(medium.params().sigmaS)) {
-                    pointLights.emplace(scene_, state, ray, tMax, path.r, rng);
-                    if (pointLights->active()) L += path.weight() * pointLights->estimate(rng);
-                }
                 const FreeFlight flight = medium.sampleFlight(ray, state.start, tMax, path.hero, rng.uniform());
                 if (!flight.scattered) {
                     path.pass(flight.transmittance);
@@ -70,11 +61,7 @@ RGB VolPathIntegrator::radiance(const Ray& cameraRay, Rng& rng) const {
                     const glm::dvec3 p = ray.at(flight.t);
                     const MediumState here{state.medium, WalkStart::inside(flight.tet)};
                     const HenyeyGreenstein& phase = medium.phase();
-                    auto distanceWeight = [&](const Light& light, double choicePmf) {
-                        if (!pointLights || !pointLights->active()) return 1.0;
-                        return pointLights->freeFlightWeight(light, choicePmf, flight.t, flight.transmittance, flight.density);
-                    };
-                    L += path.weight() * sampleDirect(scene_, p, rng, true, phaseScattering(phase, ray.d), visibility(here), distanceWeight);
+                    L += path.weight() * sampleDirect(scene_, p, rng, true, phaseScattering(phase, ray.d), visibility(here));
                     const double u0 = rng.uniform(), u1 = rng.uniform();
                     const glm::dvec3 wi = phase.sample(ray.d, {u0, u1});
                     specular = false, lastPdf = phase.eval(glm::dot(ray.d, wi)), lastPoint = p;

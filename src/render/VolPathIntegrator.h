@@ -1,9 +1,7 @@
 // The reference: an unbiased volumetric path tracer. Free flights are sampled exactly through
 // the tets (spectral MIS over the RGB channels), next-event estimation sends shadow rays that
 // walk the tets inside media and use Embree outside, and area and environment lights are
-// combined with phase/BSDF sampling by multiple importance sampling; in media, point lights'
-// single scattering is also sampled at equiangular distances (PointLightScattering), combined
-// with free-flight sampling by MIS. Russian roulette ends paths.
+// combined with phase/BSDF sampling by multiple importance sampling. Russian roulette ends paths.
 #pragma once
 #include "render/Integrator.h"
 
