@@ -1,7 +1,9 @@
-// Next-event estimation: one light, chosen uniformly, sampled towards a point.
+// Next-event estimation: one light, chosen by its importance at the point (LightSelection.h),
+// sampled towards the point.
 #pragma once
 #include "photon/Rng.h"
 #include "photon/Sampling.h"
+#include "render/LightSelection.h"
 #include "render/Scene.h"
 
 namespace tetglow {
@@ -12,23 +14,23 @@ struct Scattering {
 };
 
 // `scatter(wi)` gives the Scattering towards wi; `visibility(ray, tMax)` the transmittance.
-// With `mis`, area and environment light samples are weighted by the power heuristic against
-// phase/BSDF sampling, which must then count emitters it hits with lightPdf() (and without
-// it, must not count them at all).
+// With `mis`, area light samples are weighted by the power heuristic against phase/BSDF
+// sampling, which must then count emitters it hits with lightPdf() (the constant environment,
+// never chosen then, with weight 1); without it, phase/BSDF rays must not count them at all.
 template <class ScatterFn, class VisibilityFn>
 RGB sampleDirect(const Scene& scene, const glm::dvec3& p, Rng& rng, bool mis, ScatterFn&& scatter, VisibilityFn&& visibility) {
-    const auto& lights = scene.lights();
-    if (lights.empty()) return RGB(0);
-    const size_t i = std::min(lights.size() - 1, size_t(rng.uniform() * lights.size()));
+    if (scene.lights().empty()) return RGB(0);
+    const LightChoice choice = chooseLight(scene.lights(), p, mis, rng.uniform());
     const double u0 = rng.uniform(), u1 = rng.uniform();
-    const LightSample ls = lights[i]->sample(p, {u0, u1});
+    if (!choice.light) return RGB(0);
+    const LightSample ls = choice.light->sample(p, {u0, u1});
     if (ls.pdf <= 0 || isBlack(ls.L)) return RGB(0);
     const Scattering s = scatter(ls.wi);
     if (isBlack(s.f)) return RGB(0);
     const double tMax = std::isfinite(ls.distance) ? ls.distance - scene.rayEpsilon() : INFINITY;
     const RGB tr = visibility(Ray{p, ls.wi}, tMax);
     if (isBlack(tr)) return RGB(0);
-    const double pdf = ls.pdf / lights.size();
+    const double pdf = ls.pdf * choice.pmf;
     const double weight = ls.delta || !mis ? 1 : powerHeuristic(pdf, s.pdf);
     return s.f * tr * ls.L * (weight / pdf);
 }
@@ -53,7 +55,7 @@ inline RGB directInMedium(const Scene& scene, int v, const glm::dvec3& p, const 
 // light (for the MIS weight of emitters hit by those rays).
 inline double lightPdf(const Scene& scene, const Light& light, const glm::dvec3& from, const glm::dvec3& wi,
                        const glm::dvec3& point, uint32_t triangle) {
-    return light.pdf(from, wi, point, triangle) / scene.lights().size();
+    return light.pdf(from, wi, point, triangle) * choicePmf(scene.lights(), light, from, true);
 }
 
 }  // namespace tetglow

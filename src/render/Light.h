@@ -39,6 +39,10 @@ public:
     // A photon drawn from the light's emission (position from uPos, direction from uDir); the
     // mean of flux over draws is power().
     virtual PhotonEmission emitPhoton(const glm::dvec2& uPos, const glm::dvec2& uDir) const = 0;
+    // What the light sends to p, as radiance integrated over directions (averaged over RGB),
+    // ignoring occlusion and roughly: for choosing which light to sample at p, so it must be
+    // > 0 wherever the light can reach p.
+    virtual double importance(const glm::dvec3& p) const = 0;
     // Total emitted power, per channel.
     virtual RGB power() const = 0;
     virtual bool isDelta() const { return false; }
