@@ -259,8 +259,7 @@ TEST(NestedRender, VolpathAndPhotonMappingAgreeOnNestedScatteringMedia) {
     }
 }
 
-TEST(NestedRender, EnergyBalancesWithNestedEmitters) {
-    const SceneDesc desc = nestedScattering();
+void expectEnergyBalance(const SceneDesc& desc) {
     const Scene scene(desc);
     const PhotonSource source(scene);
     const TracedPhotons traced = tracePhotons(scene, source, {100000, 1 << 20, 5, 0});
@@ -276,6 +275,17 @@ TEST(NestedRender, EnergyBalancesWithNestedEmitters) {
     EXPECT_GT(traced.volume[0].size(), 1000u);
     EXPECT_GT(traced.volume[1].size(), 1000u);
     EXPECT_EQ(traced.volume[2].size(), 0u);
+}
+
+TEST(NestedRender, EnergyBalancesWithNestedEmitters) { expectEnergyBalance(nestedScattering()); }
+
+TEST(NestedRender, EnergyBalancesWithNestedEmittersBehindDielectricInterfaces) {
+    // The body in a skin of n 1.4, the organ of n 1.6 in it: photons reflect and refract at the
+    // walk's exit faces, inside and out.
+    SceneDesc desc = nestedScattering();
+    desc.media[0].boundaryMaterial = {MaterialType::Dielectric, RGB(0.5), 1.4};
+    desc.media[1].boundaryMaterial = {MaterialType::Dielectric, RGB(0.5), 1.6};
+    expectEnergyBalance(desc);
 }
 
 TEST(NestedRender, ParityAndBboxPickTheInnermostMedium) {
