@@ -75,6 +75,41 @@ void BM_TetSteps(benchmark::State& state) {
 }
 BENCHMARK(BM_TetSteps);
 
+// The showcase fish (issue 14) against the old one in one run: the same body alone (Arg 0), and
+// with its photophores, eyes and lure core nested in it (Arg 1), one tet mesh with a region each.
+// The same rays as above (the fixture's, which cross the body), walked across every interface.
+void BM_TetStepsAcrossRegions(benchmark::State& state) {
+    const Fixture& f = fixture();
+    static std::unique_ptr<TetVolume> volumes[2];
+    static std::vector<uint32_t> entries[2];  // each volume's own entry triangles for the rays
+    auto& volume = volumes[state.range(0)];
+    if (!volume) {
+        const std::string dir = std::string(TETGLOW_SOURCE_DIR) + "/scenes/meshes/";
+        std::vector<TriangleMesh> meshes{readMesh(dir + "fish.obj")};
+        std::vector<std::string> names{"fish"};
+        if (state.range(0) == 1)
+            for (const std::string part : {"fish-photophores", "fish-eyes", "fish-lure-core"})
+                meshes.push_back(readMesh(dir + part + ".obj")), names.push_back(part);
+        volume = std::make_unique<TetVolume>(tetrahedralize(meshes, names, TetOptions{}));
+        for (const Ray& ray : f.rays) entries[state.range(0)].push_back(volume->bvh().intersect(ray, 0, INFINITY, Facing::Entering)->triangle);
+    }
+    size_t steps = 0, interfaces = 0, i = 0;
+    for (auto _ : state) {
+        const size_t r = i++ % f.rays.size();
+        TetWalk w = TetWalk::enter(volume->mesh(), f.rays[r], entries[state.range(0)][r]);
+        WalkSegment s;
+        do
+            while (w.next(s)) benchmark::DoNotOptimize(s);
+        while (w.crossInterface() && ++interfaces);
+        steps += w.steps();
+    }
+    state.counters["steps/s"] = benchmark::Counter(double(steps), benchmark::Counter::kIsRate);
+    state.counters["steps/walk"] = double(steps) / double(state.iterations());
+    state.counters["interfaces/walk"] = double(interfaces) / double(state.iterations());
+    state.counters["tets"] = double(volume->mesh().tets.size());
+}
+BENCHMARK(BM_TetStepsAcrossRegions)->Arg(0)->Arg(1);
+
 void BM_RayWalkFull(benchmark::State& state) {
     // Embree finds the entry, the tets do the rest (re-entry through concavities via Embree).
     const Fixture& f = fixture();

@@ -47,11 +47,12 @@ def render(binary, scene, output, *args):
 
 def fish_variant(work, name, edit):
     """Writes work/name.json: scenes/fish.json after edit(scene) (a function that changes the
-    parsed JSON in place), its mesh path made absolute so that it loads from there."""
+    parsed JSON in place), its mesh paths made absolute so that it loads from there."""
     with open(os.path.join(ROOT, "scenes", "fish.json")) as f:
         scene = json.load(f)
-    shape = scene["media"][0]["shape"]
-    shape["file"] = os.path.join(ROOT, "scenes", shape["file"])
+    for medium in scene["media"]:
+        shape = medium["shape"]
+        shape["file"] = os.path.join(ROOT, "scenes", shape["file"])
     edit(scene)
     path = os.path.join(work, name + ".json")
     with open(path, "w") as f:

@@ -44,7 +44,8 @@ def main():
     work = tempfile.mkdtemp(prefix="tetglow-preview-bench-")
     with open(os.path.join(ROOT, "scenes", "fish.json")) as f:
         scene = json.load(f)
-    scene["media"][0]["shape"]["file"] = os.path.join(ROOT, "scenes", "meshes", "fish.obj")
+    for medium in scene["media"]:  # the meshes' paths, from the folder the copy is written to
+        medium["shape"]["file"] = os.path.join(ROOT, "scenes", medium["shape"]["file"])
     del scene["output"]
     path = os.path.join(work, "fish.json")
     with open(path, "w") as f:

@@ -38,6 +38,7 @@ def measure(binary, work, name, mesh, quality=0, max_volume=0, integrators=INTEG
     tet_args = (["--quality", quality] if quality else []) + (["--max-volume", max_volume] if max_volume else [])
     tets = json.loads(tetglow(binary, "tetrahedralize", mesh, "--json", "--no-cache", *tet_args))
     def edit(scene):
+        del scene["media"][1:]  # the organs fit the default body only
         medium = scene["media"][0]
         medium["shape"]["file"] = os.path.abspath(mesh)
         medium["tetgen"] = {"quality": quality, "max_volume": max_volume}

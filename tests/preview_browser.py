@@ -60,7 +60,8 @@ def test_scene(folder):
         scene = json.load(f)
     scene["camera"]["resolution"] = [128, 128]
     scene["integrator"].update(photons=20000, spp=PASSES)
-    scene["media"][0]["shape"]["file"] = os.path.join(ROOT, "scenes", "meshes", "fish.obj")
+    for medium in scene["media"]:  # the meshes' paths, from the folder the copy is written to
+        medium["shape"]["file"] = os.path.join(ROOT, "scenes", medium["shape"]["file"])
     del scene["output"]
     path = os.path.join(folder, "fish.json")
     with open(path, "w") as f:
@@ -110,7 +111,8 @@ def check_requests(server):
         '{"integrator": {"photons": -5}}': "request: /integrator/photons: expected an integer in 1..1099511627776, got -5",
         '{"media": [{"shape": {"type": "mesh", "file": "/etc/passwd"}}]}':
             "request: /media/0/shape: unknown key; allowed here: scale, sigma_a, sigma_s, g, emission, density",
-        '{"media": [{}, {}]}': "request: /media: expected an array of at most 1 media, one per medium of the scene, got [{...",
+        '{"media": [{}, {}, {}, {}, {}]}':  # the fish has four media: body, photophores, lure core, eyes
+            "request: /media: expected an array of at most 4 media, one per medium of the scene, got [{...",
         '{"resolution_scale": 3}': "request: /resolution_scale: expected a number in (0, 1], got 3",
         '{"path": "/tmp/x"}': "request: /path: unknown key; allowed here: integrator, media, resolution_scale",
         '[1]': "request: expected an object, got [1]",

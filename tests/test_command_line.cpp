@@ -41,7 +41,7 @@ TEST(CommandLine, UnknownSubcommandIsNamed) {
     const auto r = runTetglow("frobnicate");
     expectOneLineError(r, 2, "unknown subcommand 'frobnicate'");
     EXPECT_NE(r.err.find("render"), std::string::npos) << "lists the subcommands: " << r.err;
-    expectOneLineError(runTetglow("generate squid"), 2, "unknown subcommand 'squid' of 'tetglow generate'; one of: fish, cloud");
+    expectOneLineError(runTetglow("generate squid"), 2, "unknown subcommand 'squid' of 'tetglow generate'; one of: fish, fish-photophores, fish-eyes, fish-lure-core, cloud");
     expectOneLineError(runTetglow(""), 2, "needs a subcommand: one of");
 }
 
