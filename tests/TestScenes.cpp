@@ -30,4 +30,16 @@ LightDesc environment(double radiance) {
     return l;
 }
 
+SceneDesc glowingSphereUnderQuad(int resolution) {
+    MediumDesc m = sphereMedium(RGB(0.2, 0.5, 0.1), RGB(0.8, 0.6, 1.2), 0.5);
+    m.emission = RGB(0.1, 0.2, 0.9);
+    SceneDesc desc = sceneWith(m, resolution);
+    desc.lights.push_back(environment(0.3));
+    LightDesc quad;
+    quad.type = LightType::Quad;
+    quad.corner = {-1, 3, -1}, quad.edge0 = {0, 0, 2}, quad.edge1 = {2, 0, 0}, quad.radiance = RGB(5);
+    desc.lights.push_back(quad);
+    return desc;
+}
+
 }  // namespace tetglow::test

@@ -9,5 +9,8 @@ MediumDesc sphereMedium(const RGB& sigmaA, const RGB& sigmaS, double g = 0, int 
 // The camera looks at the origin from z = 4 over a square image.
 SceneDesc sceneWith(const MediumDesc& medium, int resolution);
 LightDesc environment(double radiance);
+// A glowing, scattering, absorbing sphere (chromatic) under a quad light in a sky: every kind of
+// light an integrator handles, for tests of determinism and of unchanged means.
+SceneDesc glowingSphereUnderQuad(int resolution);
 
 }  // namespace tetglow::test

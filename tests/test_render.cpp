@@ -162,15 +162,7 @@ TEST(Render, SingleScatteringBoundaryModes) {
 
 // (d) The same seed gives the same image, bit for bit, with one thread and with two.
 TEST(Render, SameSeedSameImageAnyThreadCount) {
-    MediumDesc m = sphereMedium(RGB(0.2, 0.5, 0.1), RGB(0.8, 0.6, 1.2), 0.5);
-    m.emission = RGB(0.1, 0.2, 0.9);
-    SceneDesc desc = sceneWith(m, 32);
-    desc.lights.push_back(environment(0.3));
-    LightDesc quad;
-    quad.type = LightType::Quad;
-    quad.corner = {-1, 3, -1}, quad.edge0 = {0, 0, 2}, quad.edge1 = {2, 0, 0}, quad.radiance = RGB(5);
-    desc.lights.push_back(quad);
-    const Scene scene(desc);
+    const Scene scene(glowingSphereUnderQuad(32));
     for (const PhotonEstimate estimate : {PhotonEstimate::Beam, PhotonEstimate::KnnMarch})
         for (const IntegratorType type : {IntegratorType::VolPath, IntegratorType::Photon}) {
             if (type == IntegratorType::VolPath && estimate == PhotonEstimate::KnnMarch) continue;

@@ -149,15 +149,7 @@ Image renderIndependent(const Scene& scene, Integrator& integrator, int spp, uin
 // Volpath and the photon integrator: the per-pixel differences between the two samplers'
 // images average to zero within their standard error (pixels are independent of each other).
 TEST(Sampler, ImagesKeepTheirMean) {
-    MediumDesc m = sphereMedium(RGB(0.2, 0.5, 0.1), RGB(0.8, 0.6, 1.2), 0.5);
-    m.emission = RGB(0.1, 0.2, 0.9);
-    SceneDesc desc = sceneWith(m, 24);
-    desc.lights.push_back(environment(0.3));
-    LightDesc quad;
-    quad.type = LightType::Quad;
-    quad.corner = {-1, 3, -1}, quad.edge0 = {0, 0, 2}, quad.edge1 = {2, 0, 0}, quad.radiance = RGB(5);
-    desc.lights.push_back(quad);
-    const Scene scene(desc);
+    const Scene scene(glowingSphereUnderQuad(24));
     for (const IntegratorType type : {IntegratorType::VolPath, IntegratorType::Photon}) {
         SCOPED_TRACE(type == IntegratorType::VolPath ? "volpath" : "photon");
         IntegratorDesc integ;
