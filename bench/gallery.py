@@ -21,7 +21,7 @@ LIMIT = 1 << 20  # all gallery images together, bytes
 
 # (file name, caption, arguments after `tetglow`), shown two to a row; outputs go to out/, which git ignores.
 GALLERY = [
-    ("fish", "The demo: a glowing fish in a dielectric skin, photon mapping with caustics on the floor",
+    ("fish", "The demo: a fish in a glass skin with glowing photophores, lure core and dark eyes nested in its scattering body; photon mapping with caustics on the floor",
      ["render", "scenes/fish.json", "-o", "out/fish.exr"]),
     ("inside-outside", "Inside/outside along the camera rays: green inside by tets and parity, dim red in the box "
      "only, magenta where the seed's parity test disagrees with the tets",
