@@ -13,7 +13,8 @@ quarter of the smallest MSE plotted; the script says so when it is not.
                       [--res 100x100] [--threads 2] [--reference-spp 16384] [--out DIR] [--docs]
 
 --docs writes docs/peer-<scene>.{png,svg}, docs/peer-sweep.json and the peer-sweep section of
-docs/RESULTS.md. Needs Blender 3.4 (`apt-get install blender`) and ../shared/peers/cycles_render.py:
+docs/RESULTS.md. Needs Blender 3.4 and numpy for its Python (`apt-get install blender python3-numpy`) and
+../shared/peers/cycles_render.py:
 without either it says so and exits 0, writing nothing.
 """
 import argparse
