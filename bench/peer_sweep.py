@@ -143,8 +143,8 @@ def main():
     os.makedirs(work, exist_ok=True)
     print(f"peer_sweep: {machine()}; work in {work}", flush=True)
     results = [sweep_scene(a, blender, name, work) for name in a.scenes.split(",")]
-    smallest = min(m for r in results for v in r["curves"].values() for _, m, _ in v)
     for r in results:
+        smallest = min(m for v in r["curves"].values() for _, m, _ in v)
         if r["reference_mse"] > smallest / 4:
             print(f"peer_sweep: warning: {r['scene']}: the reference's own MSE {r['reference_mse']:.3g} is above a quarter "
                   f"of the smallest MSE plotted ({smallest:.3g}): raise --reference-spp")
