@@ -100,34 +100,36 @@ TEST(TetCache, TruncatedAndForeignEntriesAreRebuilt) {
     expectRebuilt(c, "its key does not match its name");
 }
 
+// Writes `forged` as the cache entry with its checksum recomputed, then expects it rebuilt for `problem`.
+void expectForgeryRebuilt(const Cached& c, std::string forged, const std::string& problem) {
+    reseal(forged);
+    spit(c.file, forged);
+    expectRebuilt(c, problem);
+}
+
+// Where the tets' vertex indices start in the box's entry.
+size_t tetsOffset(const Cached& c) { return kFirstVertex + 24 * c.fresh.vertices.size() + 8; }
+
 TEST(TetCache, ContentChecksHoldBehindAMatchingChecksum) {
     const Cached c = cachedBox();
     const std::string entry = slurp(c.file);
     std::string huge = entry;  // claims 2^40 vertices: refused without allocating them
     const uint64_t count = uint64_t(1) << 40;
     std::memcpy(huge.data() + kVertexCount, &count, 8);
-    reseal(huge);
-    spit(c.file, huge);
-    expectRebuilt(c, "truncated or overlong");
+    expectForgeryRebuilt(c, huge, "truncated or overlong");
     std::string badIndex = entry;  // the first tet's first vertex
-    const size_t tets = kFirstVertex + 24 * c.fresh.vertices.size() + 8;
+    const size_t tets = tetsOffset(c);
     const uint32_t far = uint32_t(c.fresh.vertices.size());
     std::memcpy(badIndex.data() + tets, &far, 4);
-    reseal(badIndex);
-    spit(c.file, badIndex);
-    expectRebuilt(c, "tet 0 has an index out of range");
+    expectForgeryRebuilt(c, badIndex, "tet 0 has an index out of range");
     std::string repeated = entry;  // the first tet's second vertex made its first: a flat tet
     std::memcpy(repeated.data() + tets + 4, repeated.data() + tets, 4);
-    reseal(repeated);
-    spit(c.file, repeated);
-    expectRebuilt(c, "tet 0 repeats a vertex");
+    expectForgeryRebuilt(c, repeated, "tet 0 repeats a vertex");
     std::string oneWay = entry;  // the first tet's face 0 made a boundary face of another surface triangle
     const size_t adjacency = tets + 16 * c.fresh.tets.size() + 8;
     const int32_t other = c.fresh.adjacency[0][0] == ~int32_t(0) ? ~int32_t(1) : ~int32_t(0);
     std::memcpy(oneWay.data() + adjacency, &other, 4);
-    reseal(oneWay);
-    spit(c.file, oneWay);
-    expectRebuilt(c, "tet 0 has a neighbour that does not point back");
+    expectForgeryRebuilt(c, oneWay, "tet 0 has a neighbour that does not point back");
 }
 
 // Two forgeries that keep every index in range: a tet turned inside out (two vertices swapped)
@@ -135,21 +137,17 @@ TEST(TetCache, ContentChecksHoldBehindAMatchingChecksum) {
 TEST(TetCache, AnInsideOutTetOrAMovedVertexIsNotUsed) {
     const Cached c = cachedBox();
     const std::string entry = slurp(c.file);
-    const size_t tets = kFirstVertex + 24 * c.fresh.vertices.size() + 8;
+    const size_t tets = tetsOffset(c);
     std::string insideOut = entry;
     std::memcpy(insideOut.data() + tets, entry.data() + tets + 4, 4);
     std::memcpy(insideOut.data() + tets + 4, entry.data() + tets, 4);
-    reseal(insideOut);
-    spit(c.file, insideOut);
-    expectRebuilt(c, "tet 0 is flat or inside out");
+    expectForgeryRebuilt(c, insideOut, "tet 0 is flat or inside out");
     std::string moved = entry;  // vertex 0's x, nudged by one part in 10^6 of the box: no tet flips
     double x = 0;
     std::memcpy(&x, entry.data() + kFirstVertex, 8);
     x += 1e-6;
     std::memcpy(moved.data() + kFirstVertex, &x, 8);
-    reseal(moved);
-    spit(c.file, moved);
-    expectRebuilt(c, "it holds the tets of another set of meshes");
+    expectForgeryRebuilt(c, moved, "it holds the tets of another set of meshes");
 }
 
 // Found by fuzz_tet_cache: an empty array was copied from a null pointer (UBSan). An entry of
@@ -158,9 +156,7 @@ TEST(TetCache, AnEntryOfEmptyArraysIsReadSafelyAndNotUsed) {
     const Cached c = cachedBox();
     // The surface-vertex count and the ten arrays' lengths, all zero.
     std::string empty = slurp(c.file).substr(0, kHeader) + std::string(11 * 8, '\0');
-    reseal(empty);
-    spit(c.file, empty);
-    expectRebuilt(c, "array sizes disagree");
+    expectForgeryRebuilt(c, empty, "array sizes disagree");
 }
 
 TEST(TetCache, SpecialFilesInTheCacheAreNotRead) {
