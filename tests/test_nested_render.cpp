@@ -3,12 +3,14 @@
 // dielectric skin (an incoherent multilayer), volpath against photon mapping on a nested
 // scattering scene, and the photon tracer's energy balance with nested emitters.
 #include <cmath>
+#include <optional>
 #include <random>
 
 #include <gtest/gtest.h>
 
 #include "TestMeshes.h"
 #include "TestScenes.h"
+#include "render/DirectLighting.h"
 #include "render/Integrator.h"
 #include "render/PhotonIntegrator.h"
 #include "render/PhotonTracer.h"
@@ -286,6 +288,54 @@ TEST(NestedRender, EnergyBalancesWithNestedEmittersBehindDielectricInterfaces) {
     desc.media[0].boundaryMaterial = {MaterialType::Dielectric, RGB(0.5), 1.4};
     desc.media[1].boundaryMaterial = {MaterialType::Dielectric, RGB(0.5), 1.6};
     expectEnergyBalance(desc);
+}
+
+// Next-event estimation is skipped in a sealed volume (Scene::sealed): there it must be exactly
+// 0. A dielectric sphere under a point light and a sky is sealed, and so is an index-matched
+// sphere in a dielectric box; an index-matched sphere is not, nor a dielectric one with the
+// light inside it, nor one in an index-matched box (conservative: its own face blocks).
+TEST(NestedRender, OnlyVolumesNoShadowRayLeavesAreSealed) {
+    struct Case {
+        const char* name;
+        MaterialType sphere;
+        glm::dvec3 light;
+        std::optional<MaterialType> outerBox;  // a box medium around the sphere
+        bool sealed, reaches;
+    };
+    const glm::dvec3 above(0.3, 3, 0.2), within(0.2, 0.1, 0.7);
+    for (const Case& c : {Case{"dielectric", MaterialType::Dielectric, above, {}, true, false},
+                          Case{"index-matched", MaterialType::Interface, above, {}, false, true},
+                          Case{"light inside", MaterialType::Dielectric, within, {}, false, true},
+                          Case{"in a dielectric box", MaterialType::Interface, above, MaterialType::Dielectric, true, false},
+                          Case{"in an index-matched box", MaterialType::Dielectric, above, MaterialType::Interface, false, false}}) {
+        SceneDesc desc = sceneWith(sphereMedium(RGB(0.1), RGB(1)), 8);
+        const auto material = [](MaterialType t) { return MaterialDesc{t, RGB(0.5), t == MaterialType::Dielectric ? 1.5 : 1.0}; };
+        desc.media[0].boundaryMaterial = material(c.sphere);
+        if (c.outerBox) {
+            desc.media.push_back(absorber("box", box(glm::dvec3(-2), glm::dvec3(2)), 0.1));
+            desc.media[1].boundaryMaterial = material(*c.outerBox);
+        }
+        LightDesc point;
+        point.type = LightType::Point, point.position = c.light, point.intensity = RGB(5);
+        desc.lights = {point, environment(0.5)};
+        const Scene scene(desc);
+        ASSERT_EQ(scene.sealed(0), c.sealed) << c.name;
+        std::mt19937 random(5);
+        std::uniform_real_distribution<double> u(-0.55, 0.55);  // inside the sphere
+        int lit = 0;
+        for (int i = 0; i < 200; ++i) {
+            const glm::dvec3 p(u(random), u(random), u(random));
+            const MediumState at = scene.mediumAt(p);
+            ASSERT_TRUE(at.inside());
+            Rng rng(9, uint64_t(i));
+            lit += !isBlack(directInMedium(scene, at.volume, p, {0, 0, 1}, at.start.index, rng, false));
+        }
+        if (c.sealed || !c.reaches) {
+            EXPECT_EQ(lit, 0) << c.name;
+        } else {
+            EXPECT_GT(lit, 100) << c.name;
+        }
+    }
 }
 
 TEST(NestedRender, ParityAndBboxPickTheInnermostMedium) {

@@ -40,6 +40,59 @@ TEST(Render, IndexMatchedSurfacesPassEveryRay) {
     }
 }
 
+// A surface inside a medium is met by the paths and shadow rays inside it; Scene skips Embree
+// inside a volume only when no surface reaches into the volume's bounding box.
+TEST(Render, SurfacesInsideAMediumBlockShadowRaysFromInside) {
+    const RGB sigmaA(0.4, 1.1, 2.3);
+    SceneDesc desc = sceneWith(sphereMedium(sigmaA, RGB(0)), 8);
+    SurfaceDesc wall;
+    wall.name = "wall";
+    wall.mesh = quad({-0.3, -0.3, 0.2}, {0.6, 0, 0}, {0, 0.6, 0});  // inside the unit sphere
+    desc.surfaces.push_back(wall);
+    const Scene scene(desc);
+    const Ray ray{{0, 0, -0.5}, {0, 0, 1}};
+    const MediumState inside = scene.mediumAt(ray.o);
+    ASSERT_TRUE(inside.inside());
+    const auto hit = scene.intersect(ray, inside);
+    ASSERT_TRUE(hit.has_value());
+    EXPECT_NEAR(hit->t, 0.7, 1e-6);
+    EXPECT_EQ(scene.transmittance(ray, 10, inside), RGB(0));
+    // Beside the wall the ray leaves the sphere: the chord from (0.5, 0, -0.5) to the surface.
+    const Ray beside{{0.5, 0, -0.5}, {0, 0, 1}};
+    const RGB tr = scene.transmittance(beside, 10, scene.mediumAt(beside.o));
+    const double chord = 0.5 + std::sqrt(1 - 0.25);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(tr[c], std::exp(-chord * sigmaA[c]), 1e-3) << c;  // the sphere's facets
+}
+
+// Shadow rays with Russian roulette (Medium::shadowFlight) have the exact transmittance as
+// their mean: 0 or exp(-depth) times 4 per survival. A channel that keeps the transmittance
+// above 1/20 leaves no room for roulette: then every estimate is exact.
+TEST(Render, ShadowRayRouletteKeepsTheTransmittance) {
+    // Chords of 2: depths 3.4 to 4 (below 1/20 once, not below 1/80), or one channel at 1.
+    for (const RGB sigmaA : {RGB(1.7, 1.8, 2.0), RGB(1.7, 1.8, 0.5)}) {
+        const Scene scene(sceneWith(sphereMedium(sigmaA, RGB(0), 0, 4), 8));
+        const Ray ray{{0, 0, -3}, {0, 0, 1}};
+        const MediumState outside = scene.mediumAt(ray.o);
+        const RGB exact = scene.transmittance(ray, 10, outside);
+        const int n = 40000;
+        RGB sum(0), sum2(0);
+        int zeros = 0;
+        for (int i = 0; i < n; ++i) {
+            Rng rng(3, uint64_t(i));
+            const RGB tr = scene.transmittance(ray, 10, outside, &rng);
+            sum += tr, sum2 += tr * tr, zeros += isBlack(tr);
+        }
+        const RGB mean = sum / double(n), se = glm::sqrt(glm::max(RGB(0), sum2 / double(n) - mean * mean) / double(n - 1));
+        if (sigmaA.z < 1) {
+            EXPECT_EQ(zeros, 0);
+            for (int c = 0; c < 3; ++c) EXPECT_NEAR(mean[c], exact[c], 1e-12 * exact[c]);
+            continue;
+        }
+        EXPECT_NEAR(double(zeros) / n, 0.75, 0.02);  // one roulette
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(mean[c], exact[c], 5 * se[c]) << c;
+    }
+}
+
 // (a) A purely absorbing sphere in front of a white environment: every pixel is exactly the
 // transmittance along its chord, the chord taken from Embree's hits on the boundary.
 TEST(Render, AbsorbingSphereMatchesChords) {

@@ -1,5 +1,6 @@
 #include "photon/Medium.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -113,6 +114,31 @@ FreeFlight Medium::sampleFlight(const Ray& ray, WalkStart start, double tMax, in
 
 RGB Medium::transmittance(const Ray& ray, WalkStart start, double tMax) const {
     return sampleFlight(ray, start, tMax, 0, 1.0).transmittance;  // u = 1: an infinite target, no interaction
+}
+
+FreeFlight Medium::shadowFlight(const Ray& ray, WalkStart start, double tMax, Rng& rng) const {
+    constexpr double kSurvive = 0.25;
+    RGB depth(0);
+    // Roulette once every channel's depth passes rouletteAt: where weight * exp(-depth) < 1/20.
+    double rouletteAt = std::log(20.0), weight = 1;
+    bool stopped = false;
+    const TetWalk walk = this->walk(ray, start, [&](const WalkSegment& s) {
+        const double tIn = std::max(s.tIn, 0.0), tOut = std::min(s.tOut, tMax);
+        if (tOut <= tIn) return s.tIn < tMax;
+        depth += at(s.tet).sigmaT * densityIntegral(s.tet, ray, tIn, tOut);
+        while (std::min({depth.x, depth.y, depth.z}) > rouletteAt) {
+            if (rng.uniform() >= kSurvive) {
+                stopped = true;
+                return false;
+            }
+            weight /= kSurvive, rouletteAt -= std::log(kSurvive);
+        }
+        return s.tOut < tMax;
+    });
+    FreeFlight flight;
+    flight.transmittance = stopped ? RGB(0) : exp(-depth) * weight;
+    if (!stopped) flight.exit = WalkExit::of(walk, tMax);
+    return flight;
 }
 
 }  // namespace tetglow

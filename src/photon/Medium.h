@@ -10,6 +10,7 @@
 #include <glm/vec4.hpp>
 
 #include "photon/PhaseFunction.h"
+#include "photon/Rng.h"
 #include "photon/Spectrum.h"
 #include "tet/TetVolume.h"
 
@@ -108,6 +109,12 @@ public:
     // exp(-optical depth) from `start` to tMax or to where the ray leaves the medium (or
     // stops at an interface).
     RGB transmittance(const Ray& ray, WalkStart start, double tMax) const;
+    // The same for a shadow ray, with Russian roulette once the transmittance has fallen below
+    // 1/20 (as pbrt-v4's ratio tracking does): the walk stops there with probability 3/4 (a
+    // transmittance of 0, no exit) and a survivor counts 4 times, tested again whenever its
+    // weighted transmittance is below 1/20.
+    // Unbiased; deep in a dense medium a shadow ray walks a few tets, not all to the boundary.
+    FreeFlight shadowFlight(const Ray& ray, WalkStart start, double tMax, Rng& rng) const;
 
 private:
     std::vector<RegionOptics> regions_;

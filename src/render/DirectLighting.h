@@ -44,11 +44,13 @@ inline auto phaseScattering(const HenyeyGreenstein& phase, const glm::dvec3& d) 
 }
 
 // Light scattered at p, inside tet `tet` of volume v, into the direction -d: one light
-// sample without MIS, its shadow ray walking the tets (Scene::transmittance).
-inline RGB directInMedium(const Scene& scene, int v, const glm::dvec3& p, const glm::dvec3& d, uint32_t tet, Rng& rng) {
+// sample without MIS, its shadow ray walking the tets (Scene::transmittance, with roulette unless
+// the caller wants the exact transmittance).
+inline RGB directInMedium(const Scene& scene, int v, const glm::dvec3& p, const glm::dvec3& d, uint32_t tet, Rng& rng,
+                          bool roulette = true) {
     const MediumState here{v, WalkStart::inside(tet)};
     return sampleDirect(scene, p, rng, false, phaseScattering(scene.volumes()[v].medium->at(tet).phase, d),
-                        [&](const Ray& r, double t) { return scene.transmittance(r, t, here); });
+                        [&](const Ray& r, double t) { return scene.transmittance(r, t, here, roulette ? &rng : nullptr); });
 }
 
 // The pdf with which sampleDirect would have chosen the point a phase/BSDF ray reached on a

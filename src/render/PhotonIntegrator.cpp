@@ -127,7 +127,7 @@ RGB PhotonIntegrator::radiance(const Ray& cameraRay, Rng& rng) const {
             const MediumState here = scene_.afterHit(*hit, ray.d, state);
             L += beta * sampleDirect(scene_, hit->p, rng, false, [&](const glm::dvec3& wi) {
                 return Scattering{evaluateMaterial(material, ray.d, hit->n, wi), 0};
-            }, [&](const Ray& r, double t) { return scene_.transmittance(r, t, here); });
+            }, [&](const Ray& r, double t) { return scene_.transmittance(r, t, here, &rng); });
             L += beta * caustics(*hit, ray.d, material);
             break;
         }
@@ -186,8 +186,8 @@ RGB PhotonIntegrator::marchKnn(int v, const Ray& ray, const ColumnProfile& colum
         for (int i = 0; i < n; ++i) {
             const double t = piece.tIn + (i + u) * h;
             const glm::dvec3 p = ray.at(t);
-            const RGB scattered = sigmaS * medium.density(piece.tet, p) * directInMedium(scene_, v, p, ray.d, piece.tet, rng) +
-                                  knnEstimate(v, piece.tet, p, ray.d);
+            const RGB direct = scene_.sealed(v) ? RGB(0) : directInMedium(scene_, v, p, ray.d, piece.tet, rng);
+            const RGB scattered = sigmaS * medium.density(piece.tet, p) * direct + knnEstimate(v, piece.tet, p, ray.d);
             L += column.transmittance(t) * h * scattered;
         }
     }
@@ -255,7 +255,7 @@ RGB PhotonIntegrator::beamEstimate(int v, const Ray& ray, const ColumnProfile& c
 }
 
 RGB PhotonIntegrator::directAlong(int v, const Ray& ray, WalkStart start, double tMax, const ColumnProfile& column, Rng& rng) const {
-    if (scene_.lights().empty()) return RGB(0);
+    if (scene_.lights().empty() || scene_.sealed(v)) return RGB(0);
     const Medium& medium = *scene_.volumes()[v].medium;
     // The distance follows one channel's transmittance, truncated to the stretch; the channels
     // with extinction share the sample by one-sample MIS, so no channel's weight blows up.

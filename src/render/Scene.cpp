@@ -125,6 +125,27 @@ Scene::Scene(const SceneDesc& desc) : desc_(desc), camera_(desc.camera) {
     for (uint32_t i = 0; i < lights_.size(); ++i)
         if (const TriangleMesh* shape = lights_[i]->shape()) shapes.push_back({HitKind::Light, i}), meshes.push_back(*shape);
     for (const TriangleMesh& m : meshes) normals_.push_back(unitNormals(m.positions, m.triangles));
+    for (const SceneVolume& v : volumes_) {
+        const Bounds3& box = v.medium->volume().bounds();
+        bool within = false, lightWithin = false;
+        for (size_t k = 0; k < meshes.size(); ++k) {
+            const bool overlaps = bounds(meshes[k]).overlaps(box, 4 * epsilon_);
+            within = within || overlaps;
+            lightWithin = lightWithin || (overlaps && shapes[k].first == HitKind::Light);
+        }
+        for (const LightDesc& l : desc.lights)
+            if (l.type == LightType::Point || l.type == LightType::Spot) {
+                Bounds3 at;
+                at.extend(l.position);
+                lightWithin = lightWithin || at.overlaps(box, l.radius + 4 * epsilon_);
+            }
+        surfacesWithin_.push_back(within);
+        const TetMesh& mesh = v.medium->mesh();
+        bool refracting = true;  // every outer boundary triangle
+        for (size_t s = 0; s < mesh.surface.size() && refracting; ++s)
+            if (mesh.surfaceRegions[s][1] < 0) refracting = v.materials[v.triangleMaterial[s]].type == MaterialType::Dielectric;
+        sealed_.push_back(refracting && !lightWithin);
+    }
     for (size_t k = 0; k < meshes.size(); ++k) {
         const Geometry g{shapes[k].first, shapes[k].second, &normals_[k]};
         attach(surfaces_, surfaceGeometries_, g, meshes[k].positions, meshes[k].triangles);
@@ -197,7 +218,8 @@ std::optional<Intersection> Scene::intersect(const Ray& ray, double tMax) const 
 }
 
 std::optional<Intersection> Scene::intersect(const Ray& ray, const MediumState& state, double tMax) const {
-    return state.inside() ? intersect(surfaces_, surfaceGeometries_, ray, tMax) : intersect(ray, tMax);
+    if (!state.inside()) return intersect(ray, tMax);
+    return surfacesWithin_[size_t(state.volume)] ? intersect(surfaces_, surfaceGeometries_, ray, tMax) : std::nullopt;
 }
 
 Intersection Scene::boundaryHit(int v, const Ray& ray, const WalkExit& exit) const {
@@ -266,15 +288,18 @@ MediumState Scene::mediumAt(const glm::dvec3& p) const {
     return {};
 }
 
-RGB Scene::transmittance(Ray ray, double tMax, MediumState state) const {
+RGB Scene::transmittance(Ray ray, double tMax, MediumState state, Rng* roulette) const {
     RGB tr(1);
     for (int crossings = 0; crossings < 256; ++crossings) {
         auto hit = intersect(ray, state, tMax);
         // An opaque or specular surface blocks the ray whatever lies before it: no walk needed.
         if (hit && !indexMatched(*hit)) return RGB(0);
         if (state.inside()) {
-            const FreeFlight f = volumes_[state.volume].medium->sampleFlight(ray, state.start, hit ? hit->t : tMax, 0, 1.0);
+            const Medium& medium = *volumes_[state.volume].medium;
+            const double end = hit ? hit->t : tMax;
+            const FreeFlight f = roulette ? medium.shadowFlight(ray, state.start, end, *roulette) : medium.sampleFlight(ray, state.start, end, 0, 1.0);
             tr *= f.transmittance;
+            if (isBlack(tr)) return tr;
             if (f.exit.left) {  // out of the volume, or at a dielectric interface (which blocks)
                 hit = boundaryHit(state.volume, ray, f.exit);
                 if (!indexMatched(*hit)) return RGB(0);

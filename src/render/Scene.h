@@ -102,11 +102,17 @@ public:
     // Radiance reaching ray.o from an emitter the ray ends at: the environment where it
     // escapes (hit null), an area light it hit. (A camera path's weight applies.)
     RGB emitted(const Ray& ray, const Intersection* hit) const;
+    // Whether every way out of volume v crosses a refracting (dielectric) boundary and no light
+    // lies in its bounding box: no shadow ray from inside reaches a light, so next-event
+    // estimation there is exactly 0 and is skipped; light gets in along specular paths only.
+    bool sealed(int v) const { return sealed_[size_t(v)]; }
     // The volume and tet that hold point p (the camera), for starting paths.
     MediumState mediumAt(const glm::dvec3& p) const;
     // Transmittance along ray (unit direction) up to tMax, starting in `state`: index-matched
-    // boundaries and interfaces and media pass light; anything else blocks it.
-    RGB transmittance(Ray ray, double tMax, MediumState state) const;
+    // boundaries and interfaces and media pass light; anything else blocks it. With `roulette`,
+    // walks through media end early by Russian roulette (Medium::shadowFlight): the same
+    // expectation for less work, as next-event estimation wants.
+    RGB transmittance(Ray ray, double tMax, MediumState state, Rng* roulette = nullptr) const;
     // The closest hit that is not an index-matched boundary (those pass light unchanged), as
     // the seed found it: Embree's float hits on every surface, media boundaries and interfaces
     // included, whatever medium the ray is in (for the single-scattering baseline).
@@ -136,6 +142,10 @@ private:
     std::vector<Geometry> surfaceGeometries_, allGeometries_;
     RTCScene surfaces_ = nullptr;  // surfaces and area lights
     RTCScene all_ = nullptr;       // those and the media's boundaries: intersectOpaque only
+    // Per volume: whether a surface or area light reaches into its bounding box. A path inside a
+    // volume that none reaches meets nothing before the walk leaves it, so no Embree call is made.
+    std::vector<bool> surfacesWithin_;
+    std::vector<bool> sealed_;  // per volume, see sealed()
     double epsilon_ = 1e-6, tetSeconds_ = 0;
 };
 

@@ -71,7 +71,8 @@ RGB SingleScatterIntegrator::visibility(const Ray& ray, double tMax, Rng& rng) c
 }
 
 RGB SingleScatterIntegrator::inScattered(size_t v, const RegionOptics& optics, const glm::dvec3& p, const glm::dvec3& d, int64_t tet, Rng& rng) const {
-    if (mode_ == BoundaryMode::Tet) return directInMedium(scene_, int(v), p, d, uint32_t(tet), rng);
+    // Exact transmittance: the seed's march is the baseline, compared mode against mode.
+    if (mode_ == BoundaryMode::Tet) return directInMedium(scene_, int(v), p, d, uint32_t(tet), rng, false);
     return sampleDirect(scene_, p, rng, false, phaseScattering(optics.phase, d),
                         [&](const Ray& r, double t) { return visibility(r, t, rng); });
 }

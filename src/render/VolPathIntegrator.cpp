@@ -23,7 +23,7 @@ RGB VolPathIntegrator::radiance(const Ray& cameraRay, Rng& rng) const {
         return specular ? 1.0 : powerHeuristic(lastPdf, lightPdf(scene_, light, lastPoint, ray.d, point, triangle));
     };
     auto visibility = [&](const MediumState& from) {
-        return [this, from](const Ray& r, double tMax) { return scene_.transmittance(r, tMax, from); };
+        return [this, from, &rng](const Ray& r, double tMax) { return scene_.transmittance(r, tMax, from, &rng); };
     };
     int depth = 0;
     // Russian roulette after a few events, on the largest channel of the path's weight.
@@ -62,7 +62,8 @@ RGB VolPathIntegrator::radiance(const Ray& cameraRay, Rng& rng) const {
                     if (++depth >= maxDepth_) break;
                     const glm::dvec3 p = ray.at(flight.t);
                     const MediumState here{state.volume, WalkStart::inside(flight.tet)};
-                    L += path.weight() * sampleDirect(scene_, p, rng, true, phaseScattering(optics.phase, ray.d), visibility(here));
+                    if (!scene_.sealed(state.volume))
+                        L += path.weight() * sampleDirect(scene_, p, rng, true, phaseScattering(optics.phase, ray.d), visibility(here));
                     const double u0 = rng.uniform(), u1 = rng.uniform();
                     const glm::dvec3 wi = optics.phase.sample(ray.d, {u0, u1});
                     specular = false, lastPdf = optics.phase.eval(glm::dot(ray.d, wi)), lastPoint = p;

@@ -65,6 +65,13 @@ struct Bounds3 {
         return p.x >= lo.x && p.x <= hi.x && p.y >= lo.y && p.y <= hi.y && p.z >= lo.z && p.z <= hi.z;
     }
     double diagonal() const;
+    // Closed boxes that share a point, each grown by `margin`; false when either is empty.
+    bool overlaps(const Bounds3& b, double margin = 0) const {
+        if (empty() || b.empty()) return false;
+        for (int i = 0; i < 3; ++i)
+            if (lo[i] - margin > b.hi[i] || b.lo[i] - margin > hi[i]) return false;
+        return true;
+    }
 };
 
 // Narrows [t0, t1] to the part of the ray inside the box (slab test); false when nothing is left.
