@@ -2,11 +2,13 @@
 // ray march's boundary modes, determinism across thread counts.
 #include <cmath>
 #include <cstring>
+#include <random>
 
 #include <gtest/gtest.h>
 
 #include "TestMeshes.h"
 #include "TestScenes.h"
+#include "photon/ColumnProfile.h"
 #include "render/Integrator.h"
 #include "render/Renderer.h"
 #include "tet/Shapes.h"
@@ -91,6 +93,40 @@ TEST(Render, ShadowRayRouletteKeepsTheTransmittance) {
         EXPECT_NEAR(double(zeros) / n, 0.75, 0.02);  // one roulette
         for (int c = 0; c < 3; ++c) EXPECT_NEAR(mean[c], exact[c], 5 * se[c]) << c;
     }
+}
+
+// The photon integrator draws its single-scattering distance from the eye stretch's column
+// profile (ColumnProfile::atDepth) instead of walking the tets again: the same point and tet as
+// a free flight (Medium::sampleFlight) with that optical depth as its target, also where the
+// density varies linearly inside each tet.
+TEST(Render, ColumnProfileEventsAreFreeFlights) {
+    MediumDesc m = sphereMedium(RGB(0.2, 0.5, 1.0), RGB(1, 2, 3));
+    m.density.type = DensityDesc::Type::Noise;
+    m.density.offset = 1, m.density.amplitude = 0.9, m.density.frequency = 3;
+    m.tetOptions.maxVolume = 0.01;
+    const Scene scene(sceneWith(m, 8));
+    const Medium& medium = *scene.volumes()[0].medium;
+    ASSERT_FALSE(medium.homogeneous());
+    const MediumState centre = scene.mediumAt({0.05, -0.02, 0.03});
+    std::mt19937 random(11);
+    std::uniform_real_distribution<double> u(0, 1);
+    int events = 0;
+    for (int i = 0; i < 500; ++i) {
+        const double z = 2 * u(random) - 1, phi = 2 * M_PI * u(random), s = std::sqrt(1 - z * z);
+        const Ray ray{{0.05, -0.02, 0.03}, {s * std::cos(phi), s * std::sin(phi), z}};
+        const ColumnProfile column(medium, ray, centre.start, INFINITY);
+        const int c = i % 3;
+        const double x = u(random) * 1.2;  // past the stretch's optical depth at times
+        const double depth = x * column.depth()[c];
+        const FreeFlight flight = medium.sampleFlight(ray, centre.start, INFINITY, c, -std::expm1(-depth));
+        const auto event = column.atDepth(c, depth);
+        ASSERT_EQ(event.has_value(), flight.scattered) << i;
+        if (!event) continue;
+        ++events;
+        EXPECT_NEAR(event->t, flight.t, 1e-9) << i;
+        EXPECT_EQ(event->tet, flight.tet) << i;
+    }
+    EXPECT_GT(events, 350);
 }
 
 // (a) A purely absorbing sphere in front of a white environment: every pixel is exactly the

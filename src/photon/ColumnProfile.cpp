@@ -35,4 +35,16 @@ RGB ColumnProfile::transmittance(double t) const {
     return exp(-(p->depthIn + medium_.at(p->tet).sigmaT * medium_.densityIntegral(p->tet, ray_, p->tIn, std::min(t, p->tOut))));
 }
 
+std::optional<ColumnProfile::Event> ColumnProfile::atDepth(int c, double depth) const {
+    // The last piece starting at or before that depth: depths only grow along the ray.
+    const auto it = std::upper_bound(pieces_.begin(), pieces_.end(), depth, [c](double d, const Piece& p) { return d < p.depthIn[c]; });
+    if (it == pieces_.begin()) return std::nullopt;
+    const Piece& p = *(it - 1);
+    const double sigma = medium_.at(p.tet).sigmaT[c];
+    const double column = (depth - p.depthIn[c]) / sigma;  // still to go in this piece
+    const double next = (it == pieces_.end() ? total_ : it->columnIn) - p.columnIn;
+    if (!(sigma > 0) || column > next) return std::nullopt;
+    return Event{p.tIn + medium_.columnDistance(p.tet, ray_, p.tIn, p.tOut, column), p.tet};
+}
+
 }  // namespace tetglow

@@ -2,6 +2,7 @@
 // as the tet walk crossed it, with the optical depth at each piece's start, so that the
 // transmittance to any point on the ray is exact and costs one binary search.
 #pragma once
+#include <optional>
 #include <vector>
 
 #include "photon/Medium.h"
@@ -29,6 +30,13 @@ public:
     // Column from the start to t, clamped to [begin, end].
     double column(double t) const;
     RGB transmittance(double t) const;
+    // Where channel c's optical depth from the start reaches `depth`, or null where the stretch
+    // ends first: a free flight sampled from the profile, without walking the tets again.
+    struct Event {
+        double t;
+        uint32_t tet;
+    };
+    std::optional<Event> atDepth(int c, double depth) const;
 
 private:
     // The piece holding t (the last one starting at or before it), or null before the first.

@@ -66,6 +66,14 @@ double Medium::densityIntegral(uint32_t tet, const Ray& ray, double tIn, double 
     return (tOut - tIn) * density(tet, ray.at(0.5 * (tIn + tOut)));
 }
 
+double Medium::columnDistance(uint32_t tet, const Ray& ray, double tIn, double tOut, double column) const {
+    if (homogeneous()) return std::min(column, tOut - tIn);
+    // density(tIn + x) = r0 + k x: r0 x + k x^2 / 2 = column, in the cancellation-free form.
+    const double r0 = density(tet, ray.at(tIn));
+    const double k = (density(tet, ray.at(tOut)) - r0) / (tOut - tIn);
+    return std::min(2 * column / (r0 + std::sqrt(std::max(0.0, r0 * r0 + 2 * k * column))), tOut - tIn);
+}
+
 TetWalk Medium::beginWalk(const Ray& ray, WalkStart start) const {
     return start.throughSurface ? TetWalk::enter(mesh(), ray, start.index) : TetWalk::start(mesh(), ray, start.index, 0);
 }
@@ -82,17 +90,8 @@ FreeFlight Medium::sampleFlight(const Ray& ray, WalkStart start, double tMax, in
         const double piece = densityIntegral(s.tet, ray, tIn, tOut), sigma = optics.sigmaT[hero];
         if (sigma > 0 && depth[hero] + sigma * piece >= target) {
             const double need = (target - depth[hero]) / sigma;  // column still to go
-            double x;  // distance into the segment where the column reaches it
-            if (homogeneous()) {
-                x = need;
-            } else {
-                // density(tIn + x) = r0 + k x: r0 x + k x^2 / 2 = need, in the cancellation-free form.
-                const double r0 = density(s.tet, ray.at(tIn));
-                const double k = (density(s.tet, ray.at(tOut)) - r0) / (tOut - tIn);
-                x = 2 * need / (r0 + std::sqrt(std::max(0.0, r0 * r0 + 2 * k * need)));
-            }
             flight.scattered = true;
-            flight.t = std::min(tIn + x, tOut);
+            flight.t = tIn + columnDistance(s.tet, ray, tIn, tOut, need);
             flight.tet = s.tet;
             flight.density = density(s.tet, ray.at(flight.t));
             depth += optics.sigmaT * need;

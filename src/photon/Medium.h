@@ -94,6 +94,9 @@ public:
     double density(uint32_t tet, const glm::dvec3& p) const;
     // Density integrated along the ray (unit direction) over [tIn, tOut] inside `tet`.
     double densityIntegral(uint32_t tet, const Ray& ray, double tIn, double tOut) const;
+    // The distance x from tIn at which the density integrated inside `tet` reaches `column`
+    // (at most tOut - tIn): densityIntegral inverted.
+    double columnDistance(uint32_t tet, const Ray& ray, double tIn, double tOut, double column) const;
 
     TetWalk beginWalk(const Ray& ray, WalkStart start) const;
     // Calls visit(segment) for the walk's segments from `start` in order, crossing the

@@ -111,7 +111,7 @@ RGB PhotonIntegrator::radiance(const Ray& cameraRay, Rng& rng) const {
         if (state.inside()) {
             const double tMax = hit ? hit->t : INFINITY;
             const ColumnProfile column(*scene_.volumes()[state.volume].medium, ray, state.start, tMax);
-            L += beta * inMedium(state.volume, ray, state.start, tMax, column, rng);
+            L += beta * inMedium(state.volume, ray, column, rng);
             beta *= exp(-column.depth());
             if (isBlack(beta)) break;
             // Out of the volume or at a dielectric interface: the walk's exit face is the surface.
@@ -151,7 +151,7 @@ int PhotonIntegrator::mediumOf(int v, uint32_t tet) const {
     return volume.media[size_t(volume.medium->mesh().region(tet))];
 }
 
-RGB PhotonIntegrator::inMedium(int v, const Ray& ray, WalkStart start, double tMax, const ColumnProfile& column, Rng& rng) const {
+RGB PhotonIntegrator::inMedium(int v, const Ray& ray, const ColumnProfile& column, Rng& rng) const {
     const Medium& medium = *scene_.volumes()[v].medium;
     const auto& pieces = column.pieces();
     RGB L(0);
@@ -169,7 +169,7 @@ RGB PhotonIntegrator::inMedium(int v, const Ray& ray, WalkStart start, double tM
     }
     if (!medium.scatters() || pieces.empty()) return L;
     if (desc_.estimate == PhotonEstimate::KnnMarch) return L + marchKnn(v, ray, column, rng);
-    return L + directAlong(v, ray, start, tMax, column, rng) + beamEstimate(v, ray, column);
+    return L + directAlong(v, ray, column, rng) + beamEstimate(v, ray, column);
 }
 
 RGB PhotonIntegrator::marchKnn(int v, const Ray& ray, const ColumnProfile& column, Rng& rng) const {
@@ -254,7 +254,7 @@ RGB PhotonIntegrator::beamEstimate(int v, const Ray& ray, const ColumnProfile& c
     return L;
 }
 
-RGB PhotonIntegrator::directAlong(int v, const Ray& ray, WalkStart start, double tMax, const ColumnProfile& column, Rng& rng) const {
+RGB PhotonIntegrator::directAlong(int v, const Ray& ray, const ColumnProfile& column, Rng& rng) const {
     if (scene_.lights().empty() || scene_.sealed(v)) return RGB(0);
     const Medium& medium = *scene_.volumes()[v].medium;
     // The distance follows one channel's transmittance, truncated to the stretch; the channels
@@ -266,16 +266,18 @@ RGB PhotonIntegrator::directAlong(int v, const Ray& ray, WalkStart start, double
     if (count == 0) return RGB(0);
     const RGB trEnd = exp(-depth);
     const int hero = channels[std::min(count - 1, int(rng.uniform() * count))];
-    const FreeFlight flight = medium.sampleFlight(ray, start, tMax, hero, rng.uniform() * (1 - trEnd[hero]));
-    if (!flight.scattered) return RGB(0);
-    const RegionOptics& optics = medium.at(flight.tet);
+    // Read off the column profile the eye stretch already walked.
+    const auto event = column.atDepth(hero, -std::log1p(-rng.uniform() * (1 - trEnd[hero])));
+    if (!event) return RGB(0);
+    const RegionOptics& optics = medium.at(event->tet);
+    const RGB tr = column.transmittance(event->t);
     double pdf = 0;  // mean over the channels of sigma_t tr / (1 - tr(end)), per unit column
     for (int i = 0; i < count; ++i) {
         const int c = channels[i];
-        pdf += optics.sigmaT[c] * flight.transmittance[c] / (1 - trEnd[c]) / count;
+        pdf += optics.sigmaT[c] * tr[c] / (1 - trEnd[c]) / count;
     }
-    const RGB weight = flight.transmittance * optics.params.sigmaS / pdf;
-    return weight * directInMedium(scene_, v, ray.at(flight.t), ray.d, flight.tet, rng);
+    const RGB weight = tr * optics.params.sigmaS / pdf;
+    return weight * directInMedium(scene_, v, ray.at(event->t), ray.d, event->tet, rng);
 }
 
 RGB PhotonIntegrator::caustics(const Intersection& hit, const glm::dvec3& d, const MaterialDesc& material) const {

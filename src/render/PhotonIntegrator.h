@@ -64,11 +64,12 @@ private:
     };
 
     // Light scattered and emitted towards ray.o along the stretch `column` of volume v.
-    RGB inMedium(int v, const Ray& ray, WalkStart start, double tMax, const ColumnProfile& column, Rng& rng) const;
+    RGB inMedium(int v, const Ray& ray, const ColumnProfile& column, Rng& rng) const;
     RGB marchKnn(int v, const Ray& ray, const ColumnProfile& column, Rng& rng) const;
     RGB beamEstimate(int v, const Ray& ray, const ColumnProfile& column) const;
-    // Single scattering at a distance drawn along the stretch (one-sample spectral MIS).
-    RGB directAlong(int v, const Ray& ray, WalkStart start, double tMax, const ColumnProfile& column, Rng& rng) const;
+    // Single scattering at a distance drawn along the stretch (one-sample spectral MIS), read off
+    // its column profile.
+    RGB directAlong(int v, const Ray& ray, const ColumnProfile& column, Rng& rng) const;
     // The photons of `map` around p, nearest first: those within the fixed radius times `scale`,
     // or the k nearest within maxRadius. Returns the gather radius: the fixed one, or `scale`
     // times the k-th distance (maxRadius when fewer than k are within reach).
