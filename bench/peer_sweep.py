@@ -5,12 +5,13 @@ Every point is a whole process (start-up, scene load, tets from the cache, photo
 rendering, EXR written) timed by this script, on the same machine with the same thread count:
 `tetglow render --time T` for tetglow, `blender -b --python cycles_render.py --spp N` for Cycles
 with N chosen from a fit of its whole-process time against spp. The error is the MSE over
-pixels and channels against a long Cycles reference, less the reference's own MSE, which is
+pixels and channels against a long Cycles reference (or tetglow volpath's, --volpath-reference), less the reference's own MSE, which is
 estimated from a second reference with another seed (MSE(a, b) / 2) and must be at most a
 quarter of the smallest MSE plotted; the script says so when it is not.
 
   bench/peer_sweep.py [--build DIR] [--scenes fish,blub,sphere] [--budgets 2,5,15,60]
-                      [--res 100x100] [--threads 2] [--reference-spp 16384] [--out DIR] [--docs]
+                      [--res 100x100] [--threads 2] [--reference-spp 16384] [--volpath-reference fish]
+                      [--out DIR] [--docs]
 
 --docs writes docs/peer-<scene>.{png,svg}, docs/peer-sweep.json and the peer-sweep section of
 docs/RESULTS.md. Needs Blender 3.4 and numpy for its Python (`apt-get install blender python3-numpy`) and
@@ -80,10 +81,20 @@ def cycles_at(r, seconds):
     return m0 * (t0 - o) / (seconds - o) if seconds > o else None
 
 
+def reference(a, blender, scene, name, out, seed):
+    """A long render for the reference: Cycles', or tetglow volpath's where --volpath-reference
+    names the scene (where it is the more efficient unbiased renderer, as on fish.json, whose
+    light reaches the medium and the caustic through glass)."""
+    if name in a.volpath_reference:
+        return timed([os.path.join(a.build, "tetglow"), "render", scene, "-o", out, "--integrator", "volpath", "--spp",
+                      str(a.reference_spp), "--resolution", a.res, "--threads", str(a.threads), "--seed", str(seed)], out)
+    return cycles(blender, scene, out, a.reference_spp, seed, a)
+
+
 def sweep_scene(a, blender, name, work):
     scene = os.path.join(ROOT, "scenes", name + ".json")
     refs = [os.path.join(work, f"{name}-ref{s}.exr") for s in (1, 2)]
-    ref_seconds = [cycles(blender, scene, r, a.reference_spp, 1000 + s, a) for s, r in enumerate(refs)]
+    ref_seconds = [reference(a, blender, scene, name, r, 1000 + s) for s, r in enumerate(refs)]
     ref_error = mse(a, refs[0], refs[1]) / 2  # each reference's own MSE: the two are independent
     # Cycles' whole-process time against spp, t = overhead + spp * cost: from 16 spp and from
     # the first doubling that takes at least 2 s more (Blender's start-up alone is about a second).
@@ -104,7 +115,8 @@ def sweep_scene(a, blender, name, work):
             seconds = tetglow(a, scene, out, method, max(0.05, budget - a.tetglow_overhead), 1)
             curves[method].append((seconds, mse(a, out, refs[0], ref_error), None))
         print(f"{name} {budget} s: " + ", ".join(f"{k} {v[-1][0]:.1f} s MSE {v[-1][1]:.3g}" for k, v in curves.items()), flush=True)
-    return {"scene": name, "reference_spp": a.reference_spp, "reference_seconds": ref_seconds, "reference_mse": ref_error,
+    return {"scene": name, "reference": "tetglow volpath" if name in a.volpath_reference else "Cycles",
+            "reference_spp": a.reference_spp, "reference_seconds": ref_seconds, "reference_mse": ref_error,
             "cycles_overhead_s": overhead, "cycles_s_per_spp": cost, "curves": curves}
 
 
@@ -129,11 +141,13 @@ def main():
     p.add_argument("--res", default="100x100")
     p.add_argument("--threads", type=int, default=2)
     p.add_argument("--reference-spp", type=int, default=16384)
+    p.add_argument("--volpath-reference", default="", help="scenes (comma-separated) whose reference tetglow volpath renders")
     p.add_argument("--tetglow-overhead", type=float, default=0.3, help="seconds of start-up taken off --time")
     p.add_argument("--out", default=None)
     p.add_argument("--docs", action="store_true")
     a = p.parse_args()
     a.budgets = [float(b) for b in a.budgets.split(",")]
+    a.volpath_reference = [s for s in a.volpath_reference.split(",") if s]
     blender = shutil.which("blender")
     if not blender or not os.path.exists(PEER):
         print(f"peer_sweep: skipped: needs blender on PATH ({blender or 'not found'}) and {PEER} "
