@@ -9,9 +9,9 @@ pixels and channels against a long Cycles reference (or tetglow volpath's, --vol
 estimated from a second reference with another seed (MSE(a, b) / 2) and must be at most a
 quarter of the smallest MSE plotted; the script says so when it is not.
 
-  bench/peer_sweep.py [--build DIR] [--scenes fish,blub,sphere] [--budgets 2,5,15,60]
-                      [--res 100x100] [--threads 2] [--reference-spp 16384] [--volpath-reference fish]
-                      [--out DIR] [--docs]
+  bench/peer_sweep.py [--build DIR] [--scenes fish-body,blub,sphere] [--budgets 2,5,15,60]
+                      [--res 100x100] [--threads 2] [--reference-spp 16384] [--volpath-reference fish-body]
+                      [--photons-per-pixel 1] [--out DIR] [--docs]
 
 --docs writes docs/peer-<scene>.{png,svg}, docs/peer-sweep.json and the peer-sweep section of
 docs/RESULTS.md. Needs Blender 3.4 and numpy for its Python (`apt-get install blender python3-numpy`) and
@@ -28,7 +28,7 @@ import sys
 import tempfile
 import time
 
-from benchlib import ROOT, diff, fail, loglog_chart, machine, replace_section
+from benchlib import ROOT, diff, fail, fish_variant, loglog_chart, machine, replace_section
 
 PEER = os.path.join(os.path.dirname(ROOT), "shared", "peers", "cycles_render.py")
 METHODS = {"volpath": ["--integrator", "volpath"], "photon": ["--integrator", "photon"]}
@@ -62,7 +62,11 @@ def cycles(blender, scene, out, spp, seed, a):
 
 
 def tetglow(a, scene, out, method, seconds, seed):
-    return timed([os.path.join(a.build, "tetglow"), "render", scene, "-o", out, *METHODS[method], "--time", f"{seconds:.3f}",
+    extra = []
+    if method == "photon":  # the photon paths per pass, from the image's pixels (docs/RESULTS.md, "Photon passes")
+        w, h = map(int, a.res.split("x"))
+        extra = ["--photons", str(max(1, round(a.photons_per_pixel * w * h)))]
+    return timed([os.path.join(a.build, "tetglow"), "render", scene, "-o", out, *METHODS[method], *extra, "--time", f"{seconds:.3f}",
                   "--resolution", a.res, "--threads", str(a.threads), "--seed", str(seed)], out)
 
 
@@ -83,16 +87,24 @@ def cycles_at(r, seconds):
 
 def reference(a, blender, scene, name, out, seed):
     """A long render for the reference: Cycles', or tetglow volpath's where --volpath-reference
-    names the scene (where it is the more efficient unbiased renderer, as on fish.json, whose
-    light reaches the medium and the caustic through glass)."""
+    names the scene (where it is the more efficient unbiased renderer: the sweep's own volpath
+    and Cycles curves say which)."""
     if name in a.volpath_reference:
         return timed([os.path.join(a.build, "tetglow"), "render", scene, "-o", out, "--integrator", "volpath", "--spp",
                       str(a.reference_spp), "--resolution", a.res, "--threads", str(a.threads), "--seed", str(seed)], out)
     return cycles(blender, scene, out, a.reference_spp, seed, a)
 
 
+def scene_path(name, work):
+    """scenes/NAME.json, or fish-body: fish.json with its body alone (the peer script renders
+    no nested media, so not the organs; the body keeps its glass skin)."""
+    if name == "fish-body":
+        return fish_variant(work, name, lambda s: s.update(media=s["media"][:1]))
+    return os.path.join(ROOT, "scenes", name + ".json")
+
+
 def sweep_scene(a, blender, name, work):
-    scene = os.path.join(ROOT, "scenes", name + ".json")
+    scene = scene_path(name, work)
     refs = [os.path.join(work, f"{name}-ref{s}.exr") for s in (1, 2)]
     ref_seconds = [reference(a, blender, scene, name, r, 1000 + s) for s, r in enumerate(refs)]
     ref_error = mse(a, refs[0], refs[1]) / 2  # each reference's own MSE: the two are independent
@@ -136,12 +148,13 @@ def table(results):
 def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--build", default=os.path.join(ROOT, "build"))
-    p.add_argument("--scenes", default="fish,blub,sphere")
+    p.add_argument("--scenes", default="fish-body,blub,sphere")
     p.add_argument("--budgets", default="2,5,15,60")
     p.add_argument("--res", default="100x100")
     p.add_argument("--threads", type=int, default=2)
     p.add_argument("--reference-spp", type=int, default=16384)
-    p.add_argument("--volpath-reference", default="", help="scenes (comma-separated) whose reference tetglow volpath renders")
+    p.add_argument("--volpath-reference", default="fish-body", help="scenes (comma-separated) whose reference tetglow volpath renders")
+    p.add_argument("--photons-per-pixel", type=float, default=1.0, help="photon: photon paths per pass and pixel")
     p.add_argument("--tetglow-overhead", type=float, default=0.3, help="seconds of start-up taken off --time")
     p.add_argument("--out", default=None)
     p.add_argument("--docs", action="store_true")

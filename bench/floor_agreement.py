@@ -1,0 +1,141 @@
+#!/usr/bin/env python3
+"""Whether the photon integrator agrees with volpath on the directly lit floor (issue 18): block
+z-tests on BxB-pixel blocks of converged images of fish.json and blub.json.
+
+Per scene: K renders of each method with seeds 1..K (volpath --spp N, photon --passes P). For
+each block of the directly lit floor, z = (photon mean - volpath mean) / sqrt(s_p^2 / K + s_v^2 / K)
+with s^2 the variance of the block's mean over the K seeds: photon noise is correlated from pixel
+to pixel (one photon lights many), so only independent renders say how much a block mean
+varies. Where both are unbiased, z is about N(0, 1) (Student's t with few seeds: heavier tails).
+
+The directly lit floor: pixels whose direct light (--max-depth 2, sky off) is the same with the
+media made opaque black as with no media at all (to 1e-3), and above 0: nothing of the medium in
+the pixel or in the way of its light. A block counts when all its pixels do.
+
+  bench/floor_agreement.py [--build DIR] [--scenes fish,blub] [--res 200x200] [--runs 4]
+                           [--spp 1024] [--passes 256] [--block 20] [--docs]
+
+The per-pixel work runs in Blender's Python (bench/exr_blocks.py: its image loader reads
+OpenEXR, numpy from python3-numpy); without Blender the script says so and exits 0. --docs
+rewrites the floor-agreement section of docs/RESULTS.md.
+"""
+import argparse
+import json
+import math
+import os
+import shutil
+import subprocess
+import tempfile
+
+from benchlib import ROOT, fail, machine, replace_section, tetglow
+
+
+def variant(scene, work, name, edit):
+    """work/name.json: the scene after edit(scene), its mesh paths made absolute."""
+    with open(scene) as f:
+        s = json.load(f)
+    for m in s["media"] + s.get("cavities", []):
+        if m["shape"].get("file"):
+            m["shape"]["file"] = os.path.join(os.path.dirname(os.path.abspath(scene)), m["shape"]["file"])
+    edit(s)
+    path = os.path.join(work, name + ".json")
+    with open(path, "w") as f:
+        json.dump(s, f)
+    return path
+
+
+def direct_only(s, opaque):
+    s["lights"] = [l for l in s["lights"] if l["type"] != "environment"]
+    if opaque:
+        for m in s["media"]:
+            m.update({"sigma_a": 1e4, "sigma_s": 0, "emission": 0, "boundary": {"type": "interface"}})
+            m.pop("density", None)
+    else:
+        s["media"] = []
+        s.pop("cavities", None)
+
+
+def blocks(blender, block, mask, free, images):
+    r = subprocess.run([blender, "-b", "--factory-startup", "--python", os.path.join(ROOT, "bench", "exr_blocks.py"), "--",
+                        "--block", str(block), "--mask", mask, "--unmasked", free, *images], capture_output=True, text=True)
+    line = next((l for l in r.stdout.splitlines() if l.startswith("EXR_BLOCKS ")), None)
+    if r.returncode != 0 or not line:
+        fail(f"exr_blocks.py: exit {r.returncode}: {(r.stderr + r.stdout).strip()[-400:]}")
+    return json.loads(line[len("EXR_BLOCKS "):])
+
+
+def spread(values):
+    mean = sum(values) / len(values)
+    return mean, sum((v - mean) ** 2 for v in values) / (len(values) - 1)
+
+
+def measure(a, blender, name, work):
+    scene = os.path.join(ROOT, "scenes", name + ".json")
+    binary = os.path.join(a.build, "tetglow")
+    common = ["--resolution", a.res, "--threads", str(a.threads)]
+    mask, free = os.path.join(work, f"{name}-mask.exr"), os.path.join(work, f"{name}-free.exr")
+    for out, opaque in ((mask, True), (free, False)):
+        s = variant(scene, work, f"{name}-{'opaque' if opaque else 'free'}", lambda s: direct_only(s, opaque))
+        tetglow(binary, "render", s, "-o", out, "--integrator", "volpath", "--max-depth", 2, "--spp", 64, *common)
+    runs = {"volpath": [], "photon": []}
+    for k in range(1, a.runs + 1):
+        for method, extra in (("volpath", ["--spp", a.spp]), ("photon", ["--passes", a.passes])):
+            out = os.path.join(work, f"{name}-{method}-{k}.exr")
+            tetglow(binary, "render", scene, "-o", out, "--integrator", method, "--seed", k, *extra, *common)
+            runs[method].append(out)
+    b = blocks(blender, a.block, mask, free, runs["volpath"] + runs["photon"])
+    zs, ratios = [], []
+    for i in range(len(b["blocks"])):
+        mv, sv = spread([b["means"][p][i] for p in runs["volpath"]])
+        mp, sp = spread([b["means"][p][i] for p in runs["photon"]])
+        zs.append((mp - mv) / math.sqrt((sv + sp) / a.runs) if sv + sp > 0 else 0.0)
+        ratios.append(mp / mv if mv > 0 else float("nan"))
+    mean_ratio = sum(ratios) / len(ratios) if ratios else float("nan")
+    return {"scene": name, "blocks": len(zs), "masked_pixels": b["masked_pixels"], "z": zs, "ratios": ratios,
+            "mean_z": sum(zs) / len(zs) if zs else float("nan"), "above_3": sum(abs(z) > 3 for z in zs),
+            "mean_ratio": mean_ratio}
+
+
+def table(a, results):
+    rows = [f"| scene | floor blocks ({a.block}x{a.block} px) | photon / volpath, mean over blocks | mean z | std z | abs(z) > 3 |",
+            "|---|---|---|---|---|---|"]
+    for r in results:
+        n = r["blocks"]
+        std = math.sqrt(sum((z - r["mean_z"]) ** 2 for z in r["z"]) / (n - 1)) if n > 1 else float("nan")
+        rows.append(f"| {r['scene']} | {n} ({r['masked_pixels']} px in the mask) | {r['mean_ratio']:.5f} | "
+                    f"{r['mean_z']:.2f} | {std:.2f} | {r['above_3']} of {n} |")
+    return "\n".join(rows)
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--build", default=os.path.join(ROOT, "build"))
+    p.add_argument("--scenes", default="fish,blub")
+    p.add_argument("--res", default="200x200")
+    p.add_argument("--threads", type=int, default=2)
+    p.add_argument("--runs", type=int, default=4)
+    p.add_argument("--spp", type=int, default=1024)
+    p.add_argument("--passes", type=int, default=256)
+    p.add_argument("--block", type=int, default=20)
+    p.add_argument("--out", default=None)
+    p.add_argument("--docs", action="store_true")
+    a = p.parse_args()
+    if a.runs < 2:
+        fail("--runs must be at least 2: a block's variance comes from the runs")
+    blender = shutil.which("blender")
+    if not blender:
+        print("floor_agreement: skipped: needs blender on PATH (its Python reads OpenEXR) and python3-numpy")
+        return
+    work = a.out or tempfile.mkdtemp(prefix="tetglow-floor-")
+    os.makedirs(work, exist_ok=True)
+    print(f"floor_agreement: {machine()}; work in {work}", flush=True)
+    results = [measure(a, blender, name, work) for name in a.scenes.split(",")]
+    text = table(a, results)
+    print(text)
+    if a.docs:
+        replace_section("floor-agreement", f"Measured on {machine()}: `bench/floor_agreement.py --res {a.res} --runs {a.runs} "
+                                           f"--spp {a.spp} --passes {a.passes} --block {a.block}`.\n\n" + text)
+
+
+if __name__ == "__main__":
+    main()
