@@ -123,6 +123,73 @@ TEST(Photon, EstimatesAgreeWithVolpathAndEachOther) {
     EXPECT_NEAR(beam.rim, ref.rim, 0.03 * ref.rim);
 }
 
+// Surface photons that came from a light by specular events alone are caustics, the only ones
+// final gathering takes from photons: through a clear glass ball all of them are, through an
+// index-matched scattering sphere none, through a glass skin with a glowing medium some.
+TEST(Photon, CausticPhotonsCameFromALightBySpecularEventsOnly) {
+    struct Case {
+        const char* name;
+        MaterialType boundary;
+        RGB sigmaS, emission;
+    };
+    for (const Case& c : {Case{"clear glass", MaterialType::Dielectric, RGB(0), RGB(0)},
+                          Case{"index-matched", MaterialType::Interface, RGB(1.5), RGB(0.3)},
+                          Case{"glowing, in glass", MaterialType::Dielectric, RGB(1.5), RGB(0.3)}}) {
+        SceneDesc desc = closedWorld();
+        desc.media[0].sigmaA = RGB(0), desc.media[0].sigmaS = c.sigmaS, desc.media[0].emission = c.emission;
+        desc.media[0].boundaryMaterial = {c.boundary, RGB(0), c.boundary == MaterialType::Dielectric ? 1.4 : 1.0};
+        const Scene scene(desc);
+        const TracedPhotons traced = tracePhotons(scene, PhotonSource(scene), {50000, 1 << 20, 3, 0});
+        ASSERT_GT(traced.surface.size(), 500u) << c.name;
+        if (c.boundary == MaterialType::Interface) {
+            EXPECT_EQ(traced.caustic.size(), 0u) << c.name;
+        } else if (isBlack(c.sigmaS)) {
+            EXPECT_EQ(traced.caustic.size(), traced.surface.size()) << c.name;
+        } else {
+            EXPECT_GT(traced.caustic.size(), 100u) << c.name;
+            EXPECT_LT(traced.caustic.size(), traced.surface.size() * 9 / 10) << c.name;
+        }
+    }
+}
+
+// A floor lit only by what a scattering sphere sends it (the spot's cone holds the sphere, not
+// the floor the camera sees). Estimated from the surface photons, the floor's light is blurred
+// by the kernel: too bright in its convex tail. Final gathering takes it by one more bounce
+// into the medium's own estimate and agrees with volpath.
+TEST(Photon, FinalGatherTakesAFloorsIndirectLightWithoutBlur) {
+    SceneDesc desc = sceneWith(sphereMedium(RGB(0.05), RGB(3.0), 0.3), 12);
+    desc.surfaces.push_back({"floor", quad({-6, -1.2, -6}, {0, 0, 12}, {12, 0, 0}), {MaterialType::Diffuse, RGB(0.8)}});
+    LightDesc spot;
+    spot.type = LightType::Spot, spot.position = {0, 3, 0}, spot.lookAt = {0, 0, 0}, spot.coneAngle = 15, spot.coneDelta = 2;
+    spot.intensity = RGB(40);
+    desc.lights = {spot};
+    desc.camera.position = {2.6, 0.2, 0}, desc.camera.lookAt = {2.6, -1.2, 0}, desc.camera.up = {0, 0, 1}, desc.camera.fov = 40;
+    const Scene scene(desc);
+    const auto mean = [&](const IntegratorDesc& integ, int spp) {
+        auto integrator = makeIntegrator(scene, integ);
+        RenderOptions options;
+        options.spp = spp;
+        const Image image = render(scene, *integrator, options).image;
+        double sum = 0;
+        for (const auto& p : image.pixels) sum += average(RGB(p));
+        return sum / double(image.pixels.size());
+    };
+    IntegratorDesc volpath;
+    volpath.seed = 3;
+    const double reference = mean(volpath, 4096);
+    IntegratorDesc photon;
+    photon.type = IntegratorType::Photon;
+    photon.photons = 20000;
+    photon.seed = 4;
+    const double gathered = mean(photon, 64);
+    photon.finalGather = false;
+    const double blurred = mean(photon, 64);
+    std::printf("floor mean: volpath %.5f, photon with final gather %.5f, without %.5f\n", reference, gathered, blurred);
+    ASSERT_GT(reference, 1e-3);
+    EXPECT_NEAR(gathered, reference, 0.03 * reference);
+    EXPECT_GT(std::abs(blurred - reference), 2 * std::abs(gathered - reference));
+}
+
 TEST(Photon, RadiusShrinksProgressively) {
     EXPECT_EQ(PhotonIntegrator::radiusScale(0, 0.7, 3), 1.0);
     // pass 1: r^3 scales by (1 + 0.7) / 2

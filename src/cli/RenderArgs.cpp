@@ -34,6 +34,7 @@ void applyOverrides(const RenderArgs& o, SceneDesc& scene) {
     if (o.radius > 0) integ.radius = o.radius;
     if (const auto v = valueOf(kEstimateNames, o.estimate)) integ.estimate = *v;
     if (!o.boundaryCorrection.empty()) integ.boundaryCorrection = o.boundaryCorrection == "on";
+    if (!o.finalGather.empty()) integ.finalGather = o.finalGather == "on";
     if (o.time > 0) integ.timeLimit = o.time, integ.spp = o.spp ? o.spp : kMaxSpp;
     if (!o.resolution.empty()) {
         const auto [w, h] = parsePair(o.resolution, 'x');
@@ -69,6 +70,8 @@ std::vector<CLI::Option*> addRenderArgs(CLI::App* cmd, RenderArgs& o) {
     add(cmd->add_option("--estimate", o.estimate, "photon: knn-march (the seed's march with a k-NN lookup per step) or beam")
             ->check(CLI::IsMember(namesOf(kEstimateNames))));
     add(cmd->add_option("--boundary-correction", o.boundaryCorrection, "photon: divide each kernel by the part of its ball inside the medium (on|off)")
+            ->check(CLI::IsMember({"on", "off"})));
+    add(cmd->add_option("--final-gather", o.finalGather, "photon: diffuse surfaces seen from the eye gather indirect light by one more bounce (on|off)")
             ->check(CLI::IsMember({"on", "off"})));
     auto* passes = add(cmd->add_option("--passes", o.spp, "photon: passes, each with fresh photons and one sample per pixel (the same as --spp)")
                            ->check(CLI::Range(1, kMaxSpp)));

@@ -93,6 +93,8 @@ void PhotonIntegrator::beginPass(uint64_t pass) {
     stats_.surfacePhotons += traced.surface.size();
     surface_ = traced.surface.empty() ? nullptr : std::make_unique<PhotonMap>(std::move(traced.surface));
     if (surface_) bytes += surface_->bytes();
+    caustic_ = traced.caustic.empty() || !desc_.finalGather ? nullptr : std::make_unique<PhotonMap>(std::move(traced.caustic));
+    if (caustic_) bytes += caustic_->bytes();
     stats_.paths += traced.paths;
     stats_.energy.add(traced.energy);
     stats_.bytes = std::max(stats_.bytes, bytes);
@@ -104,6 +106,9 @@ RGB PhotonIntegrator::radiance(const Ray& cameraRay, Rng& rng) const {
     Ray ray = cameraRay;
     MediumState state = cameraMedium_;
     int depth = 0;
+    // After the final-gather bounce: emitters it reaches were counted by next-event estimation
+    // or as caustics, and its next diffuse surface ends the path.
+    bool gathering = false;
     // Index-matched boundaries do not count as events; the cap only guards against rays that
     // graze a boundary forever.
     for (int crossings = 0; crossings < 100000; ++crossings) {
@@ -118,7 +123,7 @@ RGB PhotonIntegrator::radiance(const Ray& cameraRay, Rng& rng) const {
             if (column.exit().left) hit = scene_.boundaryHit(state.volume, ray, column.exit());
         }
         if (!hit || hit->kind == HitKind::Light) {
-            L += beta * scene_.emitted(ray, hit ? &*hit : nullptr);
+            if (!gathering) L += beta * scene_.emitted(ray, hit ? &*hit : nullptr);
             break;
         }
         if (scene_.crossInterface(*hit, ray, state)) continue;
@@ -128,8 +133,12 @@ RGB PhotonIntegrator::radiance(const Ray& cameraRay, Rng& rng) const {
             L += beta * sampleDirect(scene_, hit->p, rng, false, [&](const glm::dvec3& wi) {
                 return Scattering{evaluateMaterial(material, ray.d, hit->n, wi), 0};
             }, [&](const Ray& r, double t) { return scene_.transmittance(r, t, here, &rng); });
-            L += beta * caustics(*hit, ray.d, material);
-            break;
+            if (gathering || !desc_.finalGather) {
+                L += beta * caustics(surface_.get(), *hit, ray.d, material);
+                break;
+            }
+            L += beta * caustics(caustic_.get(), *hit, ray.d, material);
+            gathering = true;
         }
         if (++depth >= desc_.maxDepth) break;
         const double u0 = rng.uniform(), u1 = rng.uniform();
@@ -280,15 +289,15 @@ RGB PhotonIntegrator::directAlong(int v, const Ray& ray, const ColumnProfile& co
     return weight * directInMedium(scene_, v, ray.at(event->t), ray.d, event->tet, rng);
 }
 
-RGB PhotonIntegrator::caustics(const Intersection& hit, const glm::dvec3& d, const MaterialDesc& material) const {
-    if (!surface_) return RGB(0);
+RGB PhotonIntegrator::caustics(const PhotonMap* map, const Intersection& hit, const glm::dvec3& d, const MaterialDesc& material) const {
+    if (!map) return RGB(0);
     thread_local std::vector<Neighbour> near;
-    const double r = gather(*surface_, hit.p, surfaceScale_, surfaceMaxRadius_, near);
+    const double r = gather(*map, hit.p, surfaceScale_, surfaceMaxRadius_, near);
     const double side = glm::dot(d, hit.n);
     RGB sum(0);
     for (const Neighbour& n : near) {
         if (n.distance2 > r * r) break;
-        const Photon& photon = surface_->photons()[n.index];
+        const Photon& photon = map->photons()[n.index];
         // Only photons that arrived on the side the eye sees.
         if (glm::dot(glm::dvec3(unpackDirection(photon.direction)), hit.n) * side <= 0) continue;
         // Cone filter (Jensen 1996): weight 1 - dist / r, normalised by pi r^2 / 3.

@@ -14,7 +14,10 @@
 // Photons are kept per medium (region): a photon is only ever found from the region that
 // scattered it, and a kernel's volume is its volume inside that region (its boundary and the
 // meshes nested in it stop it). A diffuse surface gets direct light by next-event estimation and
-// caustics from the surface photons with a cone filter.
+// caustics from the surface photons with a cone filter; with final gathering (the default), the
+// first diffuse surface of an eye path takes only the caustic photons (from a light by specular
+// events alone) and gathers the rest by one more bounce, whose next diffuse surface takes all
+// its photons (Jensen's final gather: the kernel's blur stays off what the eye sees directly).
 #pragma once
 #include <memory>
 #include <vector>
@@ -77,7 +80,8 @@ private:
     // sigma_s times in-scattered radiance from the volume photons at p in tet `tet` of volume v, seen along d.
     RGB knnEstimate(int v, uint32_t tet, const glm::dvec3& p, const glm::dvec3& d) const;
     int mediumOf(int v, uint32_t tet) const;  // the scene medium whose region holds the tet
-    RGB caustics(const Intersection& hit, const glm::dvec3& d, const MaterialDesc& material) const;
+    // Surface photons of `map` around the hit, cone-filtered, reflected towards -d.
+    RGB caustics(const PhotonMap* map, const Intersection& hit, const glm::dvec3& d, const MaterialDesc& material) const;
 
     const Scene& scene_;
     IntegratorDesc desc_;
@@ -86,7 +90,8 @@ private:
     std::vector<std::unique_ptr<SurfaceBVH>> regionBoundaries_;  // per scene medium: its region's triangles
     std::vector<BallVolume> balls_;  // per scene medium, over its region's boundary
     std::vector<MediumPhotons> media_;  // per scene medium
-    std::unique_ptr<PhotonMap> surface_;
+    std::unique_ptr<PhotonMap> surface_;  // every surface photon not straight from its light
+    std::unique_ptr<PhotonMap> caustic_;  // those from a light by specular events only (final gathering)
     float surfaceMaxRadius_ = 0;
     double volumeScale_ = 1, surfaceScale_ = 1;  // this pass's radius factors
     PhotonStats stats_;

@@ -38,6 +38,8 @@ public:
         // Next-event estimation follows light that has crossed only index-matched boundaries;
         // what else arrives is stored.
         bool direct = !e.fromMedium;
+        // From a light by specular events alone (a caustic), which final gathering cannot find.
+        bool specularOnly = !e.fromMedium;
         int depth = 0;
         auto flux = [&] { return path.weight() * e.flux; };
         for (int crossings = 0; crossings < 100000; ++crossings) {
@@ -54,7 +56,7 @@ public:
                         // Stored in the photon map of the medium that scattered it.
                         const int m = volume.media[size_t(volume.medium->mesh().region(event.tet))];
                         if (!direct) out_.volume[m].push_back(makePhoton(event.position, event.power, event.direction));
-                        direct = false;
+                        direct = specularOnly = false;
                     });
                 energy.absorbedInMedia += walk.absorbedFlux;
                 depth += walk.events;
@@ -83,7 +85,11 @@ public:
                 break;
             }
             const RGB arriving = flux();
-            if (material.type == MaterialType::Diffuse && !direct) out_.surface.push_back(makePhoton(hit->p, arriving, ray.d));
+            if (material.type == MaterialType::Diffuse && !direct) {
+                out_.surface.push_back(makePhoton(hit->p, arriving, ray.d));
+                if (specularOnly) out_.caustic.push_back(out_.surface.back());
+            }
+            specularOnly = specularOnly && material.type != MaterialType::Diffuse;
             const double u0 = rng.uniform(), u1 = rng.uniform();
             const BsdfSample bs = sampleMaterial(material, ray.d, hit->n, {u0, u1}, TransportMode::Importance);
             energy.absorbedOnSurfaces += arriving * (RGB(1) - bs.weight);
@@ -187,6 +193,7 @@ TracedPhotons tracePhotons(const Scene& scene, const PhotonSource& source, const
     for (const TracedPhotons& part : parts) {
         for (size_t m = 0; m < all.volume.size(); ++m) all.volume[m].insert(all.volume[m].end(), part.volume[m].begin(), part.volume[m].end());
         all.surface.insert(all.surface.end(), part.surface.begin(), part.surface.end());
+        all.caustic.insert(all.caustic.end(), part.caustic.begin(), part.caustic.end());
         all.energy.add(part.energy);
     }
     return all;

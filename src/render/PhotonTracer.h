@@ -33,7 +33,8 @@ struct EnergyBalance {
 
 struct TracedPhotons {
     std::vector<std::vector<Photon>> volume;  // per scene medium (region), by the medium that scattered them
-    std::vector<Photon> surface;              // on diffuse surfaces
+    std::vector<Photon> surface;              // on diffuse surfaces, every photon not straight from its light
+    std::vector<Photon> caustic;              // those of them that came from a light by specular events only
     EnergyBalance energy;
     uint64_t paths = 0;
 };

@@ -150,6 +150,10 @@ struct IntegratorDesc {
     // d-dimensional kernel, where squared bias and variance fall at the same rate.
     double alpha = 0;
     bool boundaryCorrection = true;  // k-NN: divide by the part of the ball inside the medium
+    // Diffuse surfaces seen from the eye gather their indirect light by one more bounce instead
+    // of estimating it from the surface photons (caustics, from lights by specular events only,
+    // still come from photons): no kernel blur on a floor's indirect light.
+    bool finalGather = true;
     double timeLimit = 0;       // > 0: stop starting passes after this many seconds
 };
 

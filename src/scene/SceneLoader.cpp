@@ -286,6 +286,7 @@ IntegratorDesc readIntegrator(JsonObject& o) {
     if (auto f = o["estimate"]) d.estimate = f.choice<PhotonEstimate>(kEstimateNames);
     if (auto f = o["alpha"]) d.alpha = f.number({.lo = 0, .hi = 1, .loOpen = true});
     if (auto f = o["boundary_correction"]) d.boundaryCorrection = f.boolean();
+    if (auto f = o["final_gather"]) d.finalGather = f.boolean();
     if (auto f = o["time"]) d.timeLimit = f.number(kPositive);
     return d;
 }

@@ -145,7 +145,7 @@ Json integratorJson(const IntegratorDesc& d) {
               {"boundary", nameOf(kBoundaryNames, d.boundary)}, {"step", d.stepSize},
               {"parity_rays", d.parityRays},  {"photons", d.photons},
               {"k", d.k},                     {"estimate", nameOf(kEstimateNames, d.estimate)},
-              {"boundary_correction", d.boundaryCorrection}};
+              {"boundary_correction", d.boundaryCorrection}, {"final_gather", d.finalGather}};
     // 0 means "not set" for these three; the loader takes only positive values.
     if (d.radius > 0) j["radius"] = d.radius;
     if (d.alpha > 0) j["alpha"] = d.alpha;
