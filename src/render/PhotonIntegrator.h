@@ -14,7 +14,7 @@
 // Photons are kept per medium (region): a photon is only ever found from the region that
 // scattered it, and a kernel's volume is its volume inside that region (its boundary and the
 // meshes nested in it stop it). A diffuse surface gets direct light by next-event estimation and
-// caustics from the surface photons with a cone filter; with final gathering (the default), the
+// caustics from the surface photons with a cone filter; with final gathering (final_gather), the
 // first diffuse surface of an eye path takes only the caustic photons (from a light by specular
 // events alone) and gathers the rest by one more bounce, whose next diffuse surface takes all
 // its photons (Jensen's final gather: the kernel's blur stays off what the eye sees directly).

@@ -152,8 +152,8 @@ struct IntegratorDesc {
     bool boundaryCorrection = true;  // k-NN: divide by the part of the ball inside the medium
     // Diffuse surfaces seen from the eye gather their indirect light by one more bounce instead
     // of estimating it from the surface photons (caustics, from lights by specular events only,
-    // still come from photons): no kernel blur on a floor's indirect light.
-    bool finalGather = true;
+    // still come from photons): no kernel blur on a floor's indirect light, more noise.
+    bool finalGather = false;
     double timeLimit = 0;       // > 0: stop starting passes after this many seconds
 };
 
