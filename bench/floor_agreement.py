@@ -2,7 +2,8 @@
 """Whether the photon integrator agrees with volpath on the directly lit floor (issue 18): block
 z-tests on BxB-pixel blocks of converged images of fish.json and blub.json.
 
-Per scene: K renders of each method with seeds 1..K (volpath --spp N, photon --passes P). For
+Per scene: K renders of each method with seeds 1..K (volpath --spp N, photon --passes P, with
+and without final gathering). For
 each block of the directly lit floor, z = (photon mean - volpath mean) / sqrt(s_p^2 / K + s_v^2 / K)
 with s^2 the variance of the block's mean over the K seeds: photon noise is correlated from pixel
 to pixel (one photon lights many), so only independent renders say how much a block mean
@@ -13,7 +14,7 @@ media made opaque black as with no media at all (to 1e-3), and above 0: nothing 
 the pixel or in the way of its light. A block counts when all its pixels do.
 
   bench/floor_agreement.py [--build DIR] [--scenes fish,blub] [--res 200x200] [--runs 4]
-                           [--spp 1024] [--passes 256] [--block 20] [--docs]
+                           [--spp 1024] [--passes 256] [--block 20] [--final-gather off,on] [--docs]
 
 The per-pixel work runs in Blender's Python (bench/exr_blocks.py: its image loader reads
 OpenEXR, numpy from python3-numpy); without Blender the script says so and exits 0. --docs
@@ -77,32 +78,37 @@ def measure(a, blender, name, work):
     for out, opaque in ((mask, True), (free, False)):
         s = variant(scene, work, f"{name}-{'opaque' if opaque else 'free'}", lambda s: direct_only(s, opaque))
         tetglow(binary, "render", s, "-o", out, "--integrator", "volpath", "--max-depth", 2, "--spp", 64, *common)
-    runs = {"volpath": [], "photon": []}
+    methods = {"volpath": ["--integrator", "volpath", "--spp", a.spp]}
+    for g in a.final_gather:
+        methods[f"photon, final gather {g}"] = ["--integrator", "photon", "--passes", a.passes, "--final-gather", g]
+    runs = {m: [] for m in methods}
     for k in range(1, a.runs + 1):
-        for method, extra in (("volpath", ["--spp", a.spp]), ("photon", ["--passes", a.passes])):
-            out = os.path.join(work, f"{name}-{method}-{k}.exr")
-            tetglow(binary, "render", scene, "-o", out, "--integrator", method, "--seed", k, *extra, *common)
+        for method, extra in methods.items():
+            out = os.path.join(work, f"{name}-{method.replace(', ', '-').replace(' ', '-')}-{k}.exr")
+            tetglow(binary, "render", scene, "-o", out, "--seed", k, *extra, *common)
             runs[method].append(out)
-    b = blocks(blender, a.block, mask, free, runs["volpath"] + runs["photon"])
-    zs, ratios = [], []
-    for i in range(len(b["blocks"])):
-        mv, sv = spread([b["means"][p][i] for p in runs["volpath"]])
-        mp, sp = spread([b["means"][p][i] for p in runs["photon"]])
-        zs.append((mp - mv) / math.sqrt((sv + sp) / a.runs) if sv + sp > 0 else 0.0)
-        ratios.append(mp / mv if mv > 0 else float("nan"))
-    mean_ratio = sum(ratios) / len(ratios) if ratios else float("nan")
-    return {"scene": name, "blocks": len(zs), "masked_pixels": b["masked_pixels"], "z": zs, "ratios": ratios,
-            "mean_z": sum(zs) / len(zs) if zs else float("nan"), "above_3": sum(abs(z) > 3 for z in zs),
-            "mean_ratio": mean_ratio}
+    b = blocks(blender, a.block, mask, free, [p for r in runs.values() for p in r])
+    results = []
+    for method in list(methods)[1:]:
+        zs, ratios = [], []
+        for i in range(len(b["blocks"])):
+            mv, sv = spread([b["means"][p][i] for p in runs["volpath"]])
+            mp, sp = spread([b["means"][p][i] for p in runs[method]])
+            zs.append((mp - mv) / math.sqrt((sv + sp) / a.runs) if sv + sp > 0 else 0.0)
+            ratios.append(mp / mv if mv > 0 else float("nan"))
+        results.append({"scene": name, "method": method, "blocks": len(zs), "masked_pixels": b["masked_pixels"], "z": zs,
+                        "ratios": ratios, "mean_z": sum(zs) / len(zs) if zs else float("nan"),
+                        "above_3": sum(abs(z) > 3 for z in zs), "mean_ratio": sum(ratios) / len(ratios) if ratios else float("nan")})
+    return results
 
 
 def table(a, results):
-    rows = [f"| scene | floor blocks ({a.block}x{a.block} px) | photon / volpath, mean over blocks | mean z | std z | abs(z) > 3 |",
-            "|---|---|---|---|---|---|"]
+    rows = [f"| scene | photon | floor blocks ({a.block}x{a.block} px) | photon / volpath, mean over blocks | mean z | std z | abs(z) > 3 |",
+            "|---|---|---|---|---|---|---|"]
     for r in results:
         n = r["blocks"]
         std = math.sqrt(sum((z - r["mean_z"]) ** 2 for z in r["z"]) / (n - 1)) if n > 1 else float("nan")
-        rows.append(f"| {r['scene']} | {n} ({r['masked_pixels']} px in the mask) | {r['mean_ratio']:.5f} | "
+        rows.append(f"| {r['scene']} | {r['method']} | {n} ({r['masked_pixels']} px in the mask) | {r['mean_ratio']:.5f} | "
                     f"{r['mean_z']:.2f} | {std:.2f} | {r['above_3']} of {n} |")
     return "\n".join(rows)
 
@@ -117,9 +123,11 @@ def main():
     p.add_argument("--spp", type=int, default=1024)
     p.add_argument("--passes", type=int, default=256)
     p.add_argument("--block", type=int, default=20)
+    p.add_argument("--final-gather", default="off,on", help="photon renders with --final-gather off, on or both")
     p.add_argument("--out", default=None)
     p.add_argument("--docs", action="store_true")
     a = p.parse_args()
+    a.final_gather = a.final_gather.split(",")
     if a.runs < 2:
         fail("--runs must be at least 2: a block's variance comes from the runs")
     blender = shutil.which("blender")
@@ -129,7 +137,7 @@ def main():
     work = a.out or tempfile.mkdtemp(prefix="tetglow-floor-")
     os.makedirs(work, exist_ok=True)
     print(f"floor_agreement: {machine()}; work in {work}", flush=True)
-    results = [measure(a, blender, name, work) for name in a.scenes.split(",")]
+    results = [r for name in a.scenes.split(",") for r in measure(a, blender, name, work)]
     text = table(a, results)
     print(text)
     if a.docs:
