@@ -60,6 +60,14 @@ def fish_variant(work, name, edit):
     return path
 
 
+def blender_env():
+    """The environment without a Python version manager's paths: Blender's embedded Python would
+    take its modules (numpy, which cycles_render.py needs) from there instead of Debian's."""
+    env = {k: v for k, v in os.environ.items() if not k.startswith("PYENV")}
+    env["PATH"] = os.pathsep.join(d for d in env.get("PATH", "").split(os.pathsep) if "pyenv" not in d)
+    return env
+
+
 def diff(binary, test, reference):
     return json.loads(tetglow(binary, "diff", test, reference, "--json"))
 

@@ -14,7 +14,8 @@ media made opaque black as with no media at all (to 1e-3), and above 0: nothing 
 the pixel or in the way of its light. A block counts when all its pixels do.
 
   bench/floor_agreement.py [--build DIR] [--scenes fish,blub] [--res 200x200] [--runs 4]
-                           [--spp 1024] [--passes 256] [--block 20] [--final-gather off,on] [--docs]
+                           [--spp 1024] [--passes 256] [--block 20] [--final-gather off,on]
+                           [--out DIR [--reuse]] [--docs]
 
 The per-pixel work runs in Blender's Python (bench/exr_blocks.py: its image loader reads
 OpenEXR, numpy from python3-numpy); without Blender the script says so and exits 0. --docs
@@ -28,7 +29,7 @@ import shutil
 import subprocess
 import tempfile
 
-from benchlib import ROOT, fail, machine, replace_section, tetglow
+from benchlib import ROOT, blender_env, fail, machine, replace_section, tetglow
 
 
 def variant(scene, work, name, edit):
@@ -58,7 +59,8 @@ def direct_only(s, opaque):
 
 def blocks(blender, block, mask, free, images):
     r = subprocess.run([blender, "-b", "--factory-startup", "--python", os.path.join(ROOT, "bench", "exr_blocks.py"), "--",
-                        "--block", str(block), "--mask", mask, "--unmasked", free, *images], capture_output=True, text=True)
+                        "--block", str(block), "--mask", mask, "--unmasked", free, *images], capture_output=True, text=True,
+                       env=blender_env())
     line = next((l for l in r.stdout.splitlines() if l.startswith("EXR_BLOCKS ")), None)
     if r.returncode != 0 or not line:
         fail(f"exr_blocks.py: exit {r.returncode}: {(r.stderr + r.stdout).strip()[-400:]}")
@@ -85,7 +87,8 @@ def measure(a, blender, name, work):
     for k in range(1, a.runs + 1):
         for method, extra in methods.items():
             out = os.path.join(work, f"{name}-{method.replace(', ', '-').replace(' ', '-')}-{k}.exr")
-            tetglow(binary, "render", scene, "-o", out, "--seed", k, *extra, *common)
+            if not (a.reuse and os.path.exists(out)):
+                tetglow(binary, "render", scene, "-o", out, "--seed", k, *extra, *common)
             runs[method].append(out)
     b = blocks(blender, a.block, mask, free, [p for r in runs.values() for p in r])
     results = []
@@ -125,6 +128,7 @@ def main():
     p.add_argument("--block", type=int, default=20)
     p.add_argument("--final-gather", default="off,on", help="photon renders with --final-gather off, on or both")
     p.add_argument("--out", default=None)
+    p.add_argument("--reuse", action="store_true", help="keep the renders already in --out (same arguments)")
     p.add_argument("--docs", action="store_true")
     a = p.parse_args()
     a.final_gather = a.final_gather.split(",")

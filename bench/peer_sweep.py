@@ -28,7 +28,7 @@ import sys
 import tempfile
 import time
 
-from benchlib import ROOT, diff, fail, fish_variant, loglog_chart, machine, replace_section
+from benchlib import ROOT, blender_env, diff, fail, fish_variant, loglog_chart, machine, replace_section
 
 PEER = os.path.join(os.path.dirname(ROOT), "shared", "peers", "cycles_render.py")
 METHODS = {"volpath": ["--integrator", "volpath"], "photon": ["--integrator", "photon"]}
@@ -46,14 +46,6 @@ def timed(command, out, env=None):
         fail(f"{' '.join(command)}: exit {r.returncode}, {out} {'written' if os.path.exists(out) else 'not written'}: "
              f"{(r.stderr + r.stdout).strip()[-400:]}")
     return seconds
-
-
-def blender_env():
-    """The environment without a Python version manager's paths: Blender's embedded Python would
-    take its modules (numpy, which cycles_render.py needs) from there instead of Debian's."""
-    env = {k: v for k, v in os.environ.items() if not k.startswith("PYENV")}
-    env["PATH"] = os.pathsep.join(d for d in env.get("PATH", "").split(os.pathsep) if "pyenv" not in d)
-    return env
 
 
 def cycles(blender, scene, out, spp, seed, a):

@@ -40,7 +40,7 @@ void expectSameScene(const SceneDesc& a, const SceneDesc& b) {
     EXPECT_TRUE(i.type == j.type && i.spp == j.spp && i.maxDepth == j.maxDepth && i.seed == j.seed && i.boundary == j.boundary &&
                 i.stepSize == j.stepSize && i.parityRays == j.parityRays);
     EXPECT_TRUE(i.photons == j.photons && i.k == j.k && i.radius == j.radius && i.estimate == j.estimate && i.alpha == j.alpha &&
-                i.boundaryCorrection == j.boundaryCorrection && i.timeLimit == j.timeLimit);
+                i.boundaryCorrection == j.boundaryCorrection && i.finalGather == j.finalGather && i.timeLimit == j.timeLimit);
     // Both name the same file: pbrt's Film filename is relative to the working directory, JSON's
     // "output" to the scene file's folder.
     EXPECT_EQ(std::filesystem::absolute(a.output).lexically_normal(), std::filesystem::absolute(b.output).lexically_normal());
@@ -81,7 +81,8 @@ TEST(SceneWriter, EveryJsonFieldReadsBackTheSame) {
   "camera": {"position": [0.1, 0.2, 5], "look_at": [0, 0.1, 0], "up": [0.1, 1, 0], "fov": 33.3, "resolution": [31, 17], "handedness": "left"},
   "turntable": {"frames": 12, "center": [0.5, 0, 0.25], "axis": [0.1, 1, 0], "degrees": 90.5},
   "integrator": {"type": "photon", "spp": 3, "max_depth": 9, "seed": 12, "boundary": "parity", "step": 0.013, "parity_rays": 3,
-                 "photons": 1234, "k": 7, "radius": 0.05, "estimate": "knn-march", "alpha": 0.5, "boundary_correction": false, "time": 2.5},
+                 "photons": 1234, "k": 7, "radius": 0.05, "estimate": "knn-march", "alpha": 0.5, "boundary_correction": false, "final_gather": true,
+                 "time": 2.5},
   "output": "../out/x.exr",
   "lights": [
     {"type": "point", "position": [1, 2, 3], "intensity": 0.7, "scale": 3},
