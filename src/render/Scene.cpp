@@ -83,6 +83,30 @@ void Scene::buildVolumes() {
     }
 }
 
+void Scene::classifyVolumes(const std::vector<TriangleMesh>& meshes, const std::vector<std::pair<HitKind, uint32_t>>& shapes) {
+    for (const SceneVolume& v : volumes_) {
+        const Bounds3& box = v.medium->volume().bounds();
+        bool within = false, lightWithin = false;
+        for (size_t k = 0; k < meshes.size(); ++k) {
+            const bool overlaps = bounds(meshes[k]).overlaps(box, 4 * epsilon_);
+            within = within || overlaps;
+            lightWithin = lightWithin || (overlaps && shapes[k].first == HitKind::Light);
+        }
+        for (const LightDesc& l : desc_.lights)
+            if (l.type == LightType::Point || l.type == LightType::Spot) {
+                Bounds3 at;
+                at.extend(l.position);
+                lightWithin = lightWithin || at.overlaps(box, l.radius + 4 * epsilon_);
+            }
+        surfacesWithin_.push_back(within);
+        const TetMesh& mesh = v.medium->mesh();
+        bool refracting = true;  // every outer boundary triangle
+        for (size_t s = 0; s < mesh.surface.size() && refracting; ++s)
+            if (mesh.surfaceRegions[s][1] < 0) refracting = v.materials[v.triangleMaterial[s]].type == MaterialType::Dielectric;
+        sealed_.push_back(refracting && !lightWithin);
+    }
+}
+
 Scene::Scene(const SceneDesc& desc) : desc_(desc), camera_(desc.camera) {
     // 64 float ulps at the scene's largest coordinate: beyond Embree's rounding of hit points.
     epsilon_ = 64 * 0x1.0p-23 * sceneScale(desc);
@@ -125,27 +149,7 @@ Scene::Scene(const SceneDesc& desc) : desc_(desc), camera_(desc.camera) {
     for (uint32_t i = 0; i < lights_.size(); ++i)
         if (const TriangleMesh* shape = lights_[i]->shape()) shapes.push_back({HitKind::Light, i}), meshes.push_back(*shape);
     for (const TriangleMesh& m : meshes) normals_.push_back(unitNormals(m.positions, m.triangles));
-    for (const SceneVolume& v : volumes_) {
-        const Bounds3& box = v.medium->volume().bounds();
-        bool within = false, lightWithin = false;
-        for (size_t k = 0; k < meshes.size(); ++k) {
-            const bool overlaps = bounds(meshes[k]).overlaps(box, 4 * epsilon_);
-            within = within || overlaps;
-            lightWithin = lightWithin || (overlaps && shapes[k].first == HitKind::Light);
-        }
-        for (const LightDesc& l : desc.lights)
-            if (l.type == LightType::Point || l.type == LightType::Spot) {
-                Bounds3 at;
-                at.extend(l.position);
-                lightWithin = lightWithin || at.overlaps(box, l.radius + 4 * epsilon_);
-            }
-        surfacesWithin_.push_back(within);
-        const TetMesh& mesh = v.medium->mesh();
-        bool refracting = true;  // every outer boundary triangle
-        for (size_t s = 0; s < mesh.surface.size() && refracting; ++s)
-            if (mesh.surfaceRegions[s][1] < 0) refracting = v.materials[v.triangleMaterial[s]].type == MaterialType::Dielectric;
-        sealed_.push_back(refracting && !lightWithin);
-    }
+    classifyVolumes(meshes, shapes);
     for (size_t k = 0; k < meshes.size(); ++k) {
         const Geometry g{shapes[k].first, shapes[k].second, &normals_[k]};
         attach(surfaces_, surfaceGeometries_, g, meshes[k].positions, meshes[k].triangles);

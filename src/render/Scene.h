@@ -6,6 +6,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <embree3/rtcore.h>
@@ -129,6 +130,8 @@ private:
     std::vector<std::vector<glm::dvec3>> normals_;  // per surface and area light: unit, per triangle
     std::optional<Intersection> intersect(RTCScene scene, const std::vector<Geometry>& geometries, const Ray& ray, double tMax) const;
     void buildVolumes();
+    // surfacesWithin_ and sealed_, from the surfaces' and area lights' meshes (by kind) and the lights.
+    void classifyVolumes(const std::vector<TriangleMesh>& meshes, const std::vector<std::pair<HitKind, uint32_t>>& shapes);
     void setCoefficients(SceneVolume& volume) const;
 
     SceneDesc desc_;
