@@ -141,7 +141,7 @@ TEST(Photon, CausticPhotonsCameFromALightBySpecularEventsOnly) {
         // A black floor: light it reflects (and the glass sends back) would not be a caustic.
         if (isBlack(c.sigmaS)) desc.surfaces[0].material.reflectance = RGB(0);
         const Scene scene(desc);
-        const TracedPhotons traced = tracePhotons(scene, PhotonSource(scene), {50000, 1 << 20, 3, 0});
+        const TracedPhotons traced = tracePhotons(scene, PhotonSource(scene), {50000, 1 << 20, 3, 0, true});
         ASSERT_GT(traced.surface.size(), 500u) << c.name;
         if (c.boundary == MaterialType::Interface) {
             EXPECT_EQ(traced.caustic.size(), 0u) << c.name;

@@ -56,7 +56,7 @@ double PhotonIntegrator::radiusScale(uint64_t pass, double alpha, int dim) {
 
 void PhotonIntegrator::beginPass(uint64_t pass) {
     const auto start = std::chrono::steady_clock::now();
-    TracedPhotons traced = tracePhotons(scene_, source_, {desc_.photons, desc_.maxDepth, desc_.seed, pass});
+    TracedPhotons traced = tracePhotons(scene_, source_, {desc_.photons, desc_.maxDepth, desc_.seed, pass, desc_.finalGather});
     // k-NN balls are three-dimensional kernels, beam discs and surface discs two-dimensional.
     auto scale = [&](int dim) { return radiusScale(pass, desc_.alpha > 0 ? desc_.alpha : balancedAlpha(dim), dim); };
     volumeScale_ = scale(desc_.estimate == PhotonEstimate::Beam ? 2 : 3);
@@ -93,7 +93,7 @@ void PhotonIntegrator::beginPass(uint64_t pass) {
     stats_.surfacePhotons += traced.surface.size();
     surface_ = traced.surface.empty() ? nullptr : std::make_unique<PhotonMap>(std::move(traced.surface));
     if (surface_) bytes += surface_->bytes();
-    caustic_ = traced.caustic.empty() || !desc_.finalGather ? nullptr : std::make_unique<PhotonMap>(std::move(traced.caustic));
+    caustic_ = traced.caustic.empty() ? nullptr : std::make_unique<PhotonMap>(std::move(traced.caustic));
     if (caustic_) bytes += caustic_->bytes();
     stats_.paths += traced.paths;
     stats_.energy.add(traced.energy);

@@ -87,7 +87,7 @@ public:
             const RGB arriving = flux();
             if (material.type == MaterialType::Diffuse && !direct) {
                 out_.surface.push_back(makePhoton(hit->p, arriving, ray.d));
-                if (specularOnly) out_.caustic.push_back(out_.surface.back());
+                if (specularOnly && options_.caustics) out_.caustic.push_back(out_.surface.back());
             }
             specularOnly = specularOnly && material.type != MaterialType::Diffuse;
             const double u0 = rng.uniform(), u1 = rng.uniform();

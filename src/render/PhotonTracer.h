@@ -21,6 +21,7 @@ struct PhotonTracingOptions {
     int maxDepth = 64;        // scattering and surface events per path
     uint64_t seed = 0;
     uint64_t pass = 0;        // independent photons for every pass
+    bool caustics = false;    // also keep the caustic photons apart (TracedPhotons::caustic)
 };
 
 // Where the emitted power went, summed over the paths: emitted = absorbed + escaped + cut in
@@ -34,7 +35,7 @@ struct EnergyBalance {
 struct TracedPhotons {
     std::vector<std::vector<Photon>> volume;  // per scene medium (region), by the medium that scattered them
     std::vector<Photon> surface;              // on diffuse surfaces, every photon not straight from its light
-    std::vector<Photon> caustic;              // those of them that came from a light by specular events only
+    std::vector<Photon> caustic;              // those of them that came from a light by specular events only (if asked)
     EnergyBalance energy;
     uint64_t paths = 0;
 };
