@@ -48,6 +48,7 @@ inline auto phaseScattering(const HenyeyGreenstein& phase, const glm::dvec3& d) 
 // the caller wants the exact transmittance).
 inline RGB directInMedium(const Scene& scene, int v, const glm::dvec3& p, const glm::dvec3& d, uint32_t tet, Rng& rng,
                           bool roulette = true) {
+    if (scene.sealed(v)) return RGB(0);  // no shadow ray from inside reaches a light
     const MediumState here{v, WalkStart::inside(tet)};
     return sampleDirect(scene, p, rng, false, phaseScattering(scene.volumes()[v].medium->at(tet).phase, d),
                         [&](const Ray& r, double t) { return scene.transmittance(r, t, here, roulette ? &rng : nullptr); });

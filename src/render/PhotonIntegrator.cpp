@@ -195,8 +195,8 @@ RGB PhotonIntegrator::marchKnn(int v, const Ray& ray, const ColumnProfile& colum
         for (int i = 0; i < n; ++i) {
             const double t = piece.tIn + (i + u) * h;
             const glm::dvec3 p = ray.at(t);
-            const RGB direct = scene_.sealed(v) ? RGB(0) : directInMedium(scene_, v, p, ray.d, piece.tet, rng);
-            const RGB scattered = sigmaS * medium.density(piece.tet, p) * direct + knnEstimate(v, piece.tet, p, ray.d);
+            const RGB scattered = sigmaS * medium.density(piece.tet, p) * directInMedium(scene_, v, p, ray.d, piece.tet, rng) +
+                                  knnEstimate(v, piece.tet, p, ray.d);
             L += column.transmittance(t) * h * scattered;
         }
     }

@@ -65,7 +65,7 @@ struct Bounds3 {
         return p.x >= lo.x && p.x <= hi.x && p.y >= lo.y && p.y <= hi.y && p.z >= lo.z && p.z <= hi.z;
     }
     double diagonal() const;
-    // Closed boxes that share a point, each grown by `margin`; false when either is empty.
+    // Closed boxes that share a point once one is grown by `margin`; false when either is empty.
     bool overlaps(const Bounds3& b, double margin = 0) const {
         if (empty() || b.empty()) return false;
         for (int i = 0; i < 3; ++i)
