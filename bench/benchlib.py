@@ -8,6 +8,7 @@ import shutil
 import subprocess
 import sys
 import tempfile
+import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
@@ -45,19 +46,24 @@ def render(binary, scene, output, *args):
     return samples / int(rate.group(1)), usage.ru_maxrss / 1024
 
 
-def fish_variant(work, name, edit):
-    """Writes work/name.json: scenes/fish.json after edit(scene) (a function that changes the
-    parsed JSON in place), its mesh paths made absolute so that it loads from there."""
-    with open(os.path.join(ROOT, "scenes", "fish.json")) as f:
-        scene = json.load(f)
-    for medium in scene["media"]:
-        shape = medium["shape"]
-        shape["file"] = os.path.join(ROOT, "scenes", shape["file"])
-    edit(scene)
+def scene_variant(scene, work, name, edit):
+    """Writes work/name.json: the scene file after edit(parsed JSON) (a function that changes it
+    in place), its mesh paths made absolute so that it loads from there."""
+    with open(scene) as f:
+        s = json.load(f)
+    for m in s["media"] + s.get("cavities", []):
+        if m["shape"].get("file"):
+            m["shape"]["file"] = os.path.join(os.path.dirname(os.path.abspath(scene)), m["shape"]["file"])
+    edit(s)
     path = os.path.join(work, name + ".json")
     with open(path, "w") as f:
-        json.dump(scene, f)
+        json.dump(s, f)
     return path
+
+
+def fish_variant(work, name, edit):
+    """scene_variant() of scenes/fish.json."""
+    return scene_variant(os.path.join(ROOT, "scenes", "fish.json"), work, name, edit)
 
 
 def blender_env():
@@ -66,6 +72,30 @@ def blender_env():
     env = {k: v for k, v in os.environ.items() if not k.startswith("PYENV")}
     env["PATH"] = os.pathsep.join(d for d in env.get("PATH", "").split(os.pathsep) if "pyenv" not in d)
     return env
+
+
+def timed(command, out, env=None):
+    """Runs a whole process that writes `out`; its wall-clock seconds, or a one-line failure
+    (Blender exits 0 even when the script it runs fails, so the output is checked too)."""
+    if os.path.exists(out):
+        os.remove(out)
+    start = time.monotonic()
+    r = subprocess.run(command, capture_output=True, text=True, env=env)
+    seconds = time.monotonic() - start
+    if r.returncode != 0 or not os.path.exists(out):
+        fail(f"{' '.join(command)}: exit {r.returncode}, {out} {'written' if os.path.exists(out) else 'not written'}: "
+             f"{(r.stderr + r.stdout).strip()[-400:]}")
+    return seconds
+
+
+# Blender's Cycles with every convention matched to tetglow's (its README.md has the table).
+PEER = os.path.join(os.path.dirname(ROOT), "shared", "peers", "cycles_render.py")
+
+
+def cycles_render(blender, scene, out, spp, seed, res, threads):
+    """Renders a tetglow JSON scene with Cycles through PEER; its whole-process seconds."""
+    return timed([blender, "-b", "--factory-startup", "--python", PEER, "--", scene, "--spp", str(spp), "--out", out,
+                  "--res", res, "--threads", str(threads), "--seed", str(seed)], out, blender_env())
 
 
 def diff(binary, test, reference):

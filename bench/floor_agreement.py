@@ -3,7 +3,8 @@
 z-tests on BxB-pixel blocks of converged images of fish.json and blub.json.
 
 Per scene: K renders of each method with seeds 1..K (volpath --spp N, photon --passes P, with
-and without final gathering). For
+and without final gathering, and with --cycles-spp C Blender's Cycles through
+../shared/peers/cycles_render.py as a third opinion; it renders no nested media). For
 each block of the directly lit floor, z = (photon mean - volpath mean) / sqrt(s_p^2 / K + s_v^2 / K)
 with s^2 the variance of the block's mean over the K seeds: photon noise is correlated from pixel
 to pixel (one photon lights many), so only independent renders say how much a block mean
@@ -15,6 +16,7 @@ the pixel or in the way of its light. A block counts when all its pixels do.
 
   bench/floor_agreement.py [--build DIR] [--scenes fish,blub] [--res 200x200] [--runs 4]
                            [--spp 1024] [--passes 256] [--block 20] [--final-gather off,on]
+                           [--cycles-spp C]
                            [--out DIR [--reuse]] [--docs]
 
 The per-pixel work runs in Blender's Python (bench/exr_blocks.py: its image loader reads
@@ -29,21 +31,7 @@ import shutil
 import subprocess
 import tempfile
 
-from benchlib import ROOT, blender_env, fail, machine, replace_section, tetglow
-
-
-def variant(scene, work, name, edit):
-    """work/name.json: the scene after edit(scene), its mesh paths made absolute."""
-    with open(scene) as f:
-        s = json.load(f)
-    for m in s["media"] + s.get("cavities", []):
-        if m["shape"].get("file"):
-            m["shape"]["file"] = os.path.join(os.path.dirname(os.path.abspath(scene)), m["shape"]["file"])
-    edit(s)
-    path = os.path.join(work, name + ".json")
-    with open(path, "w") as f:
-        json.dump(s, f)
-    return path
+from benchlib import PEER, ROOT, blender_env, cycles_render, fail, fish_variant, machine, replace_section, scene_variant, tetglow
 
 
 def direct_only(s, opaque):
@@ -72,23 +60,39 @@ def spread(values):
     return mean, sum((v - mean) ** 2 for v in values) / (len(values) - 1)
 
 
+def scene_file(name, work):
+    """scenes/NAME.json, or a variant of fish.json that keeps one part of its light transport:
+    fish-clear (the body alone, its medium cleared: the glass skin's caustics and reflections
+    alone) or fish-matched (all of it with the skin index-matched: no caustics)."""
+    if name == "fish-clear":
+        return fish_variant(work, name, lambda s: s.update(media=[dict(s["media"][0], sigma_a=0, sigma_s=0, emission=0)]))
+    if name == "fish-matched":
+        return fish_variant(work, name, lambda s: s["media"][0].update(boundary={"type": "interface"}))
+    return os.path.join(ROOT, "scenes", name + ".json")
+
+
 def measure(a, blender, name, work):
-    scene = os.path.join(ROOT, "scenes", name + ".json")
+    scene = scene_file(name, work)
     binary = os.path.join(a.build, "tetglow")
     common = ["--resolution", a.res, "--threads", str(a.threads)]
     mask, free = os.path.join(work, f"{name}-mask.exr"), os.path.join(work, f"{name}-free.exr")
     for out, opaque in ((mask, True), (free, False)):
-        s = variant(scene, work, f"{name}-{'opaque' if opaque else 'free'}", lambda s: direct_only(s, opaque))
+        s = scene_variant(scene, work, f"{name}-{'opaque' if opaque else 'free'}", lambda s: direct_only(s, opaque))
         tetglow(binary, "render", s, "-o", out, "--integrator", "volpath", "--max-depth", 2, "--spp", 64, *common)
     methods = {"volpath": ["--integrator", "volpath", "--spp", a.spp]}
     for g in a.final_gather:
         methods[f"photon, final gather {g}"] = ["--integrator", "photon", "--passes", a.passes, "--final-gather", g]
+    if a.cycles_spp:
+        methods["Cycles"] = None  # not tetglow: benchlib.cycles_render
     runs = {m: [] for m in methods}
     for k in range(1, a.runs + 1):
         for method, extra in methods.items():
             out = os.path.join(work, f"{name}-{method.replace(', ', '-').replace(' ', '-')}-{k}.exr")
             if not (a.reuse and os.path.exists(out)):
-                tetglow(binary, "render", scene, "-o", out, "--seed", k, *extra, *common)
+                if extra is None:
+                    cycles_render(blender, scene, out, a.cycles_spp, k, a.res, a.threads)
+                else:
+                    tetglow(binary, "render", scene, "-o", out, "--seed", k, *extra, *common)
             runs[method].append(out)
     b = blocks(blender, a.block, mask, free, [p for r in runs.values() for p in r])
     results = []
@@ -106,7 +110,7 @@ def measure(a, blender, name, work):
 
 
 def table(a, results):
-    rows = [f"| scene | photon | floor blocks ({a.block}x{a.block} px) | photon / volpath, mean over blocks | mean z | std z | abs(z) > 3 |",
+    rows = [f"| scene | method | floor blocks ({a.block}x{a.block} px) | method / volpath, mean over blocks | mean z | std z | abs(z) > 3 |",
             "|---|---|---|---|---|---|---|"]
     for r in results:
         n = r["blocks"]
@@ -119,7 +123,7 @@ def table(a, results):
 def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--build", default=os.path.join(ROOT, "build"))
-    p.add_argument("--scenes", default="fish,blub")
+    p.add_argument("--scenes", default="fish,blub", help="scenes/NAME.json, or fish-clear or fish-matched (scene_file())")
     p.add_argument("--res", default="200x200")
     p.add_argument("--threads", type=int, default=2)
     p.add_argument("--runs", type=int, default=4)
@@ -127,6 +131,7 @@ def main():
     p.add_argument("--passes", type=int, default=256)
     p.add_argument("--block", type=int, default=20)
     p.add_argument("--final-gather", default="off,on", help="photon renders with --final-gather off, on or both")
+    p.add_argument("--cycles-spp", type=int, default=0, help="> 0: Cycles renders too, at this many spp")
     p.add_argument("--out", default=None)
     p.add_argument("--reuse", action="store_true", help="keep the renders already in --out (same arguments)")
     p.add_argument("--docs", action="store_true")
@@ -138,12 +143,17 @@ def main():
     if not blender:
         print("floor_agreement: skipped: needs blender on PATH (its Python reads OpenEXR) and python3-numpy")
         return
+    if a.cycles_spp and not os.path.exists(PEER):
+        fail(f"--cycles-spp needs {PEER}")
     work = a.out or tempfile.mkdtemp(prefix="tetglow-floor-")
     os.makedirs(work, exist_ok=True)
     print(f"floor_agreement: {machine()}; work in {work}", flush=True)
     results = [r for name in a.scenes.split(",") for r in measure(a, blender, name, work)]
     text = table(a, results)
     print(text)
+    for r in results:  # block by block, in exr_blocks.py's order: where a disagreement sits
+        print(f"{r['scene']}, {r['method']}: z " + " ".join(f"{z:.2f}" for z in r["z"]) + "; against volpath " +
+              " ".join(f"{x:.4f}" for x in r["ratios"]))
     if a.docs:
         replace_section("floor-agreement", f"Measured on {machine()}: `bench/floor_agreement.py --res {a.res} --runs {a.runs} "
                                            f"--spp {a.spp} --passes {a.passes} --block {a.block}`.\n\n" + text)

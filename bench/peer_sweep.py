@@ -23,34 +23,15 @@ import json
 import math
 import os
 import shutil
-import subprocess
-import sys
 import tempfile
-import time
 
-from benchlib import ROOT, blender_env, diff, fail, fish_variant, loglog_chart, machine, replace_section
+from benchlib import PEER, ROOT, cycles_render, diff, fish_variant, loglog_chart, machine, replace_section, timed
 
-PEER = os.path.join(os.path.dirname(ROOT), "shared", "peers", "cycles_render.py")
 METHODS = {"volpath": ["--integrator", "volpath"], "photon": ["--integrator", "photon"]}
 
 
-def timed(command, out, env=None):
-    """Runs a whole process that writes `out`; its wall-clock seconds, or a one-line failure
-    (Blender exits 0 even when the script it runs fails, so the output is checked too)."""
-    if os.path.exists(out):
-        os.remove(out)
-    start = time.monotonic()
-    r = subprocess.run(command, capture_output=True, text=True, env=env)
-    seconds = time.monotonic() - start
-    if r.returncode != 0 or not os.path.exists(out):
-        fail(f"{' '.join(command)}: exit {r.returncode}, {out} {'written' if os.path.exists(out) else 'not written'}: "
-             f"{(r.stderr + r.stdout).strip()[-400:]}")
-    return seconds
-
-
 def cycles(blender, scene, out, spp, seed, a):
-    return timed([blender, "-b", "--factory-startup", "--python", PEER, "--", scene, "--spp", str(spp), "--out", out,
-                  "--res", a.res, "--threads", str(a.threads), "--seed", str(seed)], out, blender_env())
+    return cycles_render(blender, scene, out, spp, seed, a.res, a.threads)
 
 
 def tetglow(a, scene, out, method, seconds, seed):
