@@ -61,13 +61,16 @@ def spread(values):
 
 
 def scene_file(name, work):
-    """scenes/NAME.json, or a variant of fish.json that keeps one part of its light transport:
-    fish-clear (the body alone, its medium cleared: the glass skin's caustics and reflections
-    alone) or fish-matched (all of it with the skin index-matched: no caustics)."""
+    """scenes/NAME.json, or a variant of fish.json: fish-clear (the body alone, its medium
+    cleared: the glass skin's caustics and reflections alone), fish-matched (the skin
+    index-matched: no caustics) or fish-wide-light (the spot's disk 4 times as wide, so that
+    volpath's paths through the skin reach it 16 times as often)."""
     if name == "fish-clear":
         return fish_variant(work, name, lambda s: s.update(media=[dict(s["media"][0], sigma_a=0, sigma_s=0, emission=0)]))
     if name == "fish-matched":
         return fish_variant(work, name, lambda s: s["media"][0].update(boundary={"type": "interface"}))
+    if name == "fish-wide-light":
+        return fish_variant(work, name, lambda s: [l.update(radius=4 * l["radius"]) for l in s["lights"] if l["type"] == "spot"])
     return os.path.join(ROOT, "scenes", name + ".json")
 
 
@@ -97,14 +100,16 @@ def measure(a, blender, name, work):
     b = blocks(blender, a.block, mask, free, [p for r in runs.values() for p in r])
     results = []
     for method in list(methods)[1:]:
-        zs, ratios = [], []
+        zs, ratios, ranges = [], [], []
         for i in range(len(b["blocks"])):
-            mv, sv = spread([b["means"][p][i] for p in runs["volpath"]])
-            mp, sp = spread([b["means"][p][i] for p in runs[method]])
+            v, m = [b["means"][p][i] for p in runs["volpath"]], [b["means"][p][i] for p in runs[method]]
+            (mv, sv), (mp, sp) = spread(v), spread(m)
             zs.append((mp - mv) / math.sqrt((sv + sp) / a.runs) if sv + sp > 0 else 0.0)
             ratios.append(mp / mv if mv > 0 else float("nan"))
+            # How far apart the runs' block means lie, relative: a heavy tail shows as a wide range.
+            ranges.append(tuple((max(x) - min(x)) / (sum(x) / len(x)) if sum(x) > 0 else 0.0 for x in (v, m)))
         results.append({"scene": name, "method": method, "blocks": len(zs), "masked_pixels": b["masked_pixels"], "z": zs,
-                        "ratios": ratios, "mean_z": sum(zs) / len(zs) if zs else float("nan"),
+                        "ratios": ratios, "ranges": ranges, "mean_z": sum(zs) / len(zs) if zs else float("nan"),
                         "above_3": sum(abs(z) > 3 for z in zs), "mean_ratio": sum(ratios) / len(ratios) if ratios else float("nan")})
     return results
 
@@ -123,7 +128,7 @@ def table(a, results):
 def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--build", default=os.path.join(ROOT, "build"))
-    p.add_argument("--scenes", default="fish,blub", help="scenes/NAME.json, or fish-clear or fish-matched (scene_file())")
+    p.add_argument("--scenes", default="fish,blub", help="scenes/NAME.json, or fish-clear, fish-matched or fish-wide-light (scene_file())")
     p.add_argument("--res", default="200x200")
     p.add_argument("--threads", type=int, default=2)
     p.add_argument("--runs", type=int, default=4)
@@ -153,7 +158,8 @@ def main():
     print(text)
     for r in results:  # block by block, in exr_blocks.py's order: where a disagreement sits
         print(f"{r['scene']}, {r['method']}: z " + " ".join(f"{z:.2f}" for z in r["z"]) + "; against volpath " +
-              " ".join(f"{x:.4f}" for x in r["ratios"]))
+              " ".join(f"{x:.4f}" for x in r["ratios"]) + "; range of the runs' block means, volpath / method (%) " +
+              " ".join(f"{100 * v:.2f}/{100 * m:.2f}" for v, m in r["ranges"]))
     if a.docs:
         replace_section("floor-agreement", f"Measured on {machine()}: `bench/floor_agreement.py --res {a.res} --runs {a.runs} "
                                            f"--spp {a.spp} --passes {a.passes} --block {a.block}`.\n\n" + text)
