@@ -9,6 +9,9 @@ each block of the directly lit floor, z = (photon mean - volpath mean) / sqrt(s_
 with s^2 the variance of the block's mean over the K seeds: photon noise is correlated from pixel
 to pixel (one photon lights many), so only independent renders say how much a block mean
 varies. Where both are unbiased, z is about N(0, 1) (Student's t with few seeds: heavier tails).
+Where an estimate is heavy-tailed (volpath's and Cycles' light from a small lamp through the
+fish's glass skin: docs/RESULTS.md), K runs' means usually fall short together and z overstates
+the difference; the range of the runs' block means, printed per block, shows it.
 
 The directly lit floor: pixels whose direct light (--max-depth 2, sky off) is the same with the
 media made opaque black as with no media at all (to 1e-3), and above 0: nothing of the medium in
