@@ -66,6 +66,23 @@ def fish_variant(work, name, edit):
     return scene_variant(os.path.join(ROOT, "scenes", "fish.json"), work, name, edit)
 
 
+def scene_file(name, work):
+    """scenes/NAME.json, or a variant of fish.json written into work: fish-body (the body alone:
+    Cycles' peer script renders no nested media; the body keeps its glass skin), fish-clear (the
+    body alone, its medium cleared: the glass skin's caustics and reflections alone),
+    fish-matched (the skin index-matched: no caustics) or fish-wide-light (the spot's disk 4
+    times as wide, so that paths through the skin reach it 16 times as often)."""
+    if name == "fish-body":
+        return fish_variant(work, name, lambda s: s.update(media=s["media"][:1]))
+    if name == "fish-clear":
+        return fish_variant(work, name, lambda s: s.update(media=[dict(s["media"][0], sigma_a=0, sigma_s=0, emission=0)]))
+    if name == "fish-matched":
+        return fish_variant(work, name, lambda s: s["media"][0].update(boundary={"type": "interface"}))
+    if name == "fish-wide-light":
+        return fish_variant(work, name, lambda s: [l.update(radius=4 * l["radius"]) for l in s["lights"] if l["type"] == "spot"])
+    return os.path.join(ROOT, "scenes", name + ".json")
+
+
 def blender_env():
     """The environment without a Python version manager's paths: Blender's embedded Python would
     take its modules (numpy, which cycles_render.py needs) from there instead of Debian's."""

@@ -34,7 +34,7 @@ import shutil
 import subprocess
 import tempfile
 
-from benchlib import PEER, ROOT, blender_env, cycles_render, fail, fish_variant, machine, replace_section, scene_variant, tetglow
+from benchlib import PEER, ROOT, blender_env, cycles_render, fail, machine, replace_section, scene_file, scene_variant, tetglow
 
 
 def direct_only(s, opaque):
@@ -61,20 +61,6 @@ def blocks(blender, block, mask, free, images):
 def spread(values):
     mean = sum(values) / len(values)
     return mean, sum((v - mean) ** 2 for v in values) / (len(values) - 1)
-
-
-def scene_file(name, work):
-    """scenes/NAME.json, or a variant of fish.json: fish-clear (the body alone, its medium
-    cleared: the glass skin's caustics and reflections alone), fish-matched (the skin
-    index-matched: no caustics) or fish-wide-light (the spot's disk 4 times as wide, so that
-    volpath's paths through the skin reach it 16 times as often)."""
-    if name == "fish-clear":
-        return fish_variant(work, name, lambda s: s.update(media=[dict(s["media"][0], sigma_a=0, sigma_s=0, emission=0)]))
-    if name == "fish-matched":
-        return fish_variant(work, name, lambda s: s["media"][0].update(boundary={"type": "interface"}))
-    if name == "fish-wide-light":
-        return fish_variant(work, name, lambda s: [l.update(radius=4 * l["radius"]) for l in s["lights"] if l["type"] == "spot"])
-    return os.path.join(ROOT, "scenes", name + ".json")
 
 
 def measure(a, blender, name, work):
@@ -131,7 +117,7 @@ def table(a, results):
 def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--build", default=os.path.join(ROOT, "build"))
-    p.add_argument("--scenes", default="fish,blub", help="scenes/NAME.json, or fish-clear, fish-matched or fish-wide-light (scene_file())")
+    p.add_argument("--scenes", default="fish,blub", help="scenes/NAME.json, or a variant of fish.json (benchlib.scene_file())")
     p.add_argument("--res", default="200x200")
     p.add_argument("--threads", type=int, default=2)
     p.add_argument("--runs", type=int, default=4)

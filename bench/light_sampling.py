@@ -27,9 +27,8 @@ import sys
 import tempfile
 import time
 
-from benchlib import ROOT, diff, fail, machine
+from benchlib import PEER, ROOT, diff, fail, machine
 
-CYCLES = os.path.join(ROOT, "..", "shared", "peers", "cycles_render.py")
 
 
 # blub.json lit by a spot light without a radius instead of its quad light and environment
@@ -106,7 +105,7 @@ def cycles_point(binary, scene_path, work, tag, spp, res, threads):
     images, seconds, walls = [], [], []
     for seed in (1, 2):
         out = os.path.join(work, f"{tag}-cycles-s{seed}.exr")
-        _, s, stdout = timed(["blender", "-b", "--factory-startup", "--python", CYCLES, "--", scene_path, "--spp", str(spp),
+        _, s, stdout = timed(["blender", "-b", "--factory-startup", "--python", PEER, "--", scene_path, "--spp", str(spp),
                            "--out", out, "--res", res, "--threads", str(threads), "--seed", str(seed)])
         wall = re.search(r"CYCLES_RENDER .*wall_s=([0-9.]+)", stdout)
         if not wall:

@@ -25,7 +25,7 @@ import os
 import shutil
 import tempfile
 
-from benchlib import PEER, ROOT, cycles_render, diff, fish_variant, loglog_chart, machine, replace_section, timed
+from benchlib import PEER, ROOT, cycles_render, diff, loglog_chart, machine, replace_section, scene_file, timed
 
 METHODS = {"volpath": ["--integrator", "volpath"], "photon": ["--integrator", "photon"]}
 
@@ -68,16 +68,8 @@ def reference(a, blender, scene, name, out, seed):
     return cycles(blender, scene, out, a.reference_spp, seed, a)
 
 
-def scene_path(name, work):
-    """scenes/NAME.json, or fish-body: fish.json with its body alone (the peer script renders
-    no nested media, so not the organs; the body keeps its glass skin)."""
-    if name == "fish-body":
-        return fish_variant(work, name, lambda s: s.update(media=s["media"][:1]))
-    return os.path.join(ROOT, "scenes", name + ".json")
-
-
 def sweep_scene(a, blender, name, work):
-    scene = scene_path(name, work)
+    scene = scene_file(name, work)
     refs = [os.path.join(work, f"{name}-ref{s}.exr") for s in (1, 2)]
     ref_seconds = [reference(a, blender, scene, name, r, 1000 + s) for s, r in enumerate(refs)]
     ref_error = mse(a, refs[0], refs[1]) / 2  # each reference's own MSE: the two are independent
