@@ -15,6 +15,7 @@
 #include "render/PhotonIntegrator.h"
 #include "render/PhotonTracer.h"
 #include "render/Renderer.h"
+#include "render/PathStep.h"
 #include "render/Scene.h"
 #include "render/SingleScatterIntegrator.h"
 #include "render/VolPathIntegrator.h"
@@ -83,7 +84,7 @@ TEST(NestedRender, TransmittanceThroughNestedSpheresAndACavityIsTheClosedForm) {
         const glm::dvec3 a = onSphere(rng, 1.3), b = onSphere(rng, 1.3);
         const Ray ray{a, glm::normalize(b - a)};
         const double exact = exactDepth(desc, parent, ray);
-        const RGB tr = scene.transmittance(ray, INFINITY, scene.mediumAt(ray.o));
+        const RGB tr = transmittance(scene, ray, INFINITY, scene.mediumAt(ray.o));
         through += exact > 0;
         worst = std::max(worst, std::abs(tr.x / std::exp(-exact) - 1));
     }
@@ -130,7 +131,7 @@ TEST(NestedRender, EachRegionHasItsOwnDensity) {
         const Ray ray{o, d};
         const double core = convexChord(desc.media[1].boundary, ray), body = convexChord(desc.media[0].boundary, ray) - core;
         const double exact = std::exp(-(0.5 * body + 1.5 * (1 + 2 * z) * core));
-        worst = std::max(worst, std::abs(scene.transmittance(ray, INFINITY, {}).x / exact - 1));
+        worst = std::max(worst, std::abs(transmittance(scene, ray, INFINITY, {}).x / exact - 1));
     }
     EXPECT_LE(worst, 1e-12);
 }
@@ -150,7 +151,7 @@ TEST(NestedRender, TouchingBoxesShareAFaceExactly) {
         const glm::dvec3 o(-3, u(gen), u(gen)), target(3, u(gen), u(gen));
         const Ray ray{o, glm::normalize(target - o)};
         const double exact = std::exp(-(0.8 * convexChord(desc.media[0].boundary, ray) + 0.3 * convexChord(desc.media[1].boundary, ray)));
-        EXPECT_NEAR(scene.transmittance(ray, INFINITY, {}).x / exact, 1, 1e-12);
+        EXPECT_NEAR(transmittance(scene, ray, INFINITY, {}).x / exact, 1, 1e-12);
         EXPECT_NEAR(volpath.radiance(ray, rng).x / exact, 1, 1e-12);
     }
 }
@@ -331,7 +332,7 @@ TEST(NestedRender, OnlyVolumesNoShadowRayLeavesAreSealed) {
             // A light sample as directInMedium takes it, without its skip for sealed volumes.
             const HenyeyGreenstein& phase = scene.volumes()[at.volume].medium->at(at.start.index).phase;
             lit += !isBlack(sampleDirect(scene, p, rng, false, phaseScattering(phase, {0, 0, 1}),
-                                         [&](const Ray& r, double t) { return scene.transmittance(r, t, at); }));
+                                         [&](const Ray& r, double t) { return transmittance(scene, r, t, at); }));
         }
         if (c.sealed || !c.reaches) {
             EXPECT_EQ(lit, 0) << c.name;

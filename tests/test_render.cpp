@@ -10,6 +10,7 @@
 #include "TestScenes.h"
 #include "photon/ColumnProfile.h"
 #include "render/Integrator.h"
+#include "render/PathStep.h"
 #include "render/Renderer.h"
 #include "tet/Shapes.h"
 
@@ -32,7 +33,7 @@ TEST(Render, IndexMatchedSurfacesPassEveryRay) {
         const Ray ray{{0, 0, 4}, {0, 0, -1}};
         const bool passes = type == MaterialType::Interface;
         // Through the wall and the whole unit sphere: a chord of 2.
-        const RGB tr = scene.transmittance(ray, 10, scene.mediumAt(ray.o));
+        const RGB tr = transmittance(scene, ray, 10, scene.mediumAt(ray.o));
         for (int c = 0; c < 3; ++c) EXPECT_NEAR(tr[c], passes ? std::exp(-2 * sigmaA[c]) : 0, 1e-9) << int(type);
         const auto opaque = scene.intersectOpaque(ray);
         EXPECT_EQ(opaque.has_value(), !passes) << int(type);
@@ -58,10 +59,10 @@ TEST(Render, SurfacesInsideAMediumBlockShadowRaysFromInside) {
     const auto hit = scene.intersect(ray, inside);
     ASSERT_TRUE(hit.has_value());
     EXPECT_NEAR(hit->t, 0.7, 1e-6);
-    EXPECT_EQ(scene.transmittance(ray, 10, inside), RGB(0));
+    EXPECT_EQ(transmittance(scene, ray, 10, inside), RGB(0));
     // Beside the wall the ray leaves the sphere: the chord from (0.5, 0, -0.5) to the surface.
     const Ray beside{{0.5, 0, -0.5}, {0, 0, 1}};
-    const RGB tr = scene.transmittance(beside, 10, scene.mediumAt(beside.o));
+    const RGB tr = transmittance(scene, beside, 10, scene.mediumAt(beside.o));
     const double chord = 0.5 + std::sqrt(1 - 0.25);
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(tr[c], std::exp(-chord * sigmaA[c]), 1e-3) << c;  // the sphere's facets
 }
@@ -75,13 +76,13 @@ TEST(Render, ShadowRayRouletteKeepsTheTransmittance) {
         const Scene scene(sceneWith(sphereMedium(sigmaA, RGB(0), 0, 4), 8));
         const Ray ray{{0, 0, -3}, {0, 0, 1}};
         const MediumState outside = scene.mediumAt(ray.o);
-        const RGB exact = scene.transmittance(ray, 10, outside);
+        const RGB exact = transmittance(scene, ray, 10, outside);
         const int n = 40000;
         RGB sum(0), sum2(0);
         int zeros = 0;
         for (int i = 0; i < n; ++i) {
             Rng rng(3, uint64_t(i));
-            const RGB tr = scene.transmittance(ray, 10, outside, &rng);
+            const RGB tr = transmittance(scene, ray, 10, outside, &rng);
             sum += tr, sum2 += tr * tr, zeros += isBlack(tr);
         }
         const RGB mean = sum / double(n), se = glm::sqrt(glm::max(RGB(0), sum2 / double(n) - mean * mean) / double(n - 1));

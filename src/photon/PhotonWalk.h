@@ -6,6 +6,7 @@
 #pragma once
 #include "photon/Medium.h"
 #include "photon/Rng.h"
+#include "photon/Roulette.h"
 #include "photon/SpectralPath.h"
 
 namespace tetglow {
@@ -48,9 +49,8 @@ WalkResult photonWalk(const Medium& medium, Ray ray, WalkStart start, const RGB&
         path.beta *= params.sigmaS * flight.density;
         const glm::dvec3 p = ray.at(flight.t);
         onScatter(PhotonEvent{p, ray.d, arriving * params.sigmaS * flight.density, flight.tet});
-        // Roulette on the flux that goes on, relative to what was emitted.
-        const double keep = std::min(1.0, maxComponent(path.weight()));
-        if (!(keep > 0) || rng.uniform() >= keep) break;
+        const double keep = photonSurvival(path.weight(), rng);
+        if (keep == 0) break;
         path.beta /= keep;
         const double u0 = rng.uniform(), u1 = rng.uniform();
         ray = {p, optics.phase.sample(ray.d, {u0, u1})};

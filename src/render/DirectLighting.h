@@ -4,6 +4,7 @@
 #include "photon/Rng.h"
 #include "photon/Sampling.h"
 #include "render/LightSelection.h"
+#include "render/PathStep.h"
 #include "render/Scene.h"
 
 namespace tetglow {
@@ -51,7 +52,7 @@ inline RGB directInMedium(const Scene& scene, int v, const glm::dvec3& p, const 
     if (scene.sealed(v)) return RGB(0);  // no shadow ray from inside reaches a light
     const MediumState here{v, WalkStart::inside(tet)};
     return sampleDirect(scene, p, rng, false, phaseScattering(scene.volumes()[v].medium->at(tet).phase, d),
-                        [&](const Ray& r, double t) { return scene.transmittance(r, t, here, roulette ? &rng : nullptr); });
+                        [&](const Ray& r, double t) { return transmittance(scene, r, t, here, roulette ? &rng : nullptr); });
 }
 
 // The pdf with which sampleDirect would have chosen the point a phase/BSDF ray reached on a

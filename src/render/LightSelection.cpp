@@ -15,17 +15,21 @@ double totalWeight(const std::vector<std::unique_ptr<Light>>& lights, const glm:
 }  // namespace
 
 LightChoice chooseLight(const std::vector<std::unique_ptr<Light>>& lights, const glm::dvec3& p, bool mis, double u) {
-    const double total = totalWeight(lights, p, mis);
+    // Each light's importance once: it is the costly part (a solid angle per area light).
+    thread_local std::vector<double> weights;
+    weights.clear();
+    double total = 0;
+    for (const auto& light : lights) total += weights.emplace_back(weight(*light, p, mis));
     if (!(total > 0)) return {};
     // The first light whose running sum passes u * total; the last one with weight if rounding
     // leaves u * total beyond the sum.
     const double target = u * total;
     double sum = 0;
     LightChoice choice;
-    for (const auto& light : lights) {
-        const double w = weight(*light, p, mis);
+    for (size_t i = 0; i < lights.size(); ++i) {
+        const double w = weights[i];
         if (w <= 0) continue;
-        choice = {light.get(), w / total};
+        choice = {lights[i].get(), w / total};
         if ((sum += w) > target) break;
     }
     return choice;

@@ -7,8 +7,10 @@
 #include <tbb/parallel_for.h>
 
 #include "photon/OctahedralDirection.h"
+#include "photon/Roulette.h"
 #include "render/DirectLighting.h"
 #include "render/Material.h"
+#include "render/PathStep.h"
 #include "tet/Memory.h"
 
 namespace tetglow {
@@ -109,30 +111,29 @@ RGB PhotonIntegrator::radiance(const Ray& cameraRay, Rng& rng) const {
     // After the final-gather bounce: emitters it reaches were counted by next-event estimation
     // or as caustics, and its next diffuse surface ends the path.
     bool gathering = false;
-    // Index-matched boundaries do not count as events; the cap only guards against rays that
-    // graze a boundary forever.
-    for (int crossings = 0; crossings < 100000; ++crossings) {
+    for (int crossings = 0; crossings < kMaxCrossings; ++crossings) {
         auto hit = scene_.intersect(ray, state);
+        WalkExit exit;
         if (state.inside()) {
             const double tMax = hit ? hit->t : INFINITY;
             const ColumnProfile column(*scene_.volumes()[state.volume].medium, ray, state.start, tMax);
             L += beta * inMedium(state.volume, ray, column, rng);
             beta *= exp(-column.depth());
             if (isBlack(beta)) break;
-            // Out of the volume or at a dielectric interface: the walk's exit face is the surface.
-            if (column.exit().left) hit = scene_.boundaryHit(state.volume, ray, column.exit());
+            exit = column.exit();
         }
-        if (!hit || hit->kind == HitKind::Light) {
+        const StretchEnd end = endStretch(scene_, hit, exit, ray, state);
+        if (end == StretchEnd::Crossed) continue;
+        if (end != StretchEnd::Surface) {
             if (!gathering) L += beta * scene_.emitted(ray, hit ? &*hit : nullptr);
             break;
         }
-        if (scene_.crossInterface(*hit, ray, state)) continue;
         const MaterialDesc& material = scene_.material(*hit);
         if (!isSpecular(material)) {
             const MediumState here = scene_.afterHit(*hit, ray.d, state);
             L += beta * sampleDirect(scene_, hit->p, rng, false, [&](const glm::dvec3& wi) {
                 return Scattering{evaluateMaterial(material, ray.d, hit->n, wi), 0};
-            }, [&](const Ray& r, double t) { return scene_.transmittance(r, t, here, &rng); });
+            }, [&](const Ray& r, double t) { return transmittance(scene_, r, t, here, &rng); });
             if (gathering || !desc_.finalGather) {
                 L += beta * caustics(surface_.get(), *hit, ray.d, material);
                 break;
@@ -144,13 +145,10 @@ RGB PhotonIntegrator::radiance(const Ray& cameraRay, Rng& rng) const {
         const double u0 = rng.uniform(), u1 = rng.uniform();
         const BsdfSample bs = sampleMaterial(material, ray.d, hit->n, {u0, u1});
         beta *= bs.weight;
-        state = scene_.afterHit(*hit, bs.direction, state);
-        ray = {hit->p, bs.direction};
-        if (depth > 3) {  // roulette on long specular chains
-            const double q = std::max(0.05, 1 - maxComponent(beta));
-            if (rng.uniform() < q) break;
-            beta /= 1 - q;
-        }
+        leaveSurface(scene_, *hit, bs.direction, ray, state);
+        const double keep = eyePathSurvival(beta, depth, rng);  // on long specular chains
+        if (keep == 0) break;
+        beta /= keep;
     }
     return L;
 }

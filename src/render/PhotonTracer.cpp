@@ -6,8 +6,10 @@
 
 #include "photon/OctahedralDirection.h"
 #include "photon/PhotonWalk.h"
+#include "photon/Roulette.h"
 #include "photon/Sampling.h"
 #include "render/Material.h"
+#include "render/PathStep.h"
 
 namespace tetglow {
 
@@ -42,8 +44,9 @@ public:
         bool specularOnly = !e.fromMedium;
         int depth = 0;
         auto flux = [&] { return path.weight() * e.flux; };
-        for (int crossings = 0; crossings < 100000; ++crossings) {
+        for (int crossings = 0; crossings < kMaxCrossings; ++crossings) {
             std::optional<Intersection> hit;
+            WalkExit exit;
             if (state.inside()) {
                 const SceneVolume& volume = scene_.volumes()[state.volume];
                 const WalkResult walk = photonWalk(
@@ -65,20 +68,20 @@ public:
                     break;
                 }
                 ray = walk.ray;
-                // Out of the volume or at a dielectric interface: the walk's exit face is the surface.
-                if (walk.exit.left) hit = scene_.boundaryHit(state.volume, ray, walk.exit);
+                exit = walk.exit;
             } else {
                 hit = scene_.intersect(ray);
             }
-            if (!hit) {
+            const StretchEnd end = endStretch(scene_, hit, exit, ray, state);
+            if (end == StretchEnd::Crossed) continue;
+            if (end == StretchEnd::Escaped) {
                 energy.escaped += flux();
                 break;
             }
-            if (hit->kind == HitKind::Light) {  // emitters are black
+            if (end == StretchEnd::Emitter) {  // emitters are black
                 energy.absorbedOnSurfaces += flux();
                 break;
             }
-            if (scene_.crossInterface(*hit, ray, state)) continue;
             const MaterialDesc& material = scene_.material(*hit);
             if (++depth >= options_.maxDepth) {
                 energy.cut += flux();
@@ -95,11 +98,9 @@ public:
             energy.absorbedOnSurfaces += arriving * (RGB(1) - bs.weight);
             path.beta *= bs.weight;
             direct = false;
-            state = scene_.afterHit(*hit, bs.direction, state);
-            ray = {hit->p, bs.direction};
-            // Roulette on the flux that goes on, relative to what was emitted.
-            const double keep = std::min(1.0, maxComponent(path.weight()));
-            if (!(keep > 0) || rng.uniform() >= keep) break;
+            leaveSurface(scene_, *hit, bs.direction, ray, state);
+            const double keep = photonSurvival(path.weight(), rng);
+            if (keep == 0) break;
             path.beta /= keep;
         }
         const RGB deficit = energy.emitted - energy.absorbedInMedia - energy.absorbedOnSurfaces - energy.escaped - energy.cut;

@@ -292,31 +292,6 @@ MediumState Scene::mediumAt(const glm::dvec3& p) const {
     return {};
 }
 
-RGB Scene::transmittance(Ray ray, double tMax, MediumState state, Rng* roulette) const {
-    RGB tr(1);
-    for (int crossings = 0; crossings < 256; ++crossings) {
-        auto hit = intersect(ray, state, tMax);
-        // An opaque or specular surface blocks the ray whatever lies before it: no walk needed.
-        if (hit && !indexMatched(*hit)) return RGB(0);
-        if (state.inside()) {
-            const Medium& medium = *volumes_[state.volume].medium;
-            const double end = hit ? hit->t : tMax;
-            const FreeFlight f = roulette ? medium.shadowFlight(ray, state.start, end, *roulette) : medium.sampleFlight(ray, state.start, end, 0, 1.0);
-            tr *= f.transmittance;
-            if (isBlack(tr)) return tr;
-            if (f.exit.left) {  // out of the volume, or at a dielectric interface (which blocks)
-                hit = boundaryHit(state.volume, ray, f.exit);
-                if (!indexMatched(*hit)) return RGB(0);
-            }
-        }
-        if (!hit) return tr;
-        double moved = 0;
-        crossInterface(*hit, ray, state, &moved);
-        tMax -= moved;
-    }
-    return RGB(0);
-}
-
 std::optional<Intersection> Scene::intersectOpaque(const Ray& ray, double tMax) const {
     double t0 = 0;
     for (int crossings = 0; crossings < 256; ++crossings) {

@@ -109,11 +109,6 @@ public:
     bool sealed(int v) const { return sealed_[size_t(v)]; }
     // The volume and tet that hold point p (the camera), for starting paths.
     MediumState mediumAt(const glm::dvec3& p) const;
-    // Transmittance along ray (unit direction) up to tMax, starting in `state`: index-matched
-    // boundaries and interfaces and media pass light; anything else blocks it. With `roulette`,
-    // walks through media end early by Russian roulette (Medium::shadowFlight): the same
-    // expectation for less work, as next-event estimation wants.
-    RGB transmittance(Ray ray, double tMax, MediumState state, Rng* roulette = nullptr) const;
     // The closest hit that is not an index-matched boundary (those pass light unchanged), as
     // the seed found it: Embree's float hits on every surface, media boundaries and interfaces
     // included, whatever medium the ray is in (for the single-scattering baseline).

@@ -5,6 +5,7 @@
 
 #include "render/DirectLighting.h"
 #include "render/Material.h"
+#include "render/PathStep.h"
 #include "tet/MeshValidation.h"
 
 namespace tetglow {
@@ -44,7 +45,7 @@ int SingleScatterIntegrator::pick(size_t v, const glm::dvec3& p) const {
 }
 
 RGB SingleScatterIntegrator::visibility(const Ray& ray, double tMax, Rng& rng) const {
-    if (mode_ == BoundaryMode::Tet) return scene_.transmittance(ray, tMax, scene_.mediumAt(ray.o));
+    if (mode_ == BoundaryMode::Tet) return transmittance(scene_, ray, tMax, scene_.mediumAt(ray.o));
     if (!scene_.unoccluded(ray, tMax)) return RGB(0);
     // The seed's shadow ray: march through each volume's box, asking the boundary test per step.
     RGB tau(0);

@@ -1,8 +1,10 @@
 #include "render/VolPathIntegrator.h"
 
+#include "photon/Roulette.h"
 #include "photon/SpectralPath.h"
 #include "render/DirectLighting.h"
 #include "render/Material.h"
+#include "render/PathStep.h"
 
 namespace tetglow {
 
@@ -23,26 +25,22 @@ RGB VolPathIntegrator::radiance(const Ray& cameraRay, Rng& rng) const {
         return specular ? 1.0 : powerHeuristic(lastPdf, lightPdf(scene_, light, lastPoint, ray.d, point, triangle));
     };
     auto visibility = [&](const MediumState& from) {
-        return [this, from, &rng](const Ray& r, double tMax) { return scene_.transmittance(r, tMax, from, &rng); };
+        return [this, from, &rng](const Ray& r, double tMax) { return transmittance(scene_, r, tMax, from, &rng); };
     };
     int depth = 0;
-    // Russian roulette after a few events, on the largest channel of the path's weight.
     auto survives = [&] {
         if (!path.alive()) return false;
-        if (depth <= 3) return true;
-        const double q = std::max(0.05, 1 - maxComponent(path.weight()));
-        if (rng.uniform() < q) return false;
-        path.beta /= 1 - q;
+        const double keep = eyePathSurvival(path.weight(), depth, rng);
+        if (keep == 0) return false;
+        path.beta /= keep;
         return true;
     };
-    // Index-matched boundaries do not count as events; the cap only guards against rays that
-    // graze a boundary forever.
-    for (int crossings = 0; crossings < 100000; ++crossings) {
+    for (int crossings = 0; crossings < kMaxCrossings; ++crossings) {
         auto hit = scene_.intersect(ray, state);
+        FreeFlight flight;
         if (state.inside()) {
             const Medium& medium = *scene_.volumes()[state.volume].medium;
             const double tMax = hit ? hit->t : INFINITY;
-            FreeFlight flight;
             if (!medium.scatters() && !medium.emissive()) {
                 // Nothing scatters or glows: attenuate exactly instead of sampling where light dies.
                 flight = medium.sampleFlight(ray, state.start, tMax, 0, 1.0);
@@ -73,20 +71,19 @@ RGB VolPathIntegrator::radiance(const Ray& cameraRay, Rng& rng) const {
                     continue;
                 }
             }
-            // Out of the volume or at a dielectric interface: the walk's exit face is the surface.
-            if (flight.exit.left) hit = scene_.boundaryHit(state.volume, ray, flight.exit);
         }
-        if (!hit) {
+        const StretchEnd end = endStretch(scene_, hit, flight.exit, ray, state);
+        if (end == StretchEnd::Crossed) continue;
+        if (end == StretchEnd::Escaped) {
             if (const Light* env = scene_.environment())
                 L += path.weight() * env->emitted(ray.d, 0) * emitterWeight(*env, ray.o + ray.d, 0);
             break;
         }
-        if (hit->kind == HitKind::Light) {
+        if (end == StretchEnd::Emitter) {
             const Light& light = *scene_.lights()[hit->index];
             L += path.weight() * light.emitted(ray.d, hit->triangle) * emitterWeight(light, hit->p, hit->triangle);
-            break;  // emitters absorb
+            break;
         }
-        if (scene_.crossInterface(*hit, ray, state)) continue;
         const MaterialDesc& material = scene_.material(*hit);
         if (++depth >= maxDepth_) break;
         if (!isSpecular(material)) {
@@ -99,8 +96,7 @@ RGB VolPathIntegrator::radiance(const Ray& cameraRay, Rng& rng) const {
         const BsdfSample bs = sampleMaterial(material, ray.d, hit->n, {u0, u1});
         path.beta *= bs.weight;
         specular = bs.specular, lastPdf = bs.pdf, lastPoint = hit->p;
-        state = scene_.afterHit(*hit, bs.direction, state);
-        ray = {hit->p, bs.direction};
+        leaveSurface(scene_, *hit, bs.direction, ray, state);
         if (!survives()) break;
     }
     return L;
