@@ -1,5 +1,6 @@
 """What the bench scripts share: running tetglow and timing it, the machine's description,
-log-log charts drawn by gnuplot (PNG and SVG), and rewriting their sections of docs/RESULTS.md."""
+log-log charts drawn by gnuplot (PNG and SVG, in docs/figures/), and rewriting their sections of
+docs/RESULTS.md (from Python, or from a shell script through `benchlib.py section`)."""
 import json
 import os
 import platform
@@ -165,6 +166,7 @@ set format y '%g'
 
 
 RESULTS = os.path.join(ROOT, "docs", "RESULTS.md")
+FIGURES = os.path.join(ROOT, "docs", "figures")  # charts and their data, linked from RESULTS.md
 
 
 def replace_section(name, text, path=RESULTS):
@@ -178,3 +180,16 @@ def replace_section(name, text, path=RESULTS):
     head, rest = doc.split(begin)
     with open(path, "w") as f:
         f.write(f"{head}{begin}\n{text}\n{end}{rest.split(end, 1)[1]}")
+
+
+def section_from_stdin(argv):
+    """`python3 bench/benchlib.py section NAME COMMAND < TEXT`: how the shell scripts rewrite their
+    section of docs/RESULTS.md, with TEXT under a line naming COMMAND and this machine."""
+    if len(argv) != 3 or argv[0] != "section":
+        fail("usage: benchlib.py section NAME COMMAND < TEXT")
+    name, command = argv[1], argv[2]
+    replace_section(name, f"Command: `{command}`, on {machine()}.\n\n{sys.stdin.read().strip()}")
+
+
+if __name__ == "__main__":
+    section_from_stdin(sys.argv[1:])

@@ -202,7 +202,7 @@ TEST(NestedRender, ACoreInADielectricSkinIsTheMultilayer) {
                             stack(interfaceLayer(2, 1.5), interfaceLayer(1.5, 1)));
     const double exact = all.front + all.through;
     // Every integrator follows the specular chain: volpath and photon through the walk's exit
-    // faces, single through Embree's hits on every boundary, the seed's way.
+    // faces, single through Embree's hits on every boundary, the parity baseline's way.
     for (IntegratorType type : {IntegratorType::VolPath, IntegratorType::Single, IntegratorType::Photon}) {
         IntegratorDesc d;
         d.type = type;

@@ -217,7 +217,7 @@ RGB meanAbsDiff(const Image& a, const Image& b) {
     return sum / double(a.pixels.size());
 }
 
-// (c) The seed's ray march: the parity test agrees with the exact tet segments to within the
+// (c) The parity baseline's ray march: the parity test agrees with the exact tet segments to within the
 // step-size error; filling the bounding box does not.
 TEST(Render, SingleScatteringBoundaryModes) {
     SceneDesc desc = sceneWith(sphereMedium(RGB(0.3), RGB(1.5)), 24);

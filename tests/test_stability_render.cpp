@@ -1,7 +1,7 @@
 // Where each renderer breaks: camera rays exactly through vertices and edges and grazing the
 // surface, extreme coefficients (optical thickness 1e-4 and 1e4 per unit, albedo 0 and 1,
 // g = -0.99 and 0.99), photon counts and radii at their extremes, broken media. No NaN or Inf
-// anywhere, energy bounded; bench/stability.py puts the figures printed here in
+// anywhere, energy bounded; bench/results/stability.py puts the figures printed here in
 // docs/RESULTS.md. Moderate coefficients: Render.* in test_render.cpp.
 #include <filesystem>
 #include <map>

@@ -1,20 +1,22 @@
 #!/usr/bin/env python3
-"""The README gallery: the demo fish and the seed report's figures remade by tetglow (the white
+"""The README gallery: the demo fish and the figures of the report tetglow grew from remade by tetglow (the white
 and the blue cloud, each with single scattering beside multiple scattering, and the inside/outside
 debug picture of the tets against the parity test). Every image is rendered here by the command
 printed under it; the PNG previews tetglow writes beside its EXRs are copied to docs/images/ and
 the gallery section of README.md is rewritten with each command and its whole-process time.
 
-  bench/gallery.py [--build DIR]
+  bench/results/gallery.py [--build DIR]
 """
 import argparse
 import os
 import re
 import shutil
 import subprocess
+import sys
 import time
 
-from benchlib import ROOT, fail, machine, replace_section
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))  # bench/, for benchlib
+from benchlib import ROOT, fail, machine, replace_section  # noqa: E402
 
 IMAGES = os.path.join(ROOT, "docs", "images")
 LIMIT = 1 << 20  # all gallery images together, bytes
@@ -24,7 +26,7 @@ GALLERY = [
     ("fish", "The demo: a fish in a glass skin with glowing photophores, lure core and dark eyes nested in its scattering body; photon mapping with caustics on the floor",
      ["render", "scenes/fish.json", "-o", "out/fish.exr"]),
     ("inside-outside", "Inside/outside along the camera rays: green inside by tets and parity, dim red in the box "
-     "only, magenta where the seed's parity test disagrees with the tets",
+     "only, magenta where the parity baseline's test disagrees with the tets",
      ["compare-boundary", "scenes/fish.json", "--points", "1000", "--rays", "100", "--picture", "out/inside-outside.exr"]),
     ("cloud-white-single", "White cloud, single scattering",
      ["render", "scenes/cloud-white.json", "--integrator", "single", "--spp", "8", "-o", "out/cloud-white-single.exr"]),
@@ -72,7 +74,7 @@ def main():
     rows = ["| | |", "|---|---|"]
     for i in range(0, len(cells), 2):
         rows.append("| " + " | ".join(cells[i:i + 2] + [""] * (2 - len(cells[i:i + 2]))) + " |")
-    note = (f"Rendered by `bench/gallery.py` on {machine_line}; times are whole-process wall times "
+    note = (f"Rendered by `bench/results/gallery.py` on {machine_line}; times are whole-process wall times "
             f"(the first render of a mesh includes its tetrahedralization, cached after). Images: {total // 1024} KiB in all.")
     replace_section("gallery", "\n".join(rows) + "\n\n" + note, os.path.join(ROOT, "README.md"))
 

@@ -1,8 +1,8 @@
 """Block means of several renders, inside Blender (its image loader reads OpenEXR; numpy from
 python3-numpy): for each BxB block of pixels, the grey mean of every image given, and the mask's
-verdict (every pixel of the block in the mask). Used by bench/floor_agreement.py.
+verdict (every pixel of the block in the mask). Used by bench/results/floor_agreement.py.
 
-  blender -b --factory-startup --python bench/exr_blocks.py -- --block 20 --mask MASK.exr --unmasked FREE.exr A.exr ...
+  blender -b --factory-startup --python bench/results/exr_blocks.py -- --block 20 --mask MASK.exr --unmasked FREE.exr A.exr ...
 
 A pixel is in the mask when MASK is above 0 and equals FREE to 1e-3 (nothing of the medium in its
 footprint or in the way of its light). The last line, EXR_BLOCKS {...}, holds the numbers as JSON.

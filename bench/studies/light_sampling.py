@@ -13,7 +13,7 @@ With --cycles, Cycles renders each scene's full variant the same way through
 when either is absent: nothing else needs Blender), and the table gets Cycles' var x seconds (whole process, and its own
 render time wall_s) beside tetglow's.
 
-  bench/light_sampling.py [--tetglow new=build/tetglow] [--spp 256] [--res 100] [--threads 1]
+  bench/studies/light_sampling.py [--tetglow new=build/tetglow] [--spp 256] [--res 100] [--threads 1]
                           [--scenes blub,sphere,fish,blub-spot] [--cycles] [--cycles-spp 256]
 """
 import argparse
@@ -27,12 +27,13 @@ import sys
 import tempfile
 import time
 
-from benchlib import PEER, ROOT, diff, fail, machine
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))  # bench/, for benchlib
+from benchlib import PEER, ROOT, diff, fail, machine  # noqa: E402
 
 
 
 # blub.json lit by a spot light without a radius instead of its quad light and environment
-# (the issue's "point spot light" case, where equiangular sampling matters).
+# (the "point spot light" case, where equiangular sampling matters).
 BLUB_SPOT = {"type": "spot", "position": [0, 1.5, 0], "look_at": [-0.08, 0.02, 0], "cone_angle": 30, "cone_delta": 5,
              "intensity": [8, 8, 7.5]}
 

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Whether the photon integrator agrees with volpath on the directly lit floor (issue 18): block
+"""Whether the photon integrator agrees with volpath on the directly lit floor: block
 z-tests on BxB-pixel blocks of converged images of fish.json and blub.json.
 
 Per scene: K renders of each method with seeds 1..K (volpath --spp N, photon --passes P, with
@@ -17,12 +17,12 @@ The directly lit floor: pixels whose direct light (--max-depth 2, sky off) is th
 media made opaque black as with no media at all (to 1e-3), and above 0: nothing of the medium in
 the pixel or in the way of its light. A block counts when all its pixels do.
 
-  bench/floor_agreement.py [--build DIR] [--scenes fish,blub] [--res 200x200] [--runs 4]
+  bench/results/floor_agreement.py [--build DIR] [--scenes fish,blub] [--res 200x200] [--runs 4]
                            [--spp 1024] [--passes 256] [--block 20] [--final-gather off,on]
                            [--cycles-spp C]
                            [--out DIR [--reuse]] [--docs]
 
-The per-pixel work runs in Blender's Python (bench/exr_blocks.py: its image loader reads
+The per-pixel work runs in Blender's Python (bench/results/exr_blocks.py: its image loader reads
 OpenEXR, numpy from python3-numpy); without Blender the script says so and exits 0. --docs
 rewrites the floor-agreement section of docs/RESULTS.md.
 """
@@ -32,9 +32,11 @@ import math
 import os
 import shutil
 import subprocess
+import sys
 import tempfile
 
-from benchlib import PEER, ROOT, blender_env, cycles_render, fail, machine, replace_section, scene_file, scene_variant, tetglow
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))  # bench/, for benchlib
+from benchlib import PEER, ROOT, blender_env, cycles_render, fail, machine, replace_section, scene_file, scene_variant, tetglow  # noqa: E402
 
 
 def direct_only(s, opaque):
@@ -150,7 +152,7 @@ def main():
               " ".join(f"{x:.4f}" for x in r["ratios"]) + "; range of the runs' block means, volpath / method (%) " +
               " ".join(f"{100 * v:.2f}/{100 * m:.2f}" for v, m in r["ranges"]))
     if a.docs:
-        replace_section("floor-agreement", f"Measured on {machine()}: `bench/floor_agreement.py --res {a.res} --runs {a.runs} "
+        replace_section("floor-agreement", f"Measured on {machine()}: `bench/results/floor_agreement.py --res {a.res} --runs {a.runs} "
                                            f"--spp {a.spp} --passes {a.passes} --block {a.block}`.\n\n" + text)
 
 

@@ -1,19 +1,24 @@
 #!/usr/bin/env python3
 """The pixel sampler's gain: the variance of a render at n samples per pixel (passes) with the
 Owen-scrambled Sobol sampler of this build, against a baseline tetglow built before it
-(independent PCG numbers; e.g. commit 6d405fe), on scenes/fish.json and scenes/blub.json.
+(independent PCG numbers), on scenes/fish.json and scenes/blub.json.
+
+A study: it needs a second build from before the Sobol sampler, e.g. commit 6d405fe (`git
+worktree add ../old 6d405fe` and a Release build there; the scenes must load in both builds).
 
 The variance needs no reference: two renders with different seeds are independent, so the
 per-pixel variance of one is half the mean squared difference between them (their bias
 cancels). Writes the table into docs/RESULTS.md (section "sampler").
 
-    bench/sampler_gain.py --build build --baseline /path/to/old/tetglow
+    bench/studies/sampler_gain.py --build build --baseline /path/to/old/tetglow
 """
 import argparse
 import os
+import sys
 import tempfile
 
-from benchlib import ROOT, diff, fail, machine, render, replace_section
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))  # bench/, for benchlib
+from benchlib import ROOT, diff, fail, machine, render, replace_section  # noqa: E402
 
 SCENES = ["fish", "blub"]
 INTEGRATORS = ["volpath", "photon"]
@@ -55,7 +60,7 @@ def main():
                     rows.append(f"| {scene} | {integrator} | {spp} | {old:.3g} | {new:.3g} | {old / new:.2f} | {oldMae / newMae:.2f} |")
                     print(rows[-1], flush=True)
     text = "\n".join([
-        f"Measured by `bench/sampler_gain.py --baseline OLD/tetglow` at {args.resolution} on {machine()}.",
+        f"Measured by `bench/studies/sampler_gain.py --baseline OLD/tetglow` at {args.resolution} on {machine()}.",
         "Variance per pixel and channel of one render (half the mean squared difference of two seeds), and the ratio",
         "of the mean absolute differences (independent over Sobol).",
         "",

@@ -4,7 +4,7 @@ the photon integrator for the same wall-clock budget with several photon counts 
 photon paths per pixel, which carries over between resolutions), each measured against a
 converged volpath reference. Writes the table into docs/RESULTS.md (section "photon-split").
 
-    bench/photon_split.py --build build --reference ref.exr [--resolution 100x100 --time 10,30]
+    bench/results/photon_split.py --build build --reference ref.exr [--resolution 100x100 --time 10,30]
 
 The reference must be scenes/fish.json at the same resolution (e.g. `tetglow render
 scenes/fish.json --integrator volpath --spp 8192 --resolution 100x100`).
@@ -13,9 +13,11 @@ import argparse
 import os
 import re
 import subprocess
+import sys
 import tempfile
 
-from benchlib import ROOT, diff, fail, machine, replace_section
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))  # bench/, for benchlib
+from benchlib import ROOT, diff, fail, machine, replace_section  # noqa: E402
 
 PER_PIXEL = [0.08, 0.31, 1.25, 5.0]  # the committed fish: 50000 paths over 400x400 pixels is 0.31
 
@@ -52,7 +54,7 @@ def main():
             rows.append(f"| {budget:g} | {per_pixel:g} | {photons} | {passes.group(1)} | {share:.0%} | {d['rmse']:.4g} | {d['rel_mse']:.4g} |")
             print(rows[-1], flush=True)
     text = "\n".join([
-        f"Measured by `bench/photon_split.py --reference REF.exr --resolution {args.resolution} --time {args.time}` on {machine()}.",
+        f"Measured by `bench/results/photon_split.py --reference REF.exr --resolution {args.resolution} --time {args.time}` on {machine()}.",
         "",
         "| budget (s) | photon paths per pixel and pass | photons per pass | passes in the budget | photon tracing share of the time | RMSE | relative MSE |",
         "|---:|---:|---:|---:|---:|---:|---:|",

@@ -5,12 +5,12 @@ tetglow reports. One chart, error (log) against seconds (log), one curve per met
 is the mean absolute error: the caustic under the fish gives volpath rare, very bright samples
 that dominate RMSE (reported too) for thousands of samples per pixel, the reference's included.
 
-  bench/sweep.py --quick [--build DIR] [--out DIR]   a 48x48 fish for the test suite: chart and
+  bench/results/sweep.py --quick [--build DIR] [--out DIR]   a 48x48 fish for the test suite: chart and
       data go to DIR (default BUILD/sweep-quick); fails unless every image is finite and the
       error falls with cost along every curve but single scattering's
-  bench/sweep.py --full [--build DIR] [--reference EXR]   the docs' figures at 400x400 against
+  bench/results/sweep.py --full [--build DIR] [--reference EXR]   the docs' figures at 400x400 against
       EXR (rendered there first when missing: volpath, 4096 spp, seed 777), written to
-      docs/sweep-fish.{png,svg,json} and the sweep section of docs/RESULTS.md
+      docs/figures/sweep-fish.{png,svg,json} and the sweep section of docs/RESULTS.md
 """
 import argparse
 import json
@@ -19,7 +19,8 @@ import os
 import sys
 import tempfile
 
-from benchlib import ROOT, diff, fail, fish_variant, loglog_chart, machine, render, replace_section
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))  # bench/, for benchlib
+from benchlib import FIGURES, ROOT, diff, fail, fish_variant, loglog_chart, machine, render, replace_section  # noqa: E402
 
 SCENE = os.path.join(ROOT, "scenes", "fish.json")
 
@@ -32,11 +33,11 @@ PHOTON = ["--integrator", "photon"]
 METHODS = [
     {"label": "volpath", "args": ["--integrator", "volpath"], "sweep": "--spp",
      "quick": [1, 4, 16, 64], "full": [1, 4, 16, 64, 256, 512]},
-    {"label": "single, parity (the seed)", "args": ["--integrator", "single", "--boundary", "parity", "--spp", 4],
+    {"label": "single, parity (the parity baseline)", "args": ["--integrator", "single", "--boundary", "parity", "--spp", 4],
      "sweep": "--step", "quick": [0.1, 0.04, 0.01], "full": [0.2, 0.1, 0.05, 0.02]},
     {"label": "single, tets", "args": ["--integrator", "single", "--boundary", "tet", "--spp", 4],
      "sweep": "--step", "quick": [0.1, 0.04, 0.01], "full": [0.2, 0.1, 0.05, 0.02]},
-    {"label": "photon, k-NN march (the seed's), k 16, 50k photons", "fixed_radius": True,
+    {"label": "photon, k-NN march (the parity baseline's), k 16, 50k photons", "fixed_radius": True,
      "args": PHOTON + ["--estimate", "knn-march", "--k", 16, "--photons", 50000], "sweep": "--passes",
      "quick": [1, 4], "full": [1, 2, 4]},
     {"label": "photon, k-NN march, k 64, 50k photons", "fixed_radius": True,
@@ -112,7 +113,7 @@ def section(points, reference_line, command_line, machine_line):
              f" then `tetglow diff` against {reference_line}. Time: tetglow's rendering time (photon tracing included,"
              f" tetrahedralization left out: it is cached and the same for every method). Error: the mean absolute"
              f" pixel error (the caustic's rare bright volpath samples dominate RMSE, given too). Machine: {machine_line}.",
-             "", "![error against time](sweep-fish.svg)", "",
+             "", "![error against time](figures/sweep-fish.svg)", "",
              "**Pareto front** (the most accurate render that fits each time budget):", "",
              "| budget (s) | best method | setting | time (s) | mean abs. error |", "|---|---|---|---|---|"]
     lines += [f"| {b:g} | {p['method']} | `{p['option']} {p['value']}` | {p['seconds']:.2f} | {p['mae']:.5f} |" for b, p in pareto(points)]
@@ -137,7 +138,7 @@ def main():
     binary = os.path.join(a.build, "tetglow")
     if not os.access(binary, os.X_OK):
         fail(f"{binary}: not found; build first or give --build")
-    out = os.path.join(ROOT, "docs") if a.full else (a.out or os.path.join(a.build, "sweep-quick"))
+    out = FIGURES if a.full else (a.out or os.path.join(a.build, "sweep-quick"))
     os.makedirs(out, exist_ok=True)
     machine_line = machine()
     reference_args = ["--integrator", "volpath", *REFERENCE[mode], "--resolution", RESOLUTION[mode]]
@@ -157,7 +158,7 @@ def main():
     if a.quick:
         check_quick(points, stem)
     else:
-        replace_section("sweep", section(points, reference_line, "bench/sweep.py --full", machine_line))
+        replace_section("sweep", section(points, reference_line, "bench/results/sweep.py --full", machine_line))
     print(f"wrote {stem}.png, {stem}.svg, {stem}.json" + ("" if a.quick else " and docs/RESULTS.md"), file=sys.stderr)
 
 

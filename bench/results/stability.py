@@ -3,14 +3,16 @@
 print (each test asserts its own bounds; here they are only collected) and the per-query cost
 of the boundary methods from `tetglow compare-boundary --json` on the fish and blub.
 
-  bench/stability.py [--build DIR]   rewrites the stability section of docs/RESULTS.md
+  bench/results/stability.py [--build DIR]   rewrites the stability section of docs/RESULTS.md
 """
 import argparse
 import json
 import os
 import subprocess
+import sys
 
-from benchlib import ROOT, fail, machine, replace_section, tetglow
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))  # bench/, for benchlib
+from benchlib import ROOT, fail, machine, replace_section, tetglow  # noqa: E402
 
 # (test, what it breaks): the order of the section.
 TESTS = [
@@ -47,7 +49,7 @@ def boundary_costs(binary):
               "Inside/outside of a point, ns (mean over the bounding box and six shells 1e-2 to 1e-7 diagonals"
               " from the surface; error rates against the tets in brackets):", "",
               "| mesh | tets | parity 1 ray | parity 3 rays | parity 5 rays | bounding box |", "|---|---|---|---|---|---|"]
-    lines = ["", "Optical depth along random lines across the bounding box (sigma_t 1), the seed's march with one"
+    lines = ["", "Optical depth along random lines across the bounding box (sigma_t 1), the parity baseline's march with one"
              " parity ray per step:", "", "| mesh | method | step | us per line | x tets | relative error |", "|---|---|---|---|---|---|"]
     for mesh in MESHES:
         if not os.path.isfile(mesh):
@@ -77,7 +79,7 @@ def main():
     for b in (binary, tests_binary):
         if not os.access(b, os.X_OK):
             fail(f"{b}: not found; build first (with tests) or give --build")
-    lines = [f"Command: `bench/stability.py` (runs each test below as `tetglow_tests --gtest_filter=TEST` and collects"
+    lines = [f"Command: `bench/results/stability.py` (runs each test below as `tetglow_tests --gtest_filter=TEST` and collects"
              f" what it prints; the bounds are asserted by the tests). Machine: {machine()}.", ""]
     for test, title in TESTS:
         lines += [f"**{title}** (`{test}`):", "", "```", printed(tests_binary, test), "```", ""]

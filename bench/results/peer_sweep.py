@@ -9,11 +9,11 @@ pixels and channels against a long Cycles reference (or tetglow volpath's, --vol
 estimated from a second reference with another seed (MSE(a, b) / 2) and must be at most a
 quarter of the smallest MSE plotted; the script says so when it is not.
 
-  bench/peer_sweep.py [--build DIR] [--scenes fish-body,blub,sphere] [--budgets 2,5,15,60]
+  bench/results/peer_sweep.py [--build DIR] [--scenes fish-body,blub,sphere] [--budgets 2,5,15,60]
                       [--res 100x100] [--threads 2] [--reference-spp 16384] [--volpath-reference fish-body]
                       [--photons-per-pixel 1] [--out DIR] [--docs]
 
---docs writes docs/peer-<scene>.{png,svg}, docs/peer-sweep.json and the peer-sweep section of
+--docs writes docs/figures/peer-<scene>.{png,svg}, docs/figures/peer-sweep.json and the peer-sweep section of
 docs/RESULTS.md. Needs Blender 3.4 and numpy for its Python (`apt-get install blender python3-numpy`) and
 ../shared/peers/cycles_render.py:
 without either it says so and exits 0, writing nothing.
@@ -23,9 +23,11 @@ import json
 import math
 import os
 import shutil
+import sys
 import tempfile
 
-from benchlib import PEER, ROOT, cycles_render, diff, loglog_chart, machine, replace_section, scene_file, timed
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))  # bench/, for benchlib
+from benchlib import FIGURES, PEER, ROOT, cycles_render, diff, loglog_chart, machine, replace_section, scene_file, timed  # noqa: E402
 
 METHODS = {"volpath": ["--integrator", "volpath"], "photon": ["--integrator", "photon"]}
 
@@ -144,9 +146,9 @@ def main():
     if a.docs:
         for r in results:
             series = [(k, [(t, m) for t, m, _ in v], "y1") for k, v in r["curves"].items()]
-            loglog_chart(os.path.join(ROOT, "docs", f"peer-{r['scene']}"), f"{r['scene']}.json at {a.res}, {a.threads} threads",
+            loglog_chart(os.path.join(FIGURES, f"peer-{r['scene']}"), f"{r['scene']}.json at {a.res}, {a.threads} threads",
                          "whole-process seconds", "MSE against the reference", series)
-        with open(os.path.join(ROOT, "docs", "peer-sweep.json"), "w") as f:
+        with open(os.path.join(FIGURES, "peer-sweep.json"), "w") as f:
             json.dump({"machine": machine(), "args": vars(a), "results": results}, f, indent=1)
         replace_section("peer-sweep", f"Measured on {machine()}.\n\n" + table(results))
 

@@ -17,14 +17,14 @@ std::string gMeshPath = std::string(TETGLOW_SOURCE_DIR) + "/scenes/meshes/fish.o
 
 struct Fixture {
     std::unique_ptr<TetVolume> volume;
-    Bounds3 box;                  // of the medium: the seed's march samples only inside it
+    Bounds3 box;                  // of the medium: the parity baseline's march samples only inside it
     std::vector<Ray> rays;        // each crosses the medium
     std::vector<uint32_t> entries;  // Embree's entry triangle per ray
     std::vector<double> t0, t1;   // each ray's stretch in the box
     std::vector<std::vector<glm::dvec3>> inside;  // march samples (step diagonal / 100) inside the medium
 };
 
-// The seed's ray march along ray r: sample k at t0 + (k + 0.5) step, for the samples inside the box.
+// The parity baseline's ray march along ray r: sample k at t0 + (k + 0.5) step, for the samples inside the box.
 size_t marchSamples(const Fixture& f, size_t r, double step) {
     return size_t(std::max(0.0, std::ceil((f.t1[r] - f.t0[r]) / step - 0.5)));
 }
@@ -75,7 +75,7 @@ void BM_TetSteps(benchmark::State& state) {
 }
 BENCHMARK(BM_TetSteps);
 
-// The showcase fish (issue 14) against the old one in one run: the same body alone (Arg 0), and
+// The showcase fish against the old one in one run: the same body alone (Arg 0), and
 // with its photophores, eyes and lure core nested in it (Arg 1), one tet mesh with a region each.
 // The same rays as above (the fixture's, which cross the body), walked across every interface.
 void BM_TetStepsAcrossRegions(benchmark::State& state) {
@@ -186,7 +186,7 @@ void BM_LocateWithHint(benchmark::State& state) {
 BENCHMARK(BM_LocateWithHint);
 
 void BM_ParityAlongPath(benchmark::State& state) {
-    // The seed's inside test at the same samples: rays from each (majority of range(0)).
+    // The parity baseline's inside test at the same samples: rays from each (majority of range(0)).
     const Fixture& f = fixture();
     const int rays = int(state.range(0));
     const double step = f.box.diagonal() / double(state.range(1));

@@ -3,7 +3,7 @@ python3-numpy): per-pixel variance of renderer A from two seeds (A1, A2) and of 
 B2), var = (x1 - x2)^2 / 2, overall and by the brightness of the pixels' mean, then the ratio
 A / B per 10x10-pixel block beside the blocks' means (rows from the image's bottom).
 
-  blender -b --factory-startup --python bench/variance_map.py -- A1.exr A2.exr B1.exr B2.exr
+  blender -b --factory-startup --python bench/studies/variance_map.py -- A1.exr A2.exr B1.exr B2.exr
 """
 import sys
 

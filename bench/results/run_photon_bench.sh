@@ -1,11 +1,13 @@
 #!/usr/bin/env bash
 # The fish with photon mapping against a volpath reference rendered to convergence, and volpath
-# given the same time. Prints the docs/RESULTS.md rows.
-# Usage: bench/run_photon_bench.sh [build-dir] [reference.exr]
+# given the same time. Prints the table; --docs also rewrites the photon-fish section of
+# docs/RESULTS.md. Usage: bench/results/run_photon_bench.sh [--docs] [build-dir] [reference.exr]
 # Without a reference it renders one first (scenes/fish.json, volpath, 4096 spp: about 7 minutes
 # on 2 idle cores) and keeps it as ref/fish-volpath-4096.exr for the next run.
 set -euo pipefail
-cd "$(dirname "$0")/.."
+docs=0
+if [ "${1:-}" = --docs ]; then docs=1; shift; fi
+cd "$(dirname "$0")/../.."
 build=${1:-build}
 ref=${2:-ref/fish-volpath-4096.exr}
 out=$(mktemp -d)
@@ -31,12 +33,18 @@ row() {
   echo "| $label | \`$*\` | $(awk "BEGIN{printf \"%.1f\", $wall/1000}") | $(field rel_mse "$diff") | $(field rmse "$diff") |"
 }
 
-echo "| method | arguments to \`tetglow render scenes/fish.json\` | wall (s) | relative MSE | RMSE |"
-echo "|---|---|---|---|---|"
-row "photon (the demo, as committed)"
-demo_wall=$wall
-row "volpath, same time as the demo" --integrator volpath --time "$(awk "BEGIN{print $demo_wall/1000}")"
-row "volpath, 64 spp" --integrator volpath --spp 64
-row "photon, beam, no boundary correction" --boundary-correction off
-row "photon, knn-march (the seed's estimate), 4 passes" --estimate knn-march --passes 4
-row "photon, beam, 16 passes" --passes 16
+table() {
+  echo "| method | arguments to \`tetglow render scenes/fish.json\` | wall (s) | relative MSE | RMSE |"
+  echo "|---|---|---|---|---|"
+  row "photon (the demo, as committed)"
+  demo_wall=$wall
+  row "volpath, same time as the demo" --integrator volpath --time "$(awk "BEGIN{print $demo_wall/1000}")"
+  row "volpath, 64 spp" --integrator volpath --spp 64
+  row "photon, beam, no boundary correction" --boundary-correction off
+  row "photon, knn-march (the parity baseline's estimate), 4 passes" --estimate knn-march --passes 4
+  row "photon, beam, 16 passes" --passes 16
+}
+table | tee "$out/table.md"
+if [ $docs = 1 ]; then
+  python3 bench/benchlib.py section photon-fish "bench/results/run_photon_bench.sh --docs" < "$out/table.md"
+fi

@@ -3,8 +3,8 @@
 fish generator's triangle count, and against the tet count when TetGen refines the same fish
 with -q / -a (Steiner points a homogeneous medium does not need).
 
-  bench/scaling.py [--build DIR]   writes docs/scaling-triangles.{png,svg}, docs/scaling-tets.{png,svg},
-                                   docs/scaling-fish.json and the scaling section of docs/RESULTS.md
+  bench/results/scaling.py [--build DIR]   writes docs/figures/scaling-triangles.{png,svg}, scaling-tets.{png,svg},
+                                   docs/figures/scaling-fish.json and the scaling section of docs/RESULTS.md
 
 Every render first runs once to fill the tet cache; the fastest of the next three is measured,
 so it times rendering alone and its peak memory is tetglow's own (TetGen runs in a child).
@@ -15,7 +15,8 @@ import os
 import sys
 import tempfile
 
-from benchlib import ROOT, fail, fish_variant, loglog_chart, machine, render, replace_section, tetglow
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))  # bench/, for benchlib
+from benchlib import FIGURES, ROOT, fail, fish_variant, loglog_chart, machine, render, replace_section, tetglow  # noqa: E402
 
 RESOLUTION, SPP = "160x160", 16
 REPEATS = 3  # the fastest of three: other work on the machine only ever adds time
@@ -56,16 +57,16 @@ def measure(binary, work, name, mesh, quality=0, max_volume=0, integrators=INTEG
     return row
 
 
-def charts(by_triangles, by_tets, docs):
+def charts(by_triangles, by_tets):
     def series(rows, key, integrators):
         rows = sorted(rows, key=lambda r: r[key])  # the refinements are listed by switch, not size
         s = [(f"{label}: seconds", [(r[key], r["renders"][label]["seconds"]) for r in rows], "y1") for label, _ in integrators]
         s.append(("volpath: peak MiB (right axis)", [(r[key], r["renders"]["volpath"]["peak_mib"]) for r in rows], "y2"))
         s.append(("tet mesh MiB (right axis)", [(r[key], r["tet_mib"]) for r in rows], "y2"))
         return s
-    loglog_chart(os.path.join(docs, "scaling-triangles"), f"fish at {RESOLUTION}: cost against triangles (no Steiner points)",
+    loglog_chart(os.path.join(FIGURES, "scaling-triangles"), f"fish at {RESOLUTION}: cost against triangles (no Steiner points)",
                  "boundary triangles", "rendering time (s)", series(by_triangles, "triangles", INTEGRATORS), "MiB", "bottom right")
-    loglog_chart(os.path.join(docs, "scaling-tets"), f"demo fish at {RESOLUTION}: cost against tets (TetGen -q / -a)",
+    loglog_chart(os.path.join(FIGURES, "scaling-tets"), f"demo fish at {RESOLUTION}: cost against tets (TetGen -q / -a)",
                  "tetrahedra", "rendering time (s)", series(by_tets, "tets", TET_INTEGRATORS), "MiB", "bottom right")
 
 
@@ -79,10 +80,10 @@ def tables(by_triangles, by_tets, machine_line):
                 " | ".join(f"{r['renders'][l]['seconds']:.2f}" for l in labels) + f" | {r['renders']['volpath']['peak_mib']:.0f} |")
 
     labels = [l for l, _ in INTEGRATORS]
-    out = [f"Command: `bench/scaling.py`. Renders of scenes/fish.json at {RESOLUTION}: volpath {SPP} spp, single scattering"
+    out = [f"Command: `bench/results/scaling.py`. Renders of scenes/fish.json at {RESOLUTION}: volpath {SPP} spp, single scattering"
            f" 4 spp with step 0.02, photon beam 8 passes of 50,000 paths; times are tetglow's rendering time (photon tracing"
            f" included, the tet cache warm), the fastest of three runs. Machine: {machine_line}.", "",
-           "![cost against triangles](scaling-triangles.svg)", "", "![cost against tets](scaling-tets.svg)", ""]
+           "![cost against triangles](figures/scaling-triangles.svg)", "", "![cost against tets](figures/scaling-tets.svg)", ""]
     out += header("fish (rings x segments)", labels)
     out += [line(r["name"], r, labels) for r in by_triangles]
     out += ["", "Demo fish (112 x 96) refined by TetGen:", ""]
@@ -107,7 +108,6 @@ def main():
     if not os.access(binary, os.X_OK):
         fail(f"{binary}: not found; build first or give --build")
     machine_line = machine()
-    docs = os.path.join(ROOT, "docs")
     with tempfile.TemporaryDirectory() as work:
         by_triangles = []
         for rings, segments in FISH_SIZES:
@@ -117,11 +117,11 @@ def main():
         demo = os.path.join(ROOT, "scenes", "meshes", "fish.obj")
         by_tets = [measure(binary, work, " ".join(f for f in (f"-q{q}" if q else "", f"-a{v:g}" if v else "") if f) or "none (-pY)", demo, q, v,
                            TET_INTEGRATORS) for q, v in REFINEMENTS]
-    charts(by_triangles, by_tets, docs)
-    with open(os.path.join(docs, "scaling-fish.json"), "w") as f:
+    charts(by_triangles, by_tets)
+    with open(os.path.join(FIGURES, "scaling-fish.json"), "w") as f:
         json.dump({"machine": machine_line, "by_triangles": by_triangles, "by_tets": by_tets}, f, indent=1)
     replace_section("scaling", tables(by_triangles, by_tets, machine_line))
-    print("wrote docs/scaling-*.{png,svg}, docs/scaling-fish.json and the scaling section of docs/RESULTS.md", file=sys.stderr)
+    print("wrote docs/figures/scaling-*.{png,svg}, docs/figures/scaling-fish.json and the scaling section of docs/RESULTS.md", file=sys.stderr)
 
 
 if __name__ == "__main__":

@@ -3,7 +3,7 @@ ratio A/B with its 1-sigma error from the per-pixel difference (the renders' noi
 independent), and a z-test of the grey difference on blocks of pixels (z ~ N(0, 1) per block
 when both are unbiased). Runs inside Blender (its image loader reads OpenEXR; no numpy needed):
 
-  blender -b --factory-startup --python bench/exr_compare.py -- A.exr B.exr [--block 10]
+  blender -b --factory-startup --python bench/studies/exr_compare.py -- A.exr B.exr [--block 10]
 
 The last line, EXR_COMPARE {...}, holds the numbers as JSON.
 """
