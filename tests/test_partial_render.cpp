@@ -173,7 +173,8 @@ long mergePeakKiB(const std::string& args) {
                                 "print(resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss)' " +
                                 std::string(binary) + " merge " + args + " > " + report;
     EXPECT_EQ(std::system(command.c_str()), 0) << command;
-    return std::stol("0" + readFile(report));
+    const std::string peak = readFile(report);
+    return peak.empty() ? 0 : std::stol(peak);
 }
 
 // 16 parts of a 256x256 frame (about 4 MB of film each): merge holds one film and one part at a
