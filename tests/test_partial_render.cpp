@@ -10,6 +10,7 @@
 #include "TestMeshes.h"
 #include "TestScenes.h"
 #include "render/Integrator.h"
+#include "render/PartialRender.h"
 #include "render/Renderer.h"
 
 namespace tetglow::test {
@@ -142,6 +143,55 @@ TEST(PartialRender, RefusesTimeLimitsAndBadRanges) {
         EXPECT_NE(r.err.find("--"), std::string::npos) << r.err;
         EXPECT_FALSE(std::filesystem::exists(dir + "/p.exr")) << bad;
     }
+}
+
+// Another build may sample a pass differently (one sampler constant changed): its parts would
+// merge into an image that matches neither build, so the build that made a part is recorded and
+// must agree.
+TEST(PartialRender, MergeRefusesPartsOfAnotherBuild) {
+    const std::string dir = tempDir(), common = "render " + kSphere + " --resolution 8x6 --spp 4";
+    const std::string a = dir + "/a.exr", b = dir + "/b.exr", other = dir + "/other.exr";
+    ASSERT_EQ(runTetglow(common + " --pass-range 0:2 -o " + a).exitCode, 0);
+    ASSERT_EQ(runTetglow(common + " --pass-range 2:4 -o " + b).exitCode, 0);
+    PartialRender part = readPartial(b);
+    EXPECT_EQ(part.info.build.size(), 40u) << "a SHA-1 build id in hex: " << part.info.build;
+    EXPECT_EQ(part.info.build, readPartial(a).info.build);
+    part.info.build = std::string(40, '0');
+    writePartial(other, part);
+    expectOneLineError(runTetglow("merge " + a + " " + other + " -o " + dir + "/out.exr"), 1,
+                       other + ": made by another tetglow build than " + a + " (build 0000000000000000000000000000000000000000 vs " +
+                           readPartial(a).info.build + "): render every part with one binary");
+    EXPECT_FALSE(std::filesystem::exists(dir + "/out.exr"));
+    EXPECT_EQ(runTetglow("merge " + a + " " + b + " -o " + dir + "/out.exr").exitCode, 0);
+}
+
+// Peak memory of `tetglow merge` (KiB, the binary runTetglow runs), from the kernel's account of the child.
+long mergePeakKiB(const std::string& args) {
+    const std::string dir = tempDir(), report = dir + "/peak";
+    const char* binary = std::getenv("TETGLOW_TEST_BINARY") ? std::getenv("TETGLOW_TEST_BINARY") : TETGLOW_BINARY;
+    const std::string command = "python3 -c 'import resource, subprocess, sys; subprocess.run(sys.argv[1:], stdout=subprocess.DEVNULL, check=True); "
+                                "print(resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss)' " +
+                                std::string(binary) + " merge " + args + " > " + report;
+    EXPECT_EQ(std::system(command.c_str()), 0) << command;
+    const std::string peak = readFile(report);
+    return peak.empty() ? 0 : std::stol(peak);
+}
+
+// 16 parts of a 256x256 frame (about 4 MB of film each): merge holds one film and one part at a
+// time, so its memory is that of merging one part, not 16 times as much.
+TEST(PartialRender, MergeMemoryDoesNotGrowWithTheParts) {
+    const std::string dir = tempDir(), common = "render " + kSphere + " --resolution 256x256 --integrator single --step 0.2";
+    std::string parts;
+    for (int p = 0; p < 16; ++p) {
+        const std::string part = dir + "/p" + std::to_string(p) + ".exr";
+        ASSERT_EQ(runTetglow(common + " --spp 16 --pass-range " + std::to_string(p) + ":" + std::to_string(p + 1) + " -o " + part).exitCode, 0);
+        parts += " " + part;
+    }
+    ASSERT_EQ(runTetglow(common + " --spp 1 --pass-range 0:1 -o " + dir + "/one.exr").exitCode, 0);
+    const long one = mergePeakKiB(dir + "/one.exr -o " + dir + "/one-merged.exr");
+    const long sixteen = mergePeakKiB(parts + " -o " + dir + "/merged.exr");
+    const long film = 256 * 256 * long(kFilmBytesPerPixel) / 1024;
+    EXPECT_LT(sixteen, one + 3 * film) << "merging 16 parts took " << sixteen << " KiB, one part " << one << " KiB; a film is " << film << " KiB";
 }
 
 // A turntable: frames differ, frame 0 is the still, and each frame splits and merges alike.

@@ -22,8 +22,7 @@ void run(const Options& o) {
     for (const auto& path : {o.output, previewPath(o.output)}) prepareOutput(path, o.parts);
     const PartialRender whole = mergeParts(o.parts);
     const Image image = whole.film.image();
-    writeExr(o.output, image);
-    writePng(previewPath(o.output), image, o.exposure);
+    writeExrAndPng(o.output, image, o.exposure);
     if (const uint64_t dropped = whole.film.droppedSamples())
         std::fprintf(stderr, "warning: %llu samples were NaN or Inf and were dropped\n", (unsigned long long)dropped);
     std::printf("%s and %s: %zu parts of %s frame %d, %dx%d, %d spp\n", o.output.c_str(), previewPath(o.output).c_str(), o.parts.size(),

@@ -1,14 +1,13 @@
 // tetglow render SCENE: tetrahedralize every medium the scene names (cached), then render.
 // SCENE is a JSON scene or a pbrt-v3 one (docs/FORMAT.md).
 #include <algorithm>
-#include <atomic>
-#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <tuple>
 
 #include "cli/Commands.h"
+#include "cli/Interrupt.h"
 #include "cli/Progress.h"
 #include "cli/RenderArgs.h"
 #include "render/ImageIO.h"
@@ -27,28 +26,6 @@ struct Options {
     std::string output, passRange;
     int frame = -1;
     bool tetsOnly = false;
-};
-
-std::atomic<bool> interrupted{false};
-// A second Ctrl-C ends the program at once.
-void onInterrupt(int) {
-    interrupted = true;
-    std::signal(SIGINT, SIG_DFL);
-}
-
-// Ctrl-C stops the render after the tiles in flight; the image so far is still written.
-class InterruptGuard {
-public:
-    InterruptGuard() {
-        struct sigaction action {};
-        action.sa_handler = onInterrupt;
-        sigemptyset(&action.sa_mask);
-        sigaction(SIGINT, &action, &previous_);
-    }
-    ~InterruptGuard() { sigaction(SIGINT, &previous_, nullptr); }
-
-private:
-    struct sigaction previous_ {};
 };
 
 std::string outputPath(const Options& o, const SceneDesc& scene) {
@@ -92,29 +69,29 @@ void run(const Options& o) {
     options.timeLimit = desc.integrator.timeLimit;
     options.seed = desc.integrator.seed;
     options.threads = o.args.threads;
-    options.cancel = &interrupted;
+    options.cancel = &interrupted();
     Progress progress("render");
     options.progress = [&](double f) { progress.update(f); };
-    RenderResult result;
-    {
-        InterruptGuard guard;
-        result = render(scene, *integrator, options);
-    }
+    // From the first pass until the files are renamed into place: a signal in the middle of the
+    // write lets the write finish.
+    InterruptGuard guard;
+    RenderResult result = render(scene, *integrator, options);
     progress.finish();
 
     if (!o.passRange.empty()) {
         // A part with an unfinished pass would merge into an image no single render gives.
         if (result.cancelled) {
-            std::fprintf(stderr, "interrupted: %s (passes %s) was not written\n", output.c_str(), o.passRange.c_str());
-            std::exit(130);
+            std::fprintf(stderr, "interrupted (%s): %s (passes %s) was not written\n", interruptName(), output.c_str(), o.passRange.c_str());
+            std::exit(128 + interruptSignal());
         }
         writePartial(output, {part, std::move(result.film)});
     } else {
-        writeExr(output, result.image);
-        writePng(previewPath(output), result.image, o.args.exposure);
+        writeExrAndPng(output, result.image, o.args.exposure);
     }
     const double pixels = double(desc.camera.width) * desc.camera.height;
-    if (result.cancelled) std::fprintf(stderr, "interrupted: wrote %d complete passes (and the tiles of the next)\n", result.passes);
+    if (interrupted())
+        std::fprintf(stderr, "interrupted (%s): wrote %d complete passes%s\n", interruptName(), result.passes,
+                     result.cancelled ? " (and the tiles of the next)" : "");
     if (result.droppedSamples) std::fprintf(stderr, "warning: %llu samples were NaN or Inf and were dropped\n", (unsigned long long)result.droppedSamples);
     if (o.passRange.empty())
         std::printf("%s and %s: %dx%d, %d spp\n", output.c_str(), previewPath(output).c_str(), desc.camera.width, desc.camera.height, result.passes);
@@ -130,9 +107,9 @@ void run(const Options& o) {
     }
     std::printf("time: tetrahedralization %.2f s, photon tracing %.2f s, rendering %.2f s (%.0f samples/s)\n",
                 scene.tetrahedralizeSeconds(), tracing, result.seconds - tracing, pixels * result.passes / result.seconds);
-    if (result.cancelled) {
+    if (interrupted()) {
         std::fflush(stdout);
-        std::exit(130);  // the shell's code for "stopped by Ctrl-C", with the image written
+        std::exit(128 + interruptSignal());  // the shell's code for "stopped by the signal", with the image written
     }
 }
 

@@ -69,24 +69,48 @@ std::array<uint8_t, 3> previewPixel(const glm::vec3& linear, double scale) {
 
 }  // namespace
 
-void writeExr(const std::string& path, const Image& rgb, const std::vector<ImageLayer>& layers) {
+namespace {
+
+void checkLayers(const std::string& path, const Image& rgb, const std::vector<ImageLayer>& layers) {
     if (rgb.pixels.empty()) throw InputError(path + ": cannot write an empty image");
     for (const auto& layer : layers)
         if (layer.image->width != rgb.width || layer.image->height != rgb.height)
             throw InputError(path + ": layer " + layer.name + " is not the size of the image");
-    writeAtomically(path, [&](const std::string& temporary) {
-        Imf::Header header(rgb.width, rgb.height);
-        Imf::FrameBuffer frameBuffer;
-        auto add = [&](const std::string& layer, const Image& image) {
-            for (const auto& name : channelNames(layer)) header.channels().insert(name, Imf::Channel(Imf::FLOAT));
-            insertSlices(frameBuffer, layer, image, header.dataWindow());
-        };
-        add("", rgb);
-        for (const auto& layer : layers) add(layer.name, *layer.image);
-        Imf::OutputFile file(temporary.c_str(), header);
-        file.setFrameBuffer(frameBuffer);
-        file.writePixels(rgb.height);
-    });
+}
+
+// The EXR of writeExr straight into `file`.
+void writeExrFile(const std::string& file, const Image& rgb, const std::vector<ImageLayer>& layers) {
+    Imf::Header header(rgb.width, rgb.height);
+    Imf::FrameBuffer frameBuffer;
+    auto add = [&](const std::string& layer, const Image& image) {
+        for (const auto& name : channelNames(layer)) header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+        insertSlices(frameBuffer, layer, image, header.dataWindow());
+    };
+    add("", rgb);
+    for (const auto& layer : layers) add(layer.name, *layer.image);
+    Imf::OutputFile out(file.c_str(), header);
+    out.setFrameBuffer(frameBuffer);
+    out.writePixels(rgb.height);
+}
+
+void writePngFile(const std::string& file, const Image& rgb, double exposure) {
+    const std::vector<uint8_t> png = encodePng(rgb, exposure);
+    std::ofstream out(file, std::ios::binary);
+    out.write(reinterpret_cast<const char*>(png.data()), std::streamsize(png.size()));
+    if (!out.flush()) throw std::runtime_error("write failed");
+}
+
+}  // namespace
+
+void writeExr(const std::string& path, const Image& rgb, const std::vector<ImageLayer>& layers) {
+    checkLayers(path, rgb, layers);
+    writeAtomically(path, [&](const std::string& temporary) { writeExrFile(temporary, rgb, layers); });
+}
+
+void writeExrAndPng(const std::string& exrPath, const Image& rgb, double exposure) {
+    checkLayers(exrPath, rgb, {});
+    writeTogether({{exrPath, [&](const std::string& temporary) { writeExrFile(temporary, rgb, {}); }},
+                   {previewPath(exrPath), [&](const std::string& temporary) { writePngFile(temporary, rgb, exposure); }}});
 }
 
 Image readExr(const std::string& path, const std::string& layer) {
@@ -136,12 +160,7 @@ std::vector<uint8_t> encodePng(const Image& rgb, double exposure) {
 }
 
 void writePng(const std::string& path, const Image& rgb, double exposure) {
-    writeAtomically(path, [&](const std::string& temporary) {
-        const std::vector<uint8_t> png = encodePng(rgb, exposure);
-        std::ofstream out(temporary, std::ios::binary);
-        out.write(reinterpret_cast<const char*>(png.data()), std::streamsize(png.size()));
-        if (!out.flush()) throw std::runtime_error("write failed");
-    });
+    writeAtomically(path, [&](const std::string& temporary) { writePngFile(temporary, rgb, exposure); });
 }
 
 std::string previewPath(const std::string& exrPath) { return fs::path(exrPath).replace_extension(".png").string(); }

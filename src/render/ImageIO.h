@@ -33,6 +33,9 @@ Image readExr(const std::string& path, const std::string& layer = "");
 // [0, 1] are shown exactly, and overexposed pixels keep their hue instead of drifting towards
 // white or yellow as a per-channel clamp would. NaN or Inf pixels are magenta, so they stand out.
 void writePng(const std::string& path, const Image& rgb, double exposure = 0);
+// The EXR of writeExr and the PNG of writePng beside it (previewPath), committed together
+// (writeTogether): after a failure both files are as they were.
+void writeExrAndPng(const std::string& exrPath, const Image& rgb, double exposure = 0);
 // The same preview as PNG file bytes (tetglow preview serves them).
 std::vector<uint8_t> encodePng(const Image& rgb, double exposure = 0);
 

@@ -14,6 +14,7 @@
 
 #include "render/ExrMemoryStream.h"
 #include "render/ImageIO.h"
+#include "tet/Memory.h"
 #include "tet/OutputFile.h"
 #include "tet/TriangleMesh.h"
 
@@ -64,6 +65,7 @@ void writePartial(const std::string& path, const PartialRender& part) {
         header.channels().insert("count", Imf::Channel(Imf::UINT));
         header.channels().insert("dropped", Imf::Channel(Imf::UINT));
         header.insert("tetglowFingerprint", Imf::StringAttribute(part.info.fingerprint));
+        header.insert("tetglowBuild", Imf::StringAttribute(part.info.build));
         header.insert("tetglowScene", Imf::StringAttribute(part.info.scene));
         header.insert("tetglowFirstPass", Imf::IntAttribute(part.info.firstPass));
         header.insert("tetglowEndPass", Imf::IntAttribute(part.info.endPass));
@@ -77,7 +79,7 @@ void writePartial(const std::string& path, const PartialRender& part) {
     });
 }
 
-PartialRender readPartial(const std::string& path) {
+PartialRender readPartial(const std::string& path, double heldBytes) {
     const std::string data = readExrBytes(path, "a partial render");
     try {
         ExrMemoryStream stream(data, path);
@@ -85,6 +87,7 @@ PartialRender readPartial(const std::string& path) {
         const Imf::Header& header = file.header();
         PartialRender part;
         part.info.fingerprint = attribute<Imf::StringAttribute>(path, header, "tetglowFingerprint");
+        part.info.build = attribute<Imf::StringAttribute>(path, header, "tetglowBuild");
         part.info.scene = attribute<Imf::StringAttribute>(path, header, "tetglowScene");
         part.info.firstPass = attribute<Imf::IntAttribute>(path, header, "tetglowFirstPass");
         part.info.endPass = attribute<Imf::IntAttribute>(path, header, "tetglowEndPass");
@@ -101,7 +104,10 @@ PartialRender readPartial(const std::string& path) {
             if (header.channels().findChannel(name) == nullptr || header.channels().findChannel(name)->type != Imf::UINT)
                 throw InputError(path + ": not a partial render: no 32-bit integer channel " + std::string(name));
         const Imath::Box2i window = header.dataWindow();
-        part.film = Film(window.max.x - window.min.x + 1, window.max.y - window.min.y + 1);
+        const int width = window.max.x - window.min.x + 1, height = window.max.y - window.min.y + 1;
+        checkMemory(heldBytes + double(data.size()) + double(width) * height * kFilmBytesPerPixel,
+                    path + ": a " + std::to_string(width) + "x" + std::to_string(height) + " part");
+        part.film = Film(width, height);
         Imf::FrameBuffer fb;
         insertFilmSlices(fb, part.film, nullptr, window);
         file.setFrameBuffer(fb);
@@ -118,43 +124,48 @@ PartialRender readPartial(const std::string& path) {
 
 PartialRender mergeParts(const std::vector<std::string>& paths) {
     if (paths.empty()) throw InputError("merge: no parts given");
-    struct Loaded {
+    // One part at a time is read and added to the sum (exact in any order): the memory is one
+    // film and one part, however many parts there are.
+    PartialRender whole = readPartial(paths.front());
+    const PartInfo first = whole.info;
+    struct Read {
         std::string path;
-        PartialRender part;
+        PartInfo info;
     };
-    std::vector<Loaded> parts;
-    for (const auto& path : paths) parts.push_back({path, readPartial(path)});
-    const Loaded& first = parts.front();
-    for (const Loaded& p : parts) {
-        const PartInfo &a = first.part.info, &b = p.part.info;
-        if (b.fingerprint != a.fingerprint || b.totalPasses != a.totalPasses)
-            throw InputError(p.path + ": a different scene or different settings from " + first.path + " (" + b.scene + " vs " +
-                             a.scene + ", fingerprint " + b.fingerprint + " vs " + a.fingerprint + ")");
-        if (b.frame != a.frame)
-            throw InputError(p.path + ": frame " + std::to_string(b.frame) + ", but " + first.path + " is frame " + std::to_string(a.frame));
+    std::vector<Read> read{{paths.front(), first}};
+    for (size_t i = 1; i < paths.size(); ++i) {
+        const std::string& path = paths[i];
+        const PartialRender part = readPartial(path, double(whole.film.pixelCount()) * kFilmBytesPerPixel);
+        const PartInfo& b = part.info;
+        if (b.build != first.build)
+            throw InputError(path + ": made by another tetglow build than " + paths.front() + " (build " + b.build + " vs " + first.build +
+                             "): render every part with one binary");
+        if (b.fingerprint != first.fingerprint || b.totalPasses != first.totalPasses)
+            throw InputError(path + ": a different scene or different settings from " + paths.front() + " (" + b.scene + " vs " +
+                             first.scene + ", fingerprint " + b.fingerprint + " vs " + first.fingerprint + ")");
+        if (b.frame != first.frame)
+            throw InputError(path + ": frame " + std::to_string(b.frame) + ", but " + paths.front() + " is frame " + std::to_string(first.frame));
+        if (!whole.film.merge(part.film))
+            throw InputError(path + ": " + std::to_string(part.film.width()) + "x" + std::to_string(part.film.height()) + " pixels, but " +
+                             paths.front() + " has " + std::to_string(whole.film.width()) + "x" + std::to_string(whole.film.height()));
+        read.push_back({path, b});
     }
-    std::stable_sort(parts.begin(), parts.end(), [](const Loaded& a, const Loaded& b) { return a.part.info.firstPass < b.part.info.firstPass; });
-    int covered = 0;  // passes 0 .. covered - 1 are in the parts merged so far
-    for (size_t i = 0; i < parts.size(); ++i) {
-        const PartInfo& info = parts[i].part.info;
+    std::stable_sort(read.begin(), read.end(), [](const Read& a, const Read& b) { return a.info.firstPass < b.info.firstPass; });
+    int covered = 0;  // passes 0 .. covered - 1 are in the parts checked so far
+    for (size_t i = 0; i < read.size(); ++i) {
+        const PartInfo& info = read[i].info;
         if (info.firstPass < covered)
-            throw InputError(parts[i].path + ": passes " + passRange(info) + " overlap passes " + passRange(parts[i - 1].part.info) + " of " +
-                             parts[i - 1].path);
+            throw InputError(read[i].path + ": passes " + passRange(info) + " overlap passes " + passRange(read[i - 1].info) + " of " +
+                             read[i - 1].path);
         if (info.firstPass > covered)
-            throw InputError(parts[i].path + ": passes " + std::to_string(covered) + ":" + std::to_string(info.firstPass) +
+            throw InputError(read[i].path + ": passes " + std::to_string(covered) + ":" + std::to_string(info.firstPass) +
                              " before its " + passRange(info) + " are in no part");
         covered = info.endPass;
     }
-    const Loaded& last = parts.back();
-    if (covered < last.part.info.totalPasses)
-        throw InputError(last.path + ": passes " + std::to_string(covered) + ":" + std::to_string(last.part.info.totalPasses) +
-                         " after its " + passRange(last.part.info) + " are in no part");
-    PartialRender whole = std::move(parts.front().part);
-    for (size_t i = 1; i < parts.size(); ++i)
-        if (!whole.film.merge(parts[i].part.film))
-            throw InputError(parts[i].path + ": " + std::to_string(parts[i].part.film.width()) + "x" + std::to_string(parts[i].part.film.height()) +
-                             " pixels, but " + parts.front().path + " has " + std::to_string(whole.film.width()) + "x" +
-                             std::to_string(whole.film.height()));
+    const Read& last = read.back();
+    if (covered < last.info.totalPasses)
+        throw InputError(last.path + ": passes " + std::to_string(covered) + ":" + std::to_string(last.info.totalPasses) + " after its " +
+                         passRange(last.info) + " are in no part");
     whole.info.firstPass = 0;
     whole.info.endPass = whole.info.totalPasses;
     return whole;

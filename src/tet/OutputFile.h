@@ -1,7 +1,8 @@
 // Files a command writes, handled the same way by every command: the output is checked before
-// any work (not a folder, not one of the inputs, its folder created), and written to a temporary
-// beside it that is renamed when complete, so that a failed or interrupted write leaves neither a
-// partial file nor the temporary behind.
+// any work (not a folder, not one of the inputs, its folder created and writable), and written
+// to a temporary beside it that is renamed when complete, so that a failed or interrupted write
+// leaves neither a partial file nor the temporary behind. The outputs of one command are
+// committed together: every temporary is complete before the first rename.
 #pragma once
 #include <functional>
 #include <ostream>
@@ -11,14 +12,28 @@
 namespace tetglow {
 
 // InputError when `path` has no file name, is a folder, or names one of `inputs` (by any spelling
-// or link: std::filesystem::equivalent); creates the folders it lies in when they are missing.
+// or link: std::filesystem::equivalent), or when its folder cannot be written; creates the
+// folders it lies in when they are missing.
 void prepareOutput(const std::string& path, const std::vector<std::string>& inputs = {});
 
-// Runs write(temporary) and renames the temporary onto `path` (whose folder must exist: commands
-// create it with prepareOutput). Any exception becomes an InputError "<path>: cannot write:
-// <why>" on one line; the temporary is removed.
+// A file of a commit: write(temporary) fills the temporary that is renamed onto `path` (whose
+// folder must exist: commands create it with prepareOutput).
+struct OutputWrite {
+    std::string path;
+    std::function<void(const std::string& temporary)> write;
+};
+// Writes every file to its temporary, then renames them all (renames within a folder need no
+// space, so a full disk fails a write, never a rename). Any exception becomes an InputError
+// "<path>: cannot write: <why>" on one line; no temporary remains, and after a failed write
+// every path holds what it held before.
+void writeTogether(const std::vector<OutputWrite>& files);
+// The same for one file.
 void writeAtomically(const std::string& path, const std::function<void(const std::string& temporary)>& write);
 // The same for a file written as a stream: write(out) fills it; a failed stream is an error.
 void writeStream(const std::string& path, const std::function<void(std::ostream& out)>& write);
+
+// Removes the temporaries of the writes in progress. Async-signal-safe: for a signal handler
+// that ends the process in the middle of a write.
+void removeTemporaries() noexcept;
 
 }  // namespace tetglow

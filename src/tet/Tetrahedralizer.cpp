@@ -15,6 +15,7 @@
 #include <glm/common.hpp>
 #include <tetgen.h>
 
+#include "tet/CacheDirectory.h"
 #include "tet/Hash.h"
 #include "tet/Predicates.h"
 #include "tet/RegionComplex.h"
@@ -345,14 +346,6 @@ uint64_t cacheKey(const RegionComplex& complex, const std::string& switches) {
     return h;
 }
 
-std::filesystem::path cacheDirectory(const TetOptions& options) {
-    if (!options.cacheDir.empty()) return options.cacheDir;
-    if (const char* d = std::getenv("TETGLOW_CACHE_DIR"); d && *d) return d;
-    if (const char* d = std::getenv("XDG_CACHE_HOME"); d && *d) return std::filesystem::path(d) / "tetglow";
-    if (const char* d = std::getenv("HOME"); d && *d) return std::filesystem::path(d) / ".cache" / "tetglow";
-    return {};
-}
-
 }  // namespace
 
 void checkTetCount(double volume, double maxVolume) {
@@ -393,7 +386,7 @@ TetMesh tetrahedralize(std::vector<TriangleMesh> surfaces, const std::vector<std
     TetStats local;
     std::filesystem::path file;
     if (options.useCache) {
-        if (auto dir = cacheDirectory(options); !dir.empty()) {
+        if (auto dir = cacheDirectory(options.cacheDir); !dir.empty()) {
             char name[32];
             std::snprintf(name, sizeof name, "%016llx.tet", static_cast<unsigned long long>(key));
             file = dir / name;

@@ -1,8 +1,12 @@
 #!/usr/bin/env bash
 # `tetglow farm` through a real Slurm (a local single-node cluster, tests/slurm/local-cluster.sh):
-# 4 parts give the image `tetglow render` gives, byte for byte; a turntable's frames split the
-# same way; a task that fails fails the merge job with that task's error and leaves no image, and
-# so does a failed tet-cache job (whose array then never runs).
+# a partition or an output path that would smuggle a command into the scripts is refused before
+# anything is written or submitted; an output folder with quotes, '#', spaces and '%' works (bash
+# and sbatch's #SBATCH parser each read their lines as meant, Slurm's --output expands no '%');
+# 4 parts, submitted with an account, a time limit, memory and an extra sbatch option that every
+# job carries, give the image `tetglow render` gives, byte for byte; a turntable's frames split
+# the same way; a task that fails fails the merge job with that task's error and leaves no image,
+# and so does a failed tet-cache job (whose array then never runs).
 #   tests/slurm/farm_test.sh TETGLOW_BINARY SOURCE_DIR
 # Exit 77 (CTest: skipped) with a message where Slurm or munge is not installed, or not as root.
 set -euo pipefail
@@ -25,12 +29,53 @@ fail() { echo "FAIL: $*" >&2; exit 1; }
 scene=$source_dir/scenes/sphere.json
 options=(--resolution 24x20 --spp 10 --seed 4 --integrator photon --photons 2000)
 
-echo "== 4 parts through Slurm against one render"
-"$tetglow" farm "$scene" --parts 4 "${options[@]}" -o "$dir/farm/sphere.exr" --wait
 "$tetglow" render "$scene" "${options[@]}" -o "$dir/single.exr" > /dev/null 2>&1
+
+echo "== a partition with a newline and a command: refused, nothing written or run"
+marker=$dir/pwned
+if "$tetglow" farm "$scene" --parts 2 "${options[@]}" --partition "test
+touch $marker" -o "$dir/hostile/a.exr" --wait 2> "$dir/hostile.err"; then
+    fail "farm accepted a partition with a newline"
+fi
+cat "$dir/hostile.err"
+grep -q -- "--partition: expected names of letters" "$dir/hostile.err" || fail "the refusal does not name --partition"
+[ ! -e "$marker" ] || fail "the command in the partition ran"
+[ ! -e "$dir/hostile" ] || fail "farm wrote files for a refused partition"
+
+echo "== an output path with a backslash, a quote, a newline and a command: refused, nothing written or run"
+if "$tetglow" farm "$scene" --parts 2 "${options[@]}" -o "$dir/hostile/x\\'
+touch $marker
+/a.exr" --wait 2> "$dir/hostile.err"; then
+    fail "farm accepted an output path with a newline"
+fi
+cat "$dir/hostile.err"
+grep -q "holds a control character: refusing to write it into a batch script" "$dir/hostile.err" || fail "the refusal does not say why"
+[ ! -e "$marker" ] || fail "the command in the output path ran"
+[ ! -e "$dir/hostile" ] || fail "farm wrote files for a refused output path"
+
+echo "== an output folder with quotes, '#', spaces and Slurm's and printf's '%' patterns"
+odd="$dir/it's \"a\" #1 100%d %a %20"
+"$tetglow" farm "$scene" --parts 2 "${options[@]}" -o "$odd/sphere.exr" --wait
+cmp "$odd/sphere.exr" "$dir/single.exr" || fail "the farm's image in the odd folder differs from the single render"
+for log in task-0.log task-1.log prepare.log merge.log; do
+    [ -s "$odd/sphere.farm/$log" ] || fail "$log is not in $odd/sphere.farm (Slurm expanded the folder's '%')"
+done
+[ "$(find "$dir" -name 'part-*' | grep -vc "^$odd/sphere.farm/")" -eq 0 ] || fail "parts were written outside the work folder"
+
+echo "== 4 parts through Slurm against one render, with an account, a time limit, memory and an sbatch option"
+"$tetglow" farm "$scene" --parts 4 "${options[@]}" --account tetglow-test --time 10 --mem 100M --sbatch-arg=--comment=farm-test \
+    -o "$dir/farm/sphere.exr" --wait | tee "$dir/farm.out"
 cmp "$dir/farm/sphere.exr" "$dir/single.exr" || fail "the farm's image differs from the single render"
 [ "$(ls "$dir"/farm/sphere.farm/task-*.log | wc -l)" -eq 4 ] || fail "expected 4 array tasks"
 grep -q "read from the cache" "$dir"/farm/sphere.farm/task-0.log || fail "task 0 ran TetGen instead of reading the cache"
+jobs=$(sed -n 's/^farm: submitted job \([0-9]*\) .* array \([0-9]*\) .* merge \([0-9]*\) .*/\1 \2 \3/p' "$dir/farm.out")
+[ "$(wc -w <<< "$jobs")" -eq 3 ] || fail "no job ids in farm's output"
+for job in $jobs; do
+    info=$(scontrol show job "$job")
+    for field in Account=tetglow-test TimeLimit=00:10:00 MinMemoryNode=100M Comment=farm-test; do
+        grep -q "$field" <<< "$info" || fail "job $job ran without $field: $info"
+    done
+done
 
 echo "== a turntable: frames 1 and 2 of 4, 2 parts each"
 sed 's/"camera":/"turntable": {"frames": 4}, "camera":/' "$scene" > "$dir/turntable.json"

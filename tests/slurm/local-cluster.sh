@@ -23,8 +23,9 @@ start() {
 
     # Ports from the folder's name, so that two clusters on one machine do not collide.
     local port=$((20000 + $(cksum <<< "$dir" | cut -d' ' -f1) % 20000 / 2 * 2))
-    local cpus
+    local cpus memory
     cpus=$(slurmd -C | sed -n 's/.*CPUs=\([0-9]*\).*/\1/p')
+    memory=$(slurmd -C | sed -n 's/.*RealMemory=\([0-9]*\).*/\1/p')  # MB; jobs that ask for --mem are held to it
     # SlurmctldHost and NodeAddr name 127.0.0.1: host-name lookups can hang here.
     cat > "$SLURM_CONF" <<CONF
 ClusterName=tetglow-test
@@ -55,7 +56,7 @@ SchedulerParameters=batch_sched_delay=0
 SelectType=select/cons_tres
 SelectTypeParameters=CR_CPU
 MinJobAge=600
-NodeName=localhost NodeAddr=127.0.0.1 CPUs=$cpus State=UNKNOWN
+NodeName=localhost NodeAddr=127.0.0.1 CPUs=$cpus RealMemory=$memory State=UNKNOWN
 PartitionName=test Nodes=localhost Default=YES MaxTime=INFINITE State=UP
 CONF
     slurmctld -D -i -f "$SLURM_CONF" > "$dir/slurmctld.out" 2>&1 &
