@@ -22,20 +22,17 @@ constexpr double kMaxRadiusFraction = 0.2;  // of the medium's (or the scene's) 
 }  // namespace
 
 PhotonIntegrator::PhotonIntegrator(const Scene& scene, const IntegratorDesc& desc)
-    : scene_(scene), desc_(desc), cameraMedium_(scene.mediumAt(scene.camera().position())), source_(scene) {
+    : scene_(scene), desc_(desc), cameraMedium_(scene.mediumAt(scene.camera().position())), source_(scene),
+      domains_(photonDomains(scene)) {
     // A pass stores about one photon per path: whether the machine holds them is known now.
     checkMemory(double(desc.photons) * sizeof(Photon), std::to_string(desc.photons) + " photon paths per pass (a 32-byte photon each)");
     Bounds3 all;
-    for (const SceneMedium& m : scene.media()) {
-        const TetMesh& mesh = scene.volumes()[m.volume].medium->mesh();
-        std::vector<std::array<uint32_t, 3>> triangles;
+    for (size_t d = 0; d < domains_.media.size(); ++d) {
+        const TetMesh& mesh = scene.volumes()[size_t(domains_.volume[d])].medium->mesh();
         Bounds3 box;
-        for (size_t s = 0; s < mesh.surface.size(); ++s)
-            if (mesh.surfaceRegions[s][0] == m.region || mesh.surfaceRegions[s][1] == m.region) {
-                triangles.push_back(mesh.surface[s]);
-                for (uint32_t v : mesh.surface[s]) box.extend(mesh.vertices[v]);
-            }
-        regionBoundaries_.push_back(std::make_unique<SurfaceBVH>(mesh.vertices, triangles));
+        for (const auto& triangle : domains_.boundary[d])
+            for (uint32_t v : triangle) box.extend(mesh.vertices[v]);
+        regionBoundaries_.push_back(std::make_unique<SurfaceBVH>(mesh.vertices, domains_.boundary[d]));
         balls_.emplace_back(*regionBoundaries_.back());
         MediumPhotons photons;
         photons.maxRadius = float(kMaxRadiusFraction * box.diagonal());
@@ -66,9 +63,15 @@ void PhotonIntegrator::beginPass(uint64_t pass) {
         MediumPhotons& mp = media_[m];
         mp.beams.reset();
         mp.map.reset();
-        stats_.volumePhotons += traced.volume[m].size();
-        if (traced.volume[m].empty()) continue;
-        mp.map = std::make_unique<PhotonMap>(std::move(traced.volume[m]));
+        std::vector<Photon> photons;  // the domain's media's, in medium order
+        for (int medium : domains_.media[m]) {
+            auto& stored = traced.volume[size_t(medium)];
+            if (photons.empty()) photons = std::move(stored);
+            else photons.insert(photons.end(), stored.begin(), stored.end());
+        }
+        stats_.volumePhotons += photons.size();
+        if (photons.empty()) continue;
+        mp.map = std::make_unique<PhotonMap>(std::move(photons));
         if (desc_.estimate == PhotonEstimate::Beam) {
             if (desc_.radius > 0) mp.map->setRadii(float(desc_.radius * volumeScale_));
             else mp.map->assignRadii(desc_.k, mp.maxRadius, float(volumeScale_));
@@ -155,9 +158,9 @@ RGB PhotonIntegrator::radiance(const Ray& cameraRay, Rng& rng) const {
     return L;
 }
 
-int PhotonIntegrator::mediumOf(int v, uint32_t tet) const {
+int PhotonIntegrator::domainOf(int v, uint32_t tet) const {
     const SceneVolume& volume = scene_.volumes()[v];
-    return volume.media[size_t(volume.medium->mesh().region(tet))];
+    return domains_.ofMedium[size_t(volume.media[size_t(volume.medium->mesh().region(tet))])];
 }
 
 RGB PhotonIntegrator::inMedium(int v, const Ray& ray, const ColumnProfile& column, Rng& rng) const {
@@ -216,7 +219,7 @@ double PhotonIntegrator::gather(const PhotonMap& map, const glm::dvec3& p, doubl
 }
 
 RGB PhotonIntegrator::knnEstimate(int v, uint32_t tet, const glm::dvec3& p, const glm::dvec3& d) const {
-    const int m = mediumOf(v, tet);
+    const int m = domainOf(v, tet);
     const MediumPhotons& mp = media_[m];
     if (!mp.map) return RGB(0);
     thread_local std::vector<Neighbour> near;
@@ -238,14 +241,14 @@ RGB PhotonIntegrator::knnEstimate(int v, uint32_t tet, const glm::dvec3& p, cons
 RGB PhotonIntegrator::beamEstimate(int v, const Ray& ray, const ColumnProfile& column) const {
     const auto& pieces = column.pieces();
     RGB L(0);
-    // Each run of pieces in one region sees that region's photons only. Each photon's ball
+    // Each run of pieces in one domain sees that domain's photons only. Each photon's ball
     // kernel is integrated along the run: the chord of the ball within [begin, end] over the
-    // ball's volume (inside its region, with boundary correction). Unlike the disc kernel
+    // ball's volume (inside its domain, with boundary correction). Unlike the disc kernel
     // 1 / (pi r^2), which assumes the whole chord lies in the medium, this stays right where the
     // ball reaches past the run's ends, however large the radius.
     for (size_t first = 0, last; first < pieces.size(); first = last) {
-        const int m = mediumOf(v, pieces[first].tet);
-        for (last = first + 1; last < pieces.size() && mediumOf(v, pieces[last].tet) == m;) ++last;
+        const int m = domainOf(v, pieces[first].tet);
+        for (last = first + 1; last < pieces.size() && domainOf(v, pieces[last].tet) == m;) ++last;
         const MediumPhotons& mp = media_[m];
         if (!mp.beams) continue;
         const HenyeyGreenstein& phase = scene_.volumes()[v].medium->at(pieces[first].tet).phase;
