@@ -53,6 +53,30 @@ TEST(Photon, EnergyBalance) {
     EXPECT_GT(traced.surface.size(), 1000u);  // caustics and light the sphere sends to the floor
 }
 
+// A path stores a photon at every event (from a glowing medium, its first too), up to max depth:
+// in a dense sphere far more than one per path. The bound on what a pass stores counts them all and stops the pass
+// before one more is stored.
+TEST(Photon, StoredPhotonsAreBoundedNotOnePerPath) {
+    MediumDesc glowing = sphereMedium(RGB(0), RGB(1000), 0, 2);
+    glowing.emission = RGB(1);  // photons start inside and scatter until the event cap
+    const Scene scene(sceneWith(glowing, 4));
+    const PhotonSource source(scene);
+    PhotonTracingOptions options{2000, 64, 3, 0};
+    const TracedPhotons all = tracePhotons(scene, source, options);
+    const uint64_t stored = all.volume[0].size() + all.surface.size();
+    EXPECT_GT(stored, 30 * options.paths);
+    options.maxStored = stored;
+    EXPECT_EQ(tracePhotons(scene, source, options).volume[0].size(), all.volume[0].size());
+    options.maxStored = stored - 1;
+    try {
+        tracePhotons(scene, source, options);
+        ADD_FAILURE() << "stored more than maxStored";
+    } catch (const InputError& e) {
+        EXPECT_EQ(std::string(e.what()), "photon tracing: 2000 photon paths per pass store more than " + std::to_string(stored - 1) +
+                                              " photons, more than this machine's memory holds: ask for fewer photons per pass or a lower max depth");
+    }
+}
+
 // A glowing, scattering sphere with an index-matched boundary: all scattered light comes from
 // photons (emission is never sampled by next-event estimation), so the volume estimates carry
 // the whole difference from volpath.

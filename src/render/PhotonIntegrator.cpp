@@ -18,13 +18,17 @@ namespace {
 // Photons in a k-NN ball or a disc never reach this far: at worst a sparse map gets a blurry
 // estimate instead of one lookup that spans the whole scene.
 constexpr double kMaxRadiusFraction = 0.2;  // of the medium's (or the scene's) bounding-box diagonal
+// What one stored photon costs at the peak of a pass: itself in the tracer's blocks and again
+// when they are joined, then in its map with the k-d tree, the beam BVH and its ball's volume.
+constexpr double kBytesPerStoredPhoton = 160;
 
 }  // namespace
 
 PhotonIntegrator::PhotonIntegrator(const Scene& scene, const IntegratorDesc& desc)
     : scene_(scene), desc_(desc), cameraMedium_(scene.mediumAt(scene.camera().position())), source_(scene),
       domains_(photonDomains(scene)) {
-    // A pass stores about one photon per path: whether the machine holds them is known now.
+    // A pass stores about one photon per path, checked now; as a path can store up to max depth
+    // photons, their number is also bounded while they are traced (maxStored).
     checkMemory(double(desc.photons) * sizeof(Photon), std::to_string(desc.photons) + " photon paths per pass (a 32-byte photon each)");
     Bounds3 all;
     for (size_t d = 0; d < domains_.media.size(); ++d) {
@@ -53,7 +57,8 @@ double PhotonIntegrator::radiusScale(uint64_t pass, double alpha, int dim) {
 
 void PhotonIntegrator::beginPass(uint64_t pass) {
     const auto start = std::chrono::steady_clock::now();
-    TracedPhotons traced = tracePhotons(scene_, source_, {desc_.photons, desc_.maxDepth, desc_.seed, pass, desc_.finalGather});
+    const auto maxStored = uint64_t(physicalMemory() / kBytesPerStoredPhoton);
+    TracedPhotons traced = tracePhotons(scene_, source_, {desc_.photons, desc_.maxDepth, desc_.seed, pass, desc_.finalGather, maxStored});
     // k-NN balls are three-dimensional kernels, beam discs and surface discs two-dimensional.
     auto scale = [&](int dim) { return radiusScale(pass, desc_.alpha > 0 ? desc_.alpha : balancedAlpha(dim), dim); };
     volumeScale_ = scale(desc_.estimate == PhotonEstimate::Beam ? 2 : 3);

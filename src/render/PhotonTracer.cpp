@@ -1,6 +1,8 @@
 #include "render/PhotonTracer.h"
 
 #include <algorithm>
+#include <atomic>
+#include <string>
 
 #include <tbb/parallel_for.h>
 
@@ -26,8 +28,8 @@ Photon makePhoton(const glm::dvec3& p, const RGB& power, const glm::dvec3& direc
 // One photon path, from emission to absorption, escape or the event cap.
 class PathTracer {
 public:
-    PathTracer(const Scene& scene, const PhotonTracingOptions& options, TracedPhotons& out)
-        : scene_(scene), options_(options), out_(out) {}
+    PathTracer(const Scene& scene, const PhotonTracingOptions& options, TracedPhotons& out, std::atomic<uint64_t>& stored)
+        : scene_(scene), options_(options), out_(out), stored_(stored) {}
 
     void trace(const PhotonSource::Emission& e, Rng& rng) {
         EnergyBalance energy;
@@ -55,7 +57,7 @@ public:
                     [&](const PhotonEvent& event) {
                         // Stored in the photon map of the medium that scattered it.
                         const int m = volume.media[size_t(volume.medium->mesh().region(event.tet))];
-                        if (!direct) out_.volume[m].push_back(makePhoton(event.position, event.power, event.direction));
+                        if (!direct) store(out_.volume[m], makePhoton(event.position, event.power, event.direction));
                         direct = specularOnly = false;
                     });
                 energy.absorbedInMedia += walk.absorbedFlux;
@@ -86,8 +88,8 @@ public:
             }
             const RGB arriving = flux();
             if (material.type == MaterialType::Diffuse && !direct) {
-                out_.surface.push_back(makePhoton(hit->p, arriving, ray.d));
-                if (specularOnly && options_.caustics) out_.caustic.push_back(out_.surface.back());
+                store(out_.surface, makePhoton(hit->p, arriving, ray.d));
+                if (specularOnly && options_.caustics) store(out_.caustic, out_.surface.back());
             }
             specularOnly = specularOnly && material.type != MaterialType::Diffuse;
             const double u0 = rng.uniform(), u1 = rng.uniform();
@@ -108,9 +110,18 @@ public:
     }
 
 private:
+    void store(std::vector<Photon>& photons, const Photon& photon) {
+        if (stored_.fetch_add(1, std::memory_order_relaxed) >= options_.maxStored)
+            throw InputError("photon tracing: " + std::to_string(options_.paths) + " photon paths per pass store more than " +
+                             std::to_string(options_.maxStored) + " photons, more than this machine's memory holds: ask for fewer "
+                             "photons per pass or a lower max depth");
+        photons.push_back(photon);
+    }
+
     const Scene& scene_;
     const PhotonTracingOptions& options_;
     TracedPhotons& out_;
+    std::atomic<uint64_t>& stored_;
 };
 
 }  // namespace
@@ -175,10 +186,11 @@ PhotonSource::Emission PhotonSource::sample(const Scene& scene, Rng& rng) const 
 TracedPhotons tracePhotons(const Scene& scene, const PhotonSource& source, const PhotonTracingOptions& options) {
     const uint64_t blocks = (options.paths + kBlock - 1) / kBlock;
     std::vector<TracedPhotons> parts(blocks);
+    std::atomic<uint64_t> stored{0};
     tbb::parallel_for(uint64_t(0), blocks, [&](uint64_t b) {
         TracedPhotons& part = parts[b];
         part.volume.resize(scene.media().size());
-        PathTracer tracer(scene, options, part);
+        PathTracer tracer(scene, options, part, stored);
         for (uint64_t i = b * kBlock; i < std::min(options.paths, (b + 1) * kBlock); ++i) {
             Rng rng(options.seed, i, kPhotonStream + options.pass);
             PhotonSource::Emission e = source.sample(scene, rng);

@@ -22,6 +22,10 @@ struct PhotonTracingOptions {
     uint64_t seed = 0;
     uint64_t pass = 0;        // independent photons for every pass
     bool caustics = false;    // also keep the caustic photons apart (TracedPhotons::caustic)
+    // Photons the pass may store (volume, surface and caustic together): a path stores up to
+    // maxDepth, so only the count itself bounds the memory. One more is an InputError, raised
+    // before it is stored.
+    uint64_t maxStored = UINT64_MAX;
 };
 
 // Where the emitted power went, summed over the paths: emitted = absorbed + escaped + cut in
