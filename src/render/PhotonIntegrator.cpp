@@ -27,6 +27,10 @@ constexpr double kBytesPerStoredPhoton = 160;
 PhotonIntegrator::PhotonIntegrator(const Scene& scene, const IntegratorDesc& desc)
     : scene_(scene), desc_(desc), cameraMedium_(scene.mediumAt(scene.camera().position())), source_(scene),
       domains_(photonDomains(scene)) {
+    // The render's time limit runs from here (the render starts next): no photon pass traces past it.
+    if (desc.timeLimit > 0)
+        deadline_ = std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                                              std::chrono::duration<double>(desc.timeLimit));
     // A pass stores about one photon per path, checked now; as a path can store up to max depth
     // photons, their number is also bounded while they are traced (maxStored).
     checkMemory(double(desc.photons) * sizeof(Photon), std::to_string(desc.photons) + " photon paths per pass (a 32-byte photon each)");
@@ -58,7 +62,7 @@ double PhotonIntegrator::radiusScale(uint64_t pass, double alpha, int dim) {
 void PhotonIntegrator::beginPass(uint64_t pass) {
     const auto start = std::chrono::steady_clock::now();
     const auto maxStored = uint64_t(physicalMemory() / kBytesPerStoredPhoton);
-    TracedPhotons traced = tracePhotons(scene_, source_, {desc_.photons, desc_.maxDepth, desc_.seed, pass, desc_.finalGather, maxStored});
+    TracedPhotons traced = tracePhotons(scene_, source_, {desc_.photons, desc_.maxDepth, desc_.seed, pass, desc_.finalGather, maxStored, deadline_});
     // k-NN balls are three-dimensional kernels, beam discs and surface discs two-dimensional.
     auto scale = [&](int dim) { return radiusScale(pass, desc_.alpha > 0 ? desc_.alpha : balancedAlpha(dim), dim); };
     volumeScale_ = scale(desc_.estimate == PhotonEstimate::Beam ? 2 : 3);

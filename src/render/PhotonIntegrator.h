@@ -97,6 +97,7 @@ private:
     std::unique_ptr<PhotonMap> caustic_;  // those from a light by specular events only (final gathering)
     float surfaceMaxRadius_ = 0;
     double volumeScale_ = 1, surfaceScale_ = 1;  // this pass's radius factors
+    std::optional<std::chrono::steady_clock::time_point> deadline_;  // of the time limit, if any
     PhotonStats stats_;
 };
 

@@ -190,6 +190,8 @@ TracedPhotons tracePhotons(const Scene& scene, const PhotonSource& source, const
     tbb::parallel_for(uint64_t(0), blocks, [&](uint64_t b) {
         TracedPhotons& part = parts[b];
         part.volume.resize(scene.media().size());
+        if (b > 0 && options.deadline && std::chrono::steady_clock::now() > *options.deadline) return;
+        part.paths = std::min(options.paths, (b + 1) * kBlock) - b * kBlock;
         PathTracer tracer(scene, options, part, stored);
         for (uint64_t i = b * kBlock; i < std::min(options.paths, (b + 1) * kBlock); ++i) {
             Rng rng(options.seed, i, kPhotonStream + options.pass);
@@ -201,12 +203,22 @@ TracedPhotons tracePhotons(const Scene& scene, const PhotonSource& source, const
     // Concatenated in block order: the same photons in the same order for any thread count.
     TracedPhotons all;
     all.volume.resize(scene.media().size());
-    all.paths = options.paths;
     for (const TracedPhotons& part : parts) {
+        all.paths += part.paths;
         for (size_t m = 0; m < all.volume.size(); ++m) all.volume[m].insert(all.volume[m].end(), part.volume[m].begin(), part.volume[m].end());
         all.surface.insert(all.surface.end(), part.surface.begin(), part.surface.end());
         all.caustic.insert(all.caustic.end(), part.caustic.begin(), part.caustic.end());
         all.energy.add(part.energy);
+    }
+    if (all.paths < options.paths) {  // each path carried 1 / options.paths of the emitted power
+        const double scale = double(options.paths) / double(all.paths);
+        for (auto* photons : {&all.surface, &all.caustic})
+            for (Photon& p : *photons) p.power *= float(scale);
+        for (auto& photons : all.volume)
+            for (Photon& p : photons) p.power *= float(scale);
+        EnergyBalance& e = all.energy;
+        for (RGB* x : {&e.emitted, &e.absorbedInMedia, &e.absorbedOnSurfaces, &e.escaped, &e.cut}) *x *= scale;
+        e.deficitSquares *= scale * scale;
     }
     return all;
 }
