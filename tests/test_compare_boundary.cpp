@@ -184,5 +184,12 @@ TEST(CompareBoundaryCommand, BadInputGetsClearErrors) {
         EXPECT_EQ(runTetglow("compare-boundary " + kFish + " " + arg).exitCode, 2) << arg;
 }
 
+// A shell far outside the mesh would put points where no ray reaches (Embree aborts on them).
+TEST(CompareBoundaryCommand, ShellBeyondADiagonalIsRefused) {
+    for (const char* shell : {"1e300", "1.5", "0"})
+        expectOneLineError(runTetglow("compare-boundary " + kFish + " --points 10 --rays 10 --shells " + shell), 2,
+                           "--shells: expected a number in (0, 1], got '" + std::string(shell) + "'");
+}
+
 }  // namespace
 }  // namespace tetglow::test

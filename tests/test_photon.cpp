@@ -1,5 +1,6 @@
 // Photon mapping: where the traced power goes, and the volume estimates against each other and
 // against the volpath reference.
+#include <chrono>
 #include <cmath>
 
 #include <gtest/gtest.h>
@@ -51,6 +52,46 @@ TEST(Photon, EnergyBalance) {
     }
     EXPECT_GT(traced.volume[0].size(), 10000u);
     EXPECT_GT(traced.surface.size(), 1000u);  // caustics and light the sphere sends to the floor
+}
+
+// A path stores a photon at every event (from a glowing medium, its first too), up to max depth:
+// in a dense sphere far more than one per path. The bound on what a pass stores counts them all and stops the pass
+// before one more is stored.
+TEST(Photon, StoredPhotonsAreBoundedNotOnePerPath) {
+    MediumDesc glowing = sphereMedium(RGB(0), RGB(1000), 0, 2);
+    glowing.emission = RGB(1);  // photons start inside and scatter until the event cap
+    const Scene scene(sceneWith(glowing, 4));
+    const PhotonSource source(scene);
+    PhotonTracingOptions options{2000, 64, 3, 0};
+    const TracedPhotons all = tracePhotons(scene, source, options);
+    const uint64_t stored = all.volume[0].size() + all.surface.size();
+    EXPECT_GT(stored, 30 * options.paths);
+    options.maxStored = stored;
+    EXPECT_EQ(tracePhotons(scene, source, options).volume[0].size(), all.volume[0].size());
+    options.maxStored = stored - 1;
+    try {
+        tracePhotons(scene, source, options);
+        ADD_FAILURE() << "stored more than maxStored";
+    } catch (const InputError& e) {
+        EXPECT_EQ(std::string(e.what()), "photon tracing: 2000 photon paths per pass store more than " + std::to_string(stored - 1) +
+                                              " photons, more than this machine's memory holds: ask for fewer photons per pass or a lower max depth");
+    }
+}
+
+// Under a time limit a pass traces the blocks of paths begun in time, at least the first, and
+// scales their power to the paths it traced: the emitted power is the lights' still.
+TEST(Photon, APassPastItsDeadlineTracesOneBlockAtFullPower) {
+    const Scene scene(closedWorld());
+    const PhotonSource source(scene);
+    PhotonTracingOptions options{1000000, 64, 3, 0};
+    options.deadline = std::chrono::steady_clock::now();
+    const TracedPhotons traced = tracePhotons(scene, source, options);
+    EXPECT_EQ(traced.paths, 1024u);
+    for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(traced.energy.emitted[c], source.totalPower()[c], 0.1 * source.totalPower()[c]);
+    RGB stored(0);
+    for (const Photon& p : traced.surface) stored += RGB(p.power);
+    EXPECT_GT(average(stored), 0.01 * average(source.totalPower()));  // photons carry the scaled power
 }
 
 // A glowing, scattering sphere with an index-matched boundary: all scattered light comes from

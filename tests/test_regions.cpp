@@ -247,6 +247,22 @@ TEST(Regions, TheSameMeshTwiceIsRefused) {
     EXPECT_NE(e, "(accepted)");
 }
 
+TEST(Regions, TheSameSphereTwiceIsRefusedAtEverySubdivision) {
+    for (int subdivisions = 1; subdivisions <= 4; ++subdivisions)
+        EXPECT_EQ(errorOf({icosphere(subdivisions, 1.0), icosphere(subdivisions, 1.0)}, {"one", "two"}), "one and two have the same surface")
+            << subdivisions;
+}
+
+// A box 1e-12 inside another: nested exactly, but closer than TetGen tells points apart.
+TEST(Regions, SurfacesCloserThanTetGenResolvesAreRefusedNamingBoth) {
+    const std::string e = errorOf({box(), box(glm::dvec3(1e-12), glm::dvec3(1 - 1e-12))}, {"outer.obj", "inner.obj"});
+    EXPECT_EQ(e.rfind("outer.obj and inner.obj are ", 0), 0u) << e;
+    EXPECT_NE(e.find("closer than TetGen tells points apart"), std::string::npos) << e;
+    EXPECT_NE(e.find("vertex 0 of outer.obj and vertex 0 of inner.obj"), std::string::npos) << e;
+    // 1e-6 apart is resolved: two regions.
+    EXPECT_EQ(errorOf({box(), box(glm::dvec3(1e-6), glm::dvec3(1 - 1e-6))}, {"outer.obj", "inner.obj"}), "(accepted)");
+}
+
 // ---- The command --------------------------------------------------------------------------------
 
 std::string writeMesh(const std::string& name, const TriangleMesh& m) {

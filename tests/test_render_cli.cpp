@@ -57,6 +57,49 @@ TEST(RenderCommand, CtrlCStillWritesTheImage) {
 }
 
 // (e) Broken scenes: one line naming the file and what is wrong, exit code 1, no image.
+// A scattering sphere in glass under point, spot and distant lights: volpath and single cannot
+// carry their light through the glass and say so, naming the integrator that can.
+TEST(RenderCommand, DeltaLightsBehindGlassAreReported) {
+    const std::string lights[] = {R"({"type": "point", "position": [2, 3, 2], "intensity": 20})",
+                                  R"({"type": "spot", "position": [0, 3, 0], "look_at": [0, 0, 0], "intensity": 20})",
+                                  R"({"type": "distant", "direction": [0, -1, 0], "irradiance": 2})"};
+    for (const std::string& light : lights) {
+        const std::string scene = writeTemp("glass.json", R"({"camera": {"position": [0, 0, 4], "look_at": [0, 0, 0], "resolution": [4, 4]},
+            "integrator": {"spp": 1}, "lights": [)" + light + R"(],
+            "media": [{"shape": {"type": "sphere", "center": [0, 0, 0], "radius": 1}, "sigma_s": 2, "boundary": {"type": "dielectric", "ior": 1.5}}]})");
+        for (const char* integrator : {"volpath", "single", "photon"}) {
+            const auto r = runTetglow("render " + scene + " --photons 100 --integrator " + integrator + " -o " + tempDir() + "/glass.exr");
+            ASSERT_EQ(r.exitCode, 0) << r.err;
+            const bool warned = r.err.find("warning: /media/0 lies inside a dielectric boundary, through which " + std::string(integrator) +
+                                           " cannot carry light from a point, spot or distant light") != std::string::npos;
+            EXPECT_EQ(warned, std::string(integrator) != "photon") << light << integrator << ": " << r.err;
+            if (warned) {
+                EXPECT_NE(r.err.find("--integrator photon renders it\n"), std::string::npos) << r.err;
+            }
+        }
+    }
+    // Under a sky alone (no delta light) nothing is missing.
+    const std::string sky = writeTemp("sky.json", R"({"camera": {"position": [0, 0, 4], "look_at": [0, 0, 0], "resolution": [4, 4]},
+        "integrator": {"spp": 1}, "lights": [{"type": "environment", "radiance": 1}],
+        "media": [{"shape": {"type": "sphere", "center": [0, 0, 0], "radius": 1}, "sigma_s": 2, "boundary": {"type": "dielectric", "ior": 1.5}}]})");
+    const auto r = runTetglow("render " + sky + " -o " + tempDir() + "/sky.exr");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(r.err.find("warning"), std::string::npos) << r.err;
+}
+
+// A dense glowing sphere stores a photon at each of a path's 64 events: 10 million paths would
+// take minutes. Under --time the pass stops starting blocks of paths when the time is up.
+TEST(RenderCommand, APhotonPassEndsWithItsTimeLimit) {
+    const std::string scene = writeTemp("dense.json", R"({"camera": {"position": [0, 0, 4], "look_at": [0, 0, 0], "resolution": [1, 1]},
+        "integrator": {"type": "photon", "spp": 1, "photons": 10000000},
+        "media": [{"shape": {"type": "sphere", "center": [0, 0, 0], "radius": 1}, "sigma_s": 1000, "emission": 1}]})");
+    const auto r = runTetglow("render " + scene + " --time 0.001 -o " + tempDir() + "/dense.exr");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const size_t at = r.out.find("photons: ");
+    ASSERT_NE(at, std::string::npos) << r.out;
+    EXPECT_LT(std::stoull(r.out.substr(at + 9)), 10000000ull) << r.out;
+}
+
 TEST(RenderCommand, BrokenScenesGetClearErrors) {
     const std::string sphere = slurp(kSphere);
     auto replaced = [&](const std::string& from, const std::string& to) {

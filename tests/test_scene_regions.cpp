@@ -33,6 +33,14 @@ TEST(SceneRegions, OverlappingMediaAreRefusedNamingBoth) {
                   "/media/0 and /media/1 cross: triangle ");
 }
 
+// The same sphere twice, at every subdivision: one space cannot hold two media.
+TEST(SceneRegions, CoincidentMediaAreRefused) {
+    for (int subdivisions = 1; subdivisions <= 4; ++subdivisions) {
+        const std::string sphere = R"({"type": "sphere", "center": [0, 0, 0], "radius": 1, "subdivisions": )" + std::to_string(subdivisions) + "}";
+        expectRefused("same" + std::to_string(subdivisions), sceneWithMedia(sphere, sphere), "/media/0 and /media/1 have the same surface");
+    }
+}
+
 TEST(SceneRegions, AMediumCrossingItsContainerIsRefused) {
     expectRefused("poke", sceneWithMedia(kBig, R"({"type": "sphere", "center": [0.8, 0, 0], "radius": 0.3, "subdivisions": 1})"),
                   "/media/0 and /media/1 cross");

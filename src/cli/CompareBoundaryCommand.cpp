@@ -135,8 +135,9 @@ void addCompareBoundaryCommand(CLI::App& app) {
     cmd->add_option("--points", o->comparison.points, "Random points per region (the box and each shell)")
         ->check(CLI::Range(size_t(1), size_t(100000000)));
     cmd->add_option("--rays", o->comparison.rays, "Random lines across the bounding box")->check(CLI::Range(size_t(1), size_t(100000000)));
-    cmd->add_option("--shells", o->comparison.shells, "Shell offsets from the surface in diagonals (default: 1e-2 to 1e-7)")
-        ->check(inRange(kPositive));
+    // Beyond a diagonal a shell lies wholly outside the box, and its points must stay rays Embree takes.
+    cmd->add_option("--shells", o->comparison.shells, "Shell offsets from the surface in diagonals, at most 1 (default: 1e-2 to 1e-7)")
+        ->check(inRange({.lo = 0, .hi = 1, .loOpen = true}));
     cmd->add_option("--steps", o->comparison.steps, "March steps in world units (default: the diagonal / 20, / 100, / 500)")
         ->check(inRange(kPositive));
     cmd->add_option("--seed", o->comparison.seed, "Random seed")->check(inRange(kNonNegative));

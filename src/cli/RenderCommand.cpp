@@ -14,6 +14,7 @@
 #include "render/PartialRender.h"
 #include "render/PhotonIntegrator.h"
 #include "render/Renderer.h"
+#include "render/UnsampledLight.h"
 #include "scene/SceneFingerprint.h"
 #include "scene/Turntable.h"
 #include "tet/OutputFile.h"
@@ -60,6 +61,7 @@ void run(const Options& o) {
         std::fprintf(stderr, "medium %s: %zu tets, %zu Steiner points, %s in %.2f s\n", m.name.c_str(), m.medium->mesh().tets.size(),
                      m.steinerPoints, m.stats.fromCache ? "read from the cache" : "tetrahedralized", m.stats.seconds);
     if (o.tetsOnly) return;
+    for (const std::string& w : unsampledLightWarnings(scene, desc.integrator.type)) std::fprintf(stderr, "tetglow: warning: %s\n", w.c_str());
     const auto integrator = makeIntegrator(scene, desc.integrator);
 
     RenderOptions options;

@@ -20,24 +20,29 @@ namespace {
 // Photons in a k-NN ball or a disc never reach this far: at worst a sparse map gets a blurry
 // estimate instead of one lookup that spans the whole scene.
 constexpr double kMaxRadiusFraction = 0.2;  // of the medium's (or the scene's) bounding-box diagonal
+// What one stored photon costs at the peak of a pass: itself in the tracer's blocks and again
+// when they are joined, then in its map with the k-d tree, the beam BVH and its ball's volume.
+constexpr double kBytesPerStoredPhoton = 160;
 
 }  // namespace
 
 PhotonIntegrator::PhotonIntegrator(const Scene& scene, const IntegratorDesc& desc)
-    : scene_(scene), desc_(desc), cameraMedium_(scene.mediumAt(scene.camera().position())), source_(scene) {
-    // A pass stores about one photon per path: whether the machine holds them is known now.
+    : scene_(scene), desc_(desc), cameraMedium_(scene.mediumAt(scene.camera().position())), source_(scene),
+      domains_(photonDomains(scene)) {
+    // The render's time limit runs from here (the render starts next): no photon pass traces past it.
+    if (desc.timeLimit > 0)
+        deadline_ = std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                                              std::chrono::duration<double>(desc.timeLimit));
+    // A pass stores about one photon per path, checked now; as a path can store up to max depth
+    // photons, their number is also bounded while they are traced (maxStored).
     checkMemory(double(desc.photons) * sizeof(Photon), std::to_string(desc.photons) + " photon paths per pass (a 32-byte photon each)");
     Bounds3 all;
-    for (const SceneMedium& m : scene.media()) {
-        const TetMesh& mesh = scene.volumes()[m.volume].medium->mesh();
-        std::vector<std::array<uint32_t, 3>> triangles;
+    for (size_t d = 0; d < domains_.media.size(); ++d) {
+        const TetMesh& mesh = scene.volumes()[size_t(domains_.volume[d])].medium->mesh();
         Bounds3 box;
-        for (size_t s = 0; s < mesh.surface.size(); ++s)
-            if (mesh.surfaceRegions[s][0] == m.region || mesh.surfaceRegions[s][1] == m.region) {
-                triangles.push_back(mesh.surface[s]);
-                for (uint32_t v : mesh.surface[s]) box.extend(mesh.vertices[v]);
-            }
-        regionBoundaries_.push_back(std::make_unique<SurfaceBVH>(mesh.vertices, triangles));
+        for (const auto& triangle : domains_.boundary[d])
+            for (uint32_t v : triangle) box.extend(mesh.vertices[v]);
+        regionBoundaries_.push_back(std::make_unique<SurfaceBVH>(mesh.vertices, domains_.boundary[d]));
         balls_.emplace_back(*regionBoundaries_.back());
         MediumPhotons photons;
         photons.maxRadius = float(kMaxRadiusFraction * box.diagonal());
@@ -58,7 +63,8 @@ double PhotonIntegrator::radiusScale(uint64_t pass, double alpha, int dim) {
 
 void PhotonIntegrator::beginPass(uint64_t pass) {
     const auto start = std::chrono::steady_clock::now();
-    TracedPhotons traced = tracePhotons(scene_, source_, {desc_.photons, desc_.maxDepth, desc_.seed, pass, desc_.finalGather});
+    const auto maxStored = uint64_t(physicalMemory() / kBytesPerStoredPhoton);
+    TracedPhotons traced = tracePhotons(scene_, source_, {desc_.photons, desc_.maxDepth, desc_.seed, pass, desc_.finalGather, maxStored, deadline_});
     // k-NN balls are three-dimensional kernels, beam discs and surface discs two-dimensional.
     auto scale = [&](int dim) { return radiusScale(pass, desc_.alpha > 0 ? desc_.alpha : balancedAlpha(dim), dim); };
     volumeScale_ = scale(desc_.estimate == PhotonEstimate::Beam ? 2 : 3);
@@ -68,9 +74,15 @@ void PhotonIntegrator::beginPass(uint64_t pass) {
         MediumPhotons& mp = media_[m];
         mp.beams.reset();
         mp.map.reset();
-        stats_.volumePhotons += traced.volume[m].size();
-        if (traced.volume[m].empty()) continue;
-        mp.map = std::make_unique<PhotonMap>(std::move(traced.volume[m]));
+        std::vector<Photon> photons;  // the domain's media's, in medium order
+        for (int medium : domains_.media[m]) {
+            auto& stored = traced.volume[size_t(medium)];
+            if (photons.empty()) photons = std::move(stored);
+            else photons.insert(photons.end(), stored.begin(), stored.end());
+        }
+        stats_.volumePhotons += photons.size();
+        if (photons.empty()) continue;
+        mp.map = std::make_unique<PhotonMap>(std::move(photons));
         if (desc_.estimate == PhotonEstimate::Beam) {
             if (desc_.radius > 0) mp.map->setRadii(float(desc_.radius * volumeScale_));
             else mp.map->assignRadii(desc_.k, mp.maxRadius, float(volumeScale_));
@@ -153,9 +165,9 @@ RGB PhotonIntegrator::radiance(const Ray& cameraRay, Rng& rng) const {
     return L;
 }
 
-int PhotonIntegrator::mediumOf(int v, uint32_t tet) const {
+int PhotonIntegrator::domainOf(int v, uint32_t tet) const {
     const SceneVolume& volume = scene_.volumes()[v];
-    return volume.media[size_t(volume.medium->mesh().region(tet))];
+    return domains_.ofMedium[size_t(volume.media[size_t(volume.medium->mesh().region(tet))])];
 }
 
 RGB PhotonIntegrator::inMedium(int v, const Ray& ray, const ColumnProfile& column, Rng& rng) const {
@@ -214,7 +226,7 @@ double PhotonIntegrator::gather(const PhotonMap& map, const glm::dvec3& p, doubl
 }
 
 RGB PhotonIntegrator::knnEstimate(int v, uint32_t tet, const glm::dvec3& p, const glm::dvec3& d) const {
-    const int m = mediumOf(v, tet);
+    const int m = domainOf(v, tet);
     const MediumPhotons& mp = media_[m];
     if (!mp.map) return RGB(0);
     thread_local std::vector<Neighbour> near;
@@ -236,14 +248,14 @@ RGB PhotonIntegrator::knnEstimate(int v, uint32_t tet, const glm::dvec3& p, cons
 RGB PhotonIntegrator::beamEstimate(int v, const Ray& ray, const ColumnProfile& column) const {
     const auto& pieces = column.pieces();
     RGB L(0);
-    // Each run of pieces in one region sees that region's photons only. Each photon's ball
+    // Each run of pieces in one domain sees that domain's photons only. Each photon's ball
     // kernel is integrated along the run: the chord of the ball within [begin, end] over the
-    // ball's volume (inside its region, with boundary correction). Unlike the disc kernel
+    // ball's volume (inside its domain, with boundary correction). Unlike the disc kernel
     // 1 / (pi r^2), which assumes the whole chord lies in the medium, this stays right where the
     // ball reaches past the run's ends, however large the radius.
     for (size_t first = 0, last; first < pieces.size(); first = last) {
-        const int m = mediumOf(v, pieces[first].tet);
-        for (last = first + 1; last < pieces.size() && mediumOf(v, pieces[last].tet) == m;) ++last;
+        const int m = domainOf(v, pieces[first].tet);
+        for (last = first + 1; last < pieces.size() && domainOf(v, pieces[last].tet) == m;) ++last;
         const MediumPhotons& mp = media_[m];
         if (!mp.beams) continue;
         const HenyeyGreenstein& phase = scene_.volumes()[v].medium->at(pieces[first].tet).phase;

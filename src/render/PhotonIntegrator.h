@@ -11,9 +11,10 @@
 //     photons, by the seed's ray march with a k-NN lookup per step (`knn-march`, optionally
 //     dividing by the part of the ball inside the medium) or by the beam radiance estimate
 //     (`beam`: every photon ball the ray crosses, integrated exactly along the ray, no step).
-// Photons are kept per medium (region): a photon is only ever found from the region that
-// scattered it, and a kernel's volume is its volume inside that region (its boundary and the
-// meshes nested in it stop it). A diffuse surface gets direct light by next-event estimation and
+// Photons are kept per medium (region), pooled over regions of one same medium that meet
+// without an interface (PhotonDomains): a photon is only ever found from the domain that
+// scattered it, and a kernel's volume is its volume inside that domain (its boundary and the
+// other media's and dielectric interfaces stop it). A diffuse surface gets direct light by next-event estimation and
 // caustics from the surface photons with a cone filter; with final gathering (final_gather), the
 // first diffuse surface of an eye path takes only the caustic photons (from a light by specular
 // events alone) and gathers the rest by one more bounce, whose next diffuse surface takes all
@@ -27,6 +28,7 @@
 #include "photon/PhotonBeams.h"
 #include "photon/PhotonMap.h"
 #include "render/Integrator.h"
+#include "render/PhotonDomains.h"
 #include "render/PhotonTracer.h"
 
 namespace tetglow {
@@ -79,7 +81,7 @@ private:
     double gather(const PhotonMap& map, const glm::dvec3& p, double scale, float maxRadius, std::vector<Neighbour>& near) const;
     // sigma_s times in-scattered radiance from the volume photons at p in tet `tet` of volume v, seen along d.
     RGB knnEstimate(int v, uint32_t tet, const glm::dvec3& p, const glm::dvec3& d) const;
-    int mediumOf(int v, uint32_t tet) const;  // the scene medium whose region holds the tet
+    int domainOf(int v, uint32_t tet) const;  // the photon domain whose region holds the tet
     // Surface photons of `map` around the hit, cone-filtered, reflected towards -d.
     RGB caustics(const PhotonMap* map, const Intersection& hit, const glm::dvec3& d, const MaterialDesc& material) const;
 
@@ -87,13 +89,15 @@ private:
     IntegratorDesc desc_;
     MediumState cameraMedium_;
     PhotonSource source_;
-    std::vector<std::unique_ptr<SurfaceBVH>> regionBoundaries_;  // per scene medium: its region's triangles
-    std::vector<BallVolume> balls_;  // per scene medium, over its region's boundary
-    std::vector<MediumPhotons> media_;  // per scene medium
+    PhotonDomains domains_;
+    std::vector<std::unique_ptr<SurfaceBVH>> regionBoundaries_;  // per photon domain: its boundary's triangles
+    std::vector<BallVolume> balls_;  // per photon domain, over its boundary
+    std::vector<MediumPhotons> media_;  // per photon domain
     std::unique_ptr<PhotonMap> surface_;  // every surface photon not straight from its light
     std::unique_ptr<PhotonMap> caustic_;  // those from a light by specular events only (final gathering)
     float surfaceMaxRadius_ = 0;
     double volumeScale_ = 1, surfaceScale_ = 1;  // this pass's radius factors
+    std::optional<std::chrono::steady_clock::time_point> deadline_;  // of the time limit, if any
     PhotonStats stats_;
 };
 

@@ -1,6 +1,8 @@
 #include "render/PhotonTracer.h"
 
 #include <algorithm>
+#include <atomic>
+#include <string>
 
 #include <tbb/parallel_for.h>
 
@@ -28,8 +30,8 @@ Photon makePhoton(const glm::dvec3& p, const RGB& power, const glm::dvec3& direc
 // One photon path, from emission to absorption, escape or the event cap.
 class PathTracer {
 public:
-    PathTracer(const Scene& scene, const PhotonTracingOptions& options, TracedPhotons& out)
-        : scene_(scene), options_(options), out_(out) {}
+    PathTracer(const Scene& scene, const PhotonTracingOptions& options, TracedPhotons& out, std::atomic<uint64_t>& stored)
+        : scene_(scene), options_(options), out_(out), stored_(stored) {}
 
     void trace(const PhotonSource::Emission& e, Rng& rng) {
         EnergyBalance energy;
@@ -58,7 +60,7 @@ public:
                     [&](const PhotonEvent& event) {
                         // Stored in the photon map of the medium that scattered it.
                         const int m = volume.media[size_t(volume.medium->mesh().region(event.tet))];
-                        if (!direct) out_.volume[m].push_back(makePhoton(event.position, event.power, event.direction));
+                        if (!direct) store(out_.volume[m], makePhoton(event.position, event.power, event.direction));
                         direct = specularOnly = false;
                     });
                 energy.absorbedInMedia += walk.absorbedFlux;
@@ -89,8 +91,8 @@ public:
             }
             const RGB arriving = flux();
             if (material.type == MaterialType::Diffuse && !direct) {
-                out_.surface.push_back(makePhoton(hit->p, arriving, ray.d));
-                if (specularOnly && options_.caustics) out_.caustic.push_back(out_.surface.back());
+                store(out_.surface, makePhoton(hit->p, arriving, ray.d));
+                if (specularOnly && options_.caustics) store(out_.caustic, out_.surface.back());
             }
             specularOnly = specularOnly && material.type != MaterialType::Diffuse;
             const double u0 = rng.uniform(), u1 = rng.uniform();
@@ -109,9 +111,18 @@ public:
     }
 
 private:
+    void store(std::vector<Photon>& photons, const Photon& photon) {
+        if (stored_.fetch_add(1, std::memory_order_relaxed) >= options_.maxStored)
+            throw InputError("photon tracing: " + std::to_string(options_.paths) + " photon paths per pass store more than " +
+                             std::to_string(options_.maxStored) + " photons, more than this machine's memory holds: ask for fewer "
+                             "photons per pass or a lower max depth");
+        photons.push_back(photon);
+    }
+
     const Scene& scene_;
     const PhotonTracingOptions& options_;
     TracedPhotons& out_;
+    std::atomic<uint64_t>& stored_;
 };
 
 }  // namespace
@@ -176,10 +187,13 @@ PhotonSource::Emission PhotonSource::sample(const Scene& scene, Rng& rng) const 
 TracedPhotons tracePhotons(const Scene& scene, const PhotonSource& source, const PhotonTracingOptions& options) {
     const uint64_t blocks = (options.paths + kBlock - 1) / kBlock;
     std::vector<TracedPhotons> parts(blocks);
+    std::atomic<uint64_t> stored{0};
     tbb::parallel_for(uint64_t(0), blocks, [&](uint64_t b) {
         TracedPhotons& part = parts[b];
         part.volume.resize(scene.media().size());
-        PathTracer tracer(scene, options, part);
+        if (b > 0 && options.deadline && std::chrono::steady_clock::now() > *options.deadline) return;
+        part.paths = std::min(options.paths, (b + 1) * kBlock) - b * kBlock;
+        PathTracer tracer(scene, options, part, stored);
         for (uint64_t i = b * kBlock; i < std::min(options.paths, (b + 1) * kBlock); ++i) {
             Rng rng(options.seed, i, kPhotonStream + options.pass);
             PhotonSource::Emission e = source.sample(scene, rng);
@@ -190,12 +204,22 @@ TracedPhotons tracePhotons(const Scene& scene, const PhotonSource& source, const
     // Concatenated in block order: the same photons in the same order for any thread count.
     TracedPhotons all;
     all.volume.resize(scene.media().size());
-    all.paths = options.paths;
     for (const TracedPhotons& part : parts) {
+        all.paths += part.paths;
         for (size_t m = 0; m < all.volume.size(); ++m) all.volume[m].insert(all.volume[m].end(), part.volume[m].begin(), part.volume[m].end());
         all.surface.insert(all.surface.end(), part.surface.begin(), part.surface.end());
         all.caustic.insert(all.caustic.end(), part.caustic.begin(), part.caustic.end());
         all.energy.add(part.energy);
+    }
+    if (all.paths < options.paths) {  // each path carried 1 / options.paths of the emitted power
+        const double scale = double(options.paths) / double(all.paths);
+        for (auto* photons : {&all.surface, &all.caustic})
+            for (Photon& p : *photons) p.power *= float(scale);
+        for (auto& photons : all.volume)
+            for (Photon& p : photons) p.power *= float(scale);
+        EnergyBalance& e = all.energy;
+        for (RGB* x : {&e.emitted, &e.absorbedInMedia, &e.absorbedOnSurfaces, &e.escaped, &e.cut}) *x *= scale;
+        e.deficitSquares *= scale * scale;
     }
     return all;
 }

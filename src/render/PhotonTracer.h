@@ -6,7 +6,9 @@
 // when it was emitted by a medium. Volume photons are stored at scattering events, surface
 // photons on diffuse surfaces (the caustics under the fish).
 #pragma once
+#include <chrono>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "photon/Photon.h"
@@ -22,6 +24,13 @@ struct PhotonTracingOptions {
     uint64_t seed = 0;
     uint64_t pass = 0;        // independent photons for every pass
     bool caustics = false;    // also keep the caustic photons apart (TracedPhotons::caustic)
+    // Photons the pass may store (volume, surface and caustic together): a path stores up to
+    // maxDepth, so only the count itself bounds the memory. One more is an InputError, raised
+    // before it is stored.
+    uint64_t maxStored = UINT64_MAX;
+    // Blocks of paths not begun by then are not traced (the first always is), and the photons'
+    // power is scaled to the paths that were: a pass under a time limit ends in time.
+    std::optional<std::chrono::steady_clock::time_point> deadline = std::nullopt;
 };
 
 // Where the emitted power went, summed over the paths: emitted = absorbed + escaped + cut in
@@ -37,7 +46,7 @@ struct TracedPhotons {
     std::vector<Photon> surface;              // on diffuse surfaces, every photon not straight from its light
     std::vector<Photon> caustic;              // those of them that came from a light by specular events only (if asked)
     EnergyBalance energy;
-    uint64_t paths = 0;
+    uint64_t paths = 0;  // traced: fewer than asked for when the deadline passed
 };
 
 // Chooses emitters in proportion to their power: every light and every emissive medium (a

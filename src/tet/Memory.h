@@ -5,6 +5,9 @@
 
 namespace tetglow {
 
+// The machine's physical memory in bytes.
+double physicalMemory();
+
 // InputError "<what> needs about 12.3 GB, more than this machine's 7.8 GB of memory" when
 // `bytes` exceed the physical memory.
 void checkMemory(double bytes, const std::string& what);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
 #include <unordered_set>
 
 #include <glm/geometric.hpp>
@@ -67,13 +68,23 @@ std::vector<int32_t> findNesting(const std::vector<TriangleMesh>& surfaces,
     const size_t n = surfaces.size();
     std::vector<Bounds3> boxes(n);
     std::vector<std::unordered_set<uint32_t>> ids(n);
+    std::vector<std::set<std::array<uint32_t, 3>>> triangles(n);  // by common vertex ids, sorted
+    const auto key = [&](size_t i, uint32_t t) {
+        std::array<uint32_t, 3> k;
+        for (int c = 0; c < 3; ++c) k[c] = vertexIds[i][surfaces[i].triangles[t][c]];
+        std::sort(k.begin(), k.end());
+        return k;
+    };
     for (size_t i = 0; i < n; ++i) {
         boxes[i] = bounds(surfaces[i]);
         ids[i].insert(vertexIds[i].begin(), vertexIds[i].end());
+        for (uint32_t t = 0; t < surfaces[i].triangles.size(); ++t) triangles[i].insert(key(i, t));
     }
     // inside[i][o]: surface i lies inside surface o. Surfaces that do not cross are either nested
     // or apart, so one point of i off o decides: a vertex of i that is not a vertex of o (no
-    // other vertex of i can touch o), else the centre of a triangle of i.
+    // other vertex of i can touch o), else the centre of a triangle of i that o does not hold
+    // (a shared triangle's centre lies on o, and rounded it falls on either side). When o holds
+    // every triangle of i, the two are one surface.
     std::vector<std::vector<char>> inside(n, std::vector<char>(n, 0));
     for (size_t i = 0; i < n; ++i)
         for (size_t o = 0; o < n; ++o) {
@@ -82,8 +93,9 @@ std::vector<int32_t> findNesting(const std::vector<TriangleMesh>& surfaces,
             for (size_t v = 0; v < vertexIds[i].size() && side == PointSide::OnSurface; ++v)
                 if (!ids[o].count(vertexIds[i][v])) side = classifyPoint(surfaces[o], surfaces[i].positions[v]);
             for (uint32_t t = 0; t < surfaces[i].triangles.size() && side == PointSide::OnSurface; ++t)
-                side = classifyPoint(surfaces[o],
-                                     (surfaces[i].corner(t, 0) + surfaces[i].corner(t, 1) + surfaces[i].corner(t, 2)) / 3.0);
+                if (!triangles[o].count(key(i, t)))
+                    side = classifyPoint(surfaces[o],
+                                         (surfaces[i].corner(t, 0) + surfaces[i].corner(t, 1) + surfaces[i].corner(t, 2)) / 3.0);
             if (side == PointSide::OnSurface)
                 throw InputError(names[i] + " and " + names[o] + " have the same surface");
             inside[i][o] = side == PointSide::Inside;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <numeric>
 #include <unordered_map>
@@ -83,6 +84,49 @@ glm::dvec3 placeSeed(const TriangleMesh& surface, const std::vector<const Triang
     throw InputError((name.empty() ? std::string("mesh") : name) + ": found no point inside it that is outside the media nested in it (do they fill it?)");
 }
 
+// TetGen takes points closer than this fraction of the input's bounding box as one (its -T
+// tolerance, 1e-8 by default), so vertices of two surfaces that close would be merged by TetGen
+// behind our back: its regions then disagree with the surfaces. Refused here with the cause.
+constexpr double kTetGenTolerance = 1e-8;
+
+void refuseNearVertices(const std::vector<glm::dvec3>& positions, const std::vector<uint32_t>& owner,
+                        const std::vector<std::vector<uint32_t>>& vertexIds, const std::vector<std::string>& names) {
+    Bounds3 box;
+    for (const glm::dvec3& p : positions) box.extend(p);
+    const double cell = kTetGenTolerance * box.diagonal();
+    if (!(cell > 0)) return;
+    // A grid of cells of the tolerance's size: near vertices lie in the same or adjacent cells.
+    using Cell = std::array<int64_t, 3>;
+    const auto cellOf = [&](const glm::dvec3& p) {
+        return Cell{int64_t((p.x - box.lo.x) / cell), int64_t((p.y - box.lo.y) / cell), int64_t((p.z - box.lo.z) / cell)};
+    };
+    std::map<Cell, std::vector<uint32_t>> grid;
+    for (uint32_t v = 0; v < positions.size(); ++v) grid[cellOf(positions[v])].push_back(v);
+    const auto local = [&](size_t surface, uint32_t v) {  // the vertex's index in that surface's own list
+        return uint32_t(std::find(vertexIds[surface].begin(), vertexIds[surface].end(), v) - vertexIds[surface].begin());
+    };
+    for (uint32_t v = 0; v < positions.size(); ++v) {
+        const Cell c = cellOf(positions[v]);
+        for (int64_t dx = -1; dx <= 1; ++dx)
+            for (int64_t dy = -1; dy <= 1; ++dy)
+                for (int64_t dz = -1; dz <= 1; ++dz) {
+                    const auto it = grid.find({c[0] + dx, c[1] + dy, c[2] + dz});
+                    if (it == grid.end()) continue;
+                    for (uint32_t w : it->second) {
+                        const double d = glm::length(positions[w] - positions[v]);
+                        if (owner[w] == owner[v] || !(d < cell)) continue;
+                        char text[160];
+                        std::snprintf(text, sizeof text, " are %.3g apart, closer than TetGen tells points apart (%.3g, 1e-8 of their extent): ",
+                                      d, cell);
+                        throw InputError(names[owner[v]] + " and " + names[owner[w]] + text + "vertex " +
+                                         std::to_string(local(owner[v], v)) + " of " + names[owner[v]] + " and vertex " +
+                                         std::to_string(local(owner[w], w)) + " of " + names[owner[w]] +
+                                         " (media may share vertices exactly, or keep apart)");
+                    }
+                }
+    }
+}
+
 }  // namespace
 
 RegionComplex singleRegion(const TriangleMesh& surface) {
@@ -100,12 +144,14 @@ RegionComplex buildRegionComplex(const std::vector<TriangleMesh>& surfaces, cons
     // Vertices: exact duplicates across surfaces merged, in order of first appearance.
     std::unordered_map<glm::dvec3, uint32_t, PositionHash> vertexIndex;
     std::vector<std::vector<uint32_t>> vertexIds(n);
+    std::vector<uint32_t> owner;  // per vertex: the first surface holding it
     for (size_t i = 0; i < n; ++i)
         for (const glm::dvec3& p : surfaces[i].positions) {
             auto [it, inserted] = vertexIndex.emplace(p, uint32_t(c.surface.positions.size()));
-            if (inserted) c.surface.positions.push_back(p);
+            if (inserted) c.surface.positions.push_back(p), owner.push_back(uint32_t(i));
             vertexIds[i].push_back(it->second);
         }
+    if (n > 1) refuseNearVertices(c.surface.positions, owner, vertexIds, names);
     // Triangles: one per corner set, remembering every surface holding it and its winding there.
     std::map<std::array<uint32_t, 3>, uint32_t> triangleIndex;
     std::vector<std::vector<Holder>> holders;

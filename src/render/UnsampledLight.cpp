@@ -1,0 +1,23 @@
+#include "render/UnsampledLight.h"
+
+#include <algorithm>
+
+namespace tetglow {
+
+std::vector<std::string> unsampledLightWarnings(const Scene& scene, IntegratorType integrator) {
+    std::vector<std::string> warnings;
+    if (integrator == IntegratorType::Photon) return warnings;
+    const auto& lights = scene.lights();
+    if (std::none_of(lights.begin(), lights.end(), [](const auto& l) { return l->isDelta(); })) return warnings;
+    const std::string name = integrator == IntegratorType::VolPath ? "volpath" : "single";
+    for (size_t v = 0; v < scene.volumes().size(); ++v) {
+        const SceneVolume& volume = scene.volumes()[v];
+        if (!scene.sealed(int(v)) || !volume.medium->scatters()) continue;
+        warnings.push_back(volume.name + " lies inside a dielectric boundary, through which " + name +
+                           " cannot carry light from a point, spot or distant light (a specular path from a light "
+                           "of zero size): that light is missing from it; --integrator photon renders it");
+    }
+    return warnings;
+}
+
+}  // namespace tetglow
