@@ -10,7 +10,7 @@ namespace tetglow {
 
 inline constexpr uint64_t kMiB = uint64_t(1) << 20;
 inline constexpr uint64_t kMaxSceneFileBytes = 64 * kMiB;    // a JSON scene, a pbrt file, each Include
-inline constexpr uint64_t kMaxMeshFileBytes = 1024 * kMiB;   // OBJ, OFF, PLY (also pbrt's plymesh)
+inline constexpr uint64_t kMaxMeshFileBytes = 1024 * kMiB;   // any mesh (also pbrt's plymesh), with the files it names
 inline constexpr uint64_t kMaxImageFileBytes = 1024 * kMiB;  // an OpenEXR image read by diff
 inline constexpr uint64_t kMaxCacheFileBytes = 4096 * kMiB;  // a tet cache entry
 
