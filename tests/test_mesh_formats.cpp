@@ -152,6 +152,18 @@ TEST(MeshFormats, ASceneMeshShapeReadsAnyFormatAndNamesANode) {
     EXPECT_NEAR(signedVolume(desc.media[1].boundary), 4, 1e-5);
     EXPECT_NE(std::find(desc.inputs.begin(), desc.inputs.end(), glb), desc.inputs.end());
 
+    // A glTF's buffer is one of the scene's inputs too (no output may overwrite it).
+    const test::Gltf g = test::gltf({test::boxQuads().fanned()}, {{"Box", 0, {}, ""}}, {0}, "box.bin");
+    const std::string bin = test::writeTemp("scene/box.bin", g.bin);
+    test::writeTemp("scene/box.gltf", g.json);
+    const std::string withBuffer = test::writeTemp("scene/buffer.json", R"({
+      "camera": {"position": [0, 0, 20], "look_at": [0, 0, 0]},
+      "lights": [{"type": "environment", "radiance": 1}],
+      "media": [{"shape": {"type": "mesh", "file": "box.gltf"}, "sigma_s": 1}]})");
+    const SceneDesc buffered = loadScene(withBuffer);
+    EXPECT_NEAR(signedVolume(buffered.media[0].boundary), 24, 1e-12);
+    EXPECT_NE(std::find(buffered.inputs.begin(), buffered.inputs.end(), bin), buffered.inputs.end());
+
     const std::string bad = test::writeTemp("scene/bad.json", R"({
       "camera": {"position": [0, 0, 20], "look_at": [0, 0, 0]},
       "lights": [{"type": "environment", "radiance": 1}],
@@ -179,6 +191,18 @@ TEST(MeshFormats, FilesAGltfNamesAreRegularFiles) {
     const test::Gltf g = test::gltf({test::boxQuads().fanned()}, {{"Box", 0, {}, ""}}, {0}, "buffer.bin");
     const std::string path = test::writeTemp("fifo/box.gltf", g.json);
     EXPECT_EQ(readError(path), path + ": " + dir + "/buffer.bin: is a FIFO, not a regular file");
+}
+
+// Assimp's JSON parser recurses once per nesting level: a million nested arrays in a glTF's
+// "extras" overflowed the stack and killed the process.
+TEST(MeshFormats, AGltfNestedTooDeepIsAnErrorNotACrash) {
+    const test::Gltf g = test::gltf({test::boxQuads().fanned()}, {{"Box", 0, {}, ""}}, {0}, "box.bin");
+    const size_t depth = 1000000;
+    std::string json = g.json;
+    json.insert(json.size() - 1, ", \"extras\": " + std::string(depth, '[') + std::string(depth, ']'));
+    test::writeTemp("deep/box.bin", g.bin);
+    const std::string path = test::writeTemp("deep/box.gltf", json);
+    EXPECT_EQ(readError(path).rfind(path + ": the gltf importer (Assimp) crashed on this file (", 0), 0u) << readError(path);
 }
 
 // Broken files: one line that starts with the file's name, for every format.

@@ -1,10 +1,14 @@
 #include "scene/AssimpReader.h"
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <map>
+#include <stdexcept>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <assimp/IOStream.hpp>
 #include <assimp/IOSystem.hpp>
@@ -67,6 +71,7 @@ public:
             try {
                 std::string data = readInputFile(name, kMaxMeshFileBytes - std::min(kMaxMeshFileBytes, total_), "the rest of a mesh's files (1024 MiB in all)");
                 total_ += data.size();
+                read_.push_back(name);
                 it = files_.emplace(name, std::move(data)).first;
             } catch (const InputError& e) {
                 if (problem_.empty()) problem_ = e.what();
@@ -78,9 +83,12 @@ public:
     void Close(Assimp::IOStream* stream) override { delete stream; }
     // Why a file could not be opened, or "".
     const std::string& problem() const { return problem_; }
+    // The files read besides the mesh file itself.
+    const std::vector<std::string>& read() const { return read_; }
 
 private:
     std::string problem_;
+    std::vector<std::string> read_;
     std::map<std::string, std::string> files_;
     uint64_t total_ = 0;
 };
@@ -181,10 +189,12 @@ const char* extension(SceneMeshFormat f) {
     return "";
 }
 
-}  // namespace
+struct Imported {
+    TriangleMesh mesh;
+    std::vector<std::string> warnings, files;  // files: those read besides the mesh file
+};
 
-TriangleMesh parseSceneMeshes(std::string data, const std::string& path, SceneMeshFormat format, const std::string& node,
-                              std::vector<std::string>* warnings) {
+Imported import(std::string data, const std::string& path, SceneMeshFormat format, const std::string& node) {
     // Named beside the real file, so that the names inside it resolve against its folder.
     const std::string name = (std::filesystem::path(path).parent_path() / ".tetglow-mesh.").string() + extension(format);
     Assimp::Importer importer;
@@ -204,7 +214,9 @@ TriangleMesh parseSceneMeshes(std::string data, const std::string& path, SceneMe
     }
     const std::vector<Placed> nodes = placeNodes(scene->mRootNode, path);
     const aiNode* top = node.empty() ? scene->mRootNode : findNode(nodes, node, path);
-    TriangleMesh out;
+    Imported result;
+    result.files = files->read();
+    TriangleMesh& out = result.mesh;
     size_t skipped = 0, singular = 0;
     for (const Placed& p : nodes) {
         if (!p.node->mNumMeshes || !within(p.node, top)) continue;
@@ -219,10 +231,139 @@ TriangleMesh parseSceneMeshes(std::string data, const std::string& path, SceneMe
             throw InputError(path + ": more than " + std::to_string(kMaxSceneMeshTriangles) + " triangles once every node's meshes are placed");
         append(out, std::move(local), p.world);
     }
-    if (warnings && skipped) addWarning(*warnings, path + ": skipped " + std::to_string(skipped) + " points and lines (only triangles bound a medium)");
-    if (warnings && singular) addWarning(*warnings, path + ": skipped " + std::to_string(singular) + " nodes whose transform flattens them (scale 0)");
+    if (skipped) addWarning(result.warnings, path + ": skipped " + std::to_string(skipped) + " points and lines (only triangles bound a medium)");
+    if (singular) addWarning(result.warnings, path + ": skipped " + std::to_string(singular) + " nodes whose transform flattens them (scale 0)");
     if (out.triangles.empty()) throw InputError(path + ": no triangles" + (node.empty() ? "" : " in node '" + shorten(node) + "'"));
-    return out;
+    return result;
+}
+
+
+// What the child process hands back: a flag, then the error, or the warnings, the files read and
+// the mesh, each as a count followed by its items.
+class Message {
+public:
+    void add(const void* p, size_t n) { bytes_.append(static_cast<const char*>(p), n); }
+    void add(uint64_t n) { add(&n, sizeof n); }
+    void add(const std::string& s) { add(s.size()), add(s.data(), s.size()); }
+    template <class T>
+    void add(const std::vector<T>& items) {
+        add(items.size()), add(items.data(), items.size() * sizeof(T));
+    }
+    void addStrings(const std::vector<std::string>& items) {
+        add(items.size());
+        for (const auto& s : items) add(s);
+    }
+    const std::string& bytes() const { return bytes_; }
+
+private:
+    std::string bytes_;
+};
+
+class Reply {
+public:
+    explicit Reply(std::string bytes) : bytes_(std::move(bytes)) {}
+    void take(void* p, size_t n) {
+        if (n > bytes_.size() - pos_) throw std::runtime_error("lost the mesh importer's reply");
+        std::memcpy(p, bytes_.data() + pos_, n), pos_ += n;
+    }
+    uint64_t count(size_t itemBytes) {
+        uint64_t n;
+        take(&n, sizeof n);
+        if (n > (bytes_.size() - pos_) / itemBytes) throw std::runtime_error("lost the mesh importer's reply");
+        return n;
+    }
+    std::string string() {
+        std::string s(count(1), '\0');
+        take(s.data(), s.size());
+        return s;
+    }
+    template <class T>
+    std::vector<T> items() {
+        std::vector<T> v(count(sizeof(T)));
+        take(v.data(), v.size() * sizeof(T));
+        return v;
+    }
+    std::vector<std::string> strings() {
+        std::vector<std::string> v(count(sizeof(uint64_t)));
+        for (auto& s : v) s = string();
+        return v;
+    }
+
+private:
+    std::string bytes_;
+    size_t pos_ = 0;
+};
+
+void writeAll(int fd, const std::string& bytes) {
+    for (size_t done = 0; done < bytes.size();) {
+        const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) return;
+        done += size_t(n);
+    }
+}
+
+std::string readAll(int fd) {
+    std::string bytes;
+    char buffer[1 << 16];
+    for (;;) {
+        const ssize_t n = ::read(fd, buffer, sizeof buffer);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) return bytes;
+        bytes.append(buffer, size_t(n));
+    }
+}
+
+}  // namespace
+
+// Assimp's parsers recurse as deep as a file nests (a glTF's JSON, a node hierarchy), so a
+// hostile file can overflow the stack: the import runs in a child process, as TetGen does, and
+// a crash there is an error here.
+TriangleMesh parseSceneMeshes(std::string data, const std::string& path, SceneMeshFormat format, const std::string& node,
+                              std::vector<std::string>* warnings) {
+    int fds[2];
+    if (::pipe(fds) != 0) throw std::runtime_error("cannot create a pipe for the mesh importer");
+    std::fflush(nullptr);
+    const pid_t pid = ::fork();
+    if (pid < 0) throw std::runtime_error("cannot fork a process for the mesh importer");
+    if (pid == 0) {
+        ::close(fds[0]);
+        Message m;
+        try {
+            Imported r = import(std::move(data), path, format, node);
+            m.add(uint64_t(1)), m.addStrings(r.warnings), m.addStrings(r.files), m.add(r.mesh.positions), m.add(r.mesh.triangles);
+        } catch (const std::exception& e) {
+            m = Message();
+            m.add(uint64_t(0)), m.add(dynamic_cast<const InputError*>(&e) ? std::string(e.what()) : path + ": " + e.what());
+        }
+        writeAll(fds[1], m.bytes());
+        ::_exit(0);
+    }
+    ::close(fds[1]);
+    std::string bytes = readAll(fds[0]);
+    ::close(fds[0]);
+    int status = 0;
+    while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+    }
+    if (WIFSIGNALED(status))
+        throw InputError(path + ": the " + extension(format) + " importer (Assimp) crashed on this file (" + strsignal(WTERMSIG(status)) +
+                         "), as it does on one nested too deep");
+    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
+        throw InputError(path + ": the " + extension(format) + " importer (Assimp) failed (exit status " + std::to_string(WEXITSTATUS(status)) + ")");
+    Reply reply(std::move(bytes));
+    uint64_t ok;
+    reply.take(&ok, sizeof ok);
+    if (!ok) throw InputError(reply.string());
+    for (const auto& w : reply.strings())
+        if (warnings) addWarning(*warnings, w);
+    for (const auto& f : reply.strings()) noteInputFile(f);
+    TriangleMesh mesh;
+    mesh.positions = reply.items<glm::dvec3>();
+    mesh.triangles = reply.items<std::array<uint32_t, 3>>();
+    for (const auto& t : mesh.triangles)
+        for (uint32_t v : t)
+            if (v >= mesh.positions.size()) throw std::runtime_error("lost the mesh importer's reply");
+    return mesh;
 }
 
 }  // namespace tetglow

@@ -21,6 +21,9 @@ inline constexpr uint64_t kMaxCacheFileBytes = 4096 * kMiB;  // a tet cache entr
 // `what` names the kind of file in the size message ("a scene file", "a mesh").
 std::string readInputFile(const std::string& path, uint64_t maxBytes, const char* what);
 
+// Records in the current InputLog a file read on this thread's behalf by a child process.
+void noteInputFile(const std::string& path);
+
 // While one lives, the path of every file readInputFile opens on this thread is recorded in it
 // (the innermost log, when they nest): a loader learns every file a scene pulls in (Includes,
 // meshes, plymesh), and commands refuse outputs that would overwrite any of them.
@@ -34,6 +37,7 @@ public:
 
 private:
     friend std::string readInputFile(const std::string&, uint64_t, const char*);
+    friend void noteInputFile(const std::string&);
     std::vector<std::string> files_;
     InputLog* outer_;
 };
