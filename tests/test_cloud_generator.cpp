@@ -9,6 +9,7 @@
 
 #include "TestMeshes.h"
 #include "scene/CloudGenerator.h"
+#include "scene/MeshFile.h"
 #include "tet/MeshValidation.h"
 #include "tet/Tetrahedralizer.h"
 

@@ -13,6 +13,7 @@
 
 #include "TestMeshes.h"
 #include "scene/FishGenerator.h"
+#include "scene/MeshFile.h"
 #include "tet/Nesting.h"
 #include "tet/SelfIntersection.h"
 

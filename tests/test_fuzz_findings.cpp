@@ -6,7 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "TestMeshes.h"
-#include "scene/PlyReader.h"
+#include "scene/MeshFile.h"
 
 namespace tetglow {
 namespace {
@@ -27,14 +27,13 @@ TEST(FuzzFindings, ObjWithAMaterialLibraryNameTooLongForTheSystem) {
 }
 
 // A triangle in ASCII PLY whose face element is declared by `faceList` and read from `faceLine`:
-// readPly must refuse it with exactly `error` (after the file's path).
+// readMesh must refuse it with exactly `error` (after the file's path).
 void expectTriangleRefused(const std::string& faceList, const std::string& faceLine, const std::string& error) {
     const std::string path = test::writeTemp(
         "tri.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
                    "element face 1\nproperty list " + faceList + " vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n" + faceLine + "\n");
-    std::vector<std::string> warnings;
     try {
-        readPly(path, warnings);
+        readMesh(path);
         ADD_FAILURE() << "no error";
     } catch (const InputError& e) {
         EXPECT_EQ(std::string(e.what()), path + ": " + error);

@@ -16,8 +16,8 @@
 #include "TestMeshes.h"
 #include "render/ImageIO.h"
 #include "scene/JsonReader.h"
+#include "scene/MeshFile.h"
 #include "scene/PbrtParser.h"
-#include "scene/PlyReader.h"
 #include "scene/SceneLoader.h"
 #include "tet/InputFile.h"
 
@@ -33,7 +33,7 @@ const std::vector<std::pair<std::string, Reader>>& readers() {
         {"scene.pbrt", [](const std::string& p) { loadPbrtScene(p); }},
         {"mesh.obj", [](const std::string& p) { readMesh(p); }},
         {"mesh.off", [](const std::string& p) { readMesh(p); }},
-        {"mesh.ply", [](const std::string& p) { std::vector<std::string> w; readPly(p, w); }},
+        {"mesh.ply", [](const std::string& p) { readMesh(p); }},
         {"image.exr", [](const std::string& p) { readExr(p); }},
     };
     return all;

@@ -1,5 +1,5 @@
-// PLY files as pbrt-v3's "plymesh" reads them: ascii and both binary byte orders give the same
-// mesh, quads split as pbrt-v3 splits them, other faces skipped with a warning.
+// PLY files as pbrt-v3's "plymesh" and every other mesh shape read them: ascii and both binary
+// byte orders give the same mesh, polygons fanned (a quad into the two triangles pbrt-v3 makes).
 #include <algorithm>
 #include <bit>
 #include <cstring>
@@ -8,13 +8,14 @@
 #include <gtest/gtest.h>
 
 #include "TestMeshes.h"
+#include "scene/MeshFile.h"
 #include "scene/PlyReader.h"
 
 namespace tetglow {
 namespace {
 
 const double kCorners[8][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}, {0, 0, 1}, {1, 0, 1}, {0, 1, 1}, {1, 1, 1}};
-// Counter-clockwise seen from outside; and a pentagon pbrt-v3 skips.
+// Counter-clockwise seen from outside; and a pentagon (pbrt-v3 skips it: tetglow fans it too).
 const std::vector<std::vector<int>> kFaces = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 3, 2, 6}};
 
 std::string asciiPly() {
@@ -62,21 +63,19 @@ std::string binaryPly(bool little) {
 }
 
 TEST(PbrtPly, AsciiAndBinaryGiveTheSameCube) {
-    std::vector<std::string> warnings;
-    const PlyMesh ascii = readPly(test::writeTemp("a.ply", asciiPly()), warnings);
+    const MeshFile ascii = readMeshFile(test::writeTemp("a.ply", asciiPly()));
     ASSERT_EQ(ascii.mesh.positions.size(), 8u);
-    ASSERT_EQ(ascii.mesh.triangles.size(), 12u);  // six quads, the pentagon skipped
+    ASSERT_EQ(ascii.mesh.triangles.size(), 15u);  // six quads, the pentagon's three
     ASSERT_EQ(ascii.normals.size(), 8u);
     EXPECT_EQ(ascii.normals[3], glm::dvec3(0, 0, 1));
-    // pbrt-v3's split of quad (a b c d): (a b c) and (d a c).
+    // The fan of quad (a b c d): (a b c) and (a c d), the triangles of pbrt-v3's (a b c), (d a c).
     EXPECT_EQ(ascii.mesh.triangles[0], (std::array<uint32_t, 3>{0, 2, 3}));
-    EXPECT_EQ(ascii.mesh.triangles[1], (std::array<uint32_t, 3>{1, 0, 3}));
-    EXPECT_NEAR(signedVolume(ascii.mesh), 1, 1e-12);
-    ASSERT_EQ(warnings.size(), 1u);
-    EXPECT_NE(warnings[0].find("skipped 1 faces that are neither triangles nor quads"), std::string::npos) << warnings[0];
+    EXPECT_EQ(ascii.mesh.triangles[1], (std::array<uint32_t, 3>{0, 3, 1}));
+    EXPECT_EQ(ascii.mesh.triangles[14], (std::array<uint32_t, 3>{0, 2, 6}));
+    EXPECT_NEAR(signedVolume(ascii.mesh), 1, 1e-12);  // the pentagon lies in planes through vertex 0
 
     for (bool little : {true, false}) {
-        const PlyMesh binary = readPly(test::writeTemp("b.ply", binaryPly(little)), warnings);
+        const MeshFile binary = readMeshFile(test::writeTemp("b.ply", binaryPly(little)));
         EXPECT_EQ(binary.mesh.positions, ascii.mesh.positions) << little;
         EXPECT_EQ(binary.mesh.triangles, ascii.mesh.triangles) << little;
         EXPECT_TRUE(binary.normals.empty());
@@ -84,11 +83,10 @@ TEST(PbrtPly, AsciiAndBinaryGiveTheSameCube) {
 }
 
 TEST(PbrtPly, BrokenFilesAreErrors) {
-    std::vector<std::string> warnings;
+    const std::string path = "bad.ply";
     auto error = [&](const std::string& bytes) {
-        const std::string path = test::writeTemp("bad.ply", bytes);
         try {
-            readPly(path, warnings);
+            parsePly(bytes, path);
         } catch (const InputError& e) {
             return std::string(e.what()).substr(path.size());
         }

@@ -1,3 +1,4 @@
+#include "scene/MeshFile.h"
 #include "tet/SelfIntersection.h"
 
 #include <algorithm>

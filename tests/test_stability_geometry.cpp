@@ -14,6 +14,7 @@
 #include "photon/Rng.h"
 #include "photon/Sampling.h"
 #include "render/BoundaryComparison.h"
+#include "scene/MeshFile.h"
 #include "tet/Tetrahedralizer.h"
 
 namespace tetglow::test {

@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "TestMeshes.h"
+#include "scene/MeshFile.h"
 #include "tet/Predicates.h"
 #include "tet/Tetrahedralizer.h"
 #include "tet/TetVolume.h"

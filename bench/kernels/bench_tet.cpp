@@ -7,6 +7,7 @@
 #include <benchmark/benchmark.h>
 #include <glm/geometric.hpp>
 
+#include "scene/MeshFile.h"
 #include "tet/Tetrahedralizer.h"
 #include "tet/TetVolume.h"
 

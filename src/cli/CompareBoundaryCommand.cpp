@@ -10,6 +10,7 @@
 #include "render/BoundaryPicture.h"
 #include "render/ImageIO.h"
 #include "render/Scene.h"
+#include "scene/MeshFile.h"
 #include "scene/SceneLoader.h"
 #include "tet/Tetrahedralizer.h"
 
@@ -131,7 +132,7 @@ void addCompareBoundaryCommand(CLI::App& app) {
     auto* cmd = app.add_subcommand("compare-boundary",
                                    "Compare the tets with the parity test and the bounding box: inside/outside errors, "
                                    "optical-depth errors, time per query");
-    cmd->add_option("input", o->input, "Closed mesh (OBJ, OFF) or scene (.json: every medium in it)")->required();
+    cmd->add_option("input", o->input, "Closed mesh (OBJ, OFF, PLY, STL, glTF, GLB, FBX, Collada) or scene (.json: every medium in it)")->required();
     cmd->add_option("--points", o->comparison.points, "Random points per region (the box and each shell)")
         ->check(CLI::Range(size_t(1), size_t(100000000)));
     cmd->add_option("--rays", o->comparison.rays, "Random lines across the bounding box")->check(CLI::Range(size_t(1), size_t(100000000)));

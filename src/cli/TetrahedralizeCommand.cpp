@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/Commands.h"
+#include "scene/MeshFile.h"
 #include "tet/Tetrahedralizer.h"
 
 namespace tetglow::cli {
@@ -145,7 +146,7 @@ void run(const Options& o) {
 void addTetrahedralizeCommand(CLI::App& app) {
     auto o = std::make_shared<Options>();
     CLI::App* cmd = app.add_subcommand("tetrahedralize", "Validate closed meshes and tetrahedralize their interiors as regions");
-    cmd->add_option("mesh", o->meshes, "Closed triangle meshes (OBJ or OFF), nested or touching along shared triangles")->required();
+    cmd->add_option("mesh", o->meshes, "Closed triangle meshes (OBJ, OFF, PLY, STL, glTF, GLB, FBX, Collada), nested or touching along shared triangles")->required();
     cmd->add_option("-o,--output", o->output, "Write the tet mesh (.vtk: legacy VTK for ParaView; else tetglow's binary)")->check(kNonEmpty);
     cmd->add_flag("--json", o->json, "Print the report as one JSON object");
     cmd->add_option("--quality", o->tet.radiusEdgeRatio, "Radius-edge ratio bound (TetGen -q); adds Steiner points")

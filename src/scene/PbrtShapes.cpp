@@ -6,7 +6,7 @@
 #include <glm/matrix.hpp>
 
 #include "scene/PbrtTransform.h"
-#include "scene/PlyReader.h"
+#include "scene/MeshFile.h"
 #include "scene/SceneShapes.h"
 
 namespace tetglow {
@@ -52,8 +52,8 @@ ObjectMesh readPlyMesh(PbrtParams& p, const PbrtLocation& where, const std::file
     if (const PbrtParam* map = p.find("displacementmap", Class::Texture)) p.fail(*map, "displacement is not supported");
     p.find("discarddegenerateUVs", Class::Bool);  // uv only feed textures
     try {
-        PlyMesh ply = readPly((searchDir / file).string(), warnings);
-        return {std::move(ply.mesh), std::move(ply.normals)};
+        MeshFile read = readMeshFile((searchDir / file).string(), "", &warnings);
+        return {std::move(read.mesh), std::move(read.normals)};
     } catch (const InputError& e) {
         pbrtError(where, p.directive() + ": " + e.what());
     }

@@ -7,7 +7,6 @@
 #include <cstring>
 #include <sstream>
 
-#include "tet/InputFile.h"
 
 namespace tetglow {
 namespace {
@@ -172,36 +171,51 @@ Header readHeader(const std::string& data, const std::string& path) {
     return h;
 }
 
-// Adds a face of 3 or 4 vertices as pbrt-v3 does; other sizes are counted as skipped.
-void addFace(TriangleMesh& out, const std::vector<double>& face, size_t vertexCount, size_t index, const std::string& path,
-             size_t& skipped) {
-    if (face.size() != 3 && face.size() != 4) {
-        ++skipped;
-        return;
+// The vertex index `x` of face or strip `index`, checked against the vertex count.
+uint32_t vertexIndex(double x, size_t vertexCount, const char* what, size_t index, const std::string& path) {
+    if (!(x >= 0 && x < double(vertexCount))) {
+        // Printed as read: an index like 3e32 has no integer type to go through.
+        char value[32];
+        std::snprintf(value, sizeof value, "%.6g", x);
+        throw InputError(path + ": " + what + " " + std::to_string(index) + ": vertex index " + value + " out of range (" +
+                         std::to_string(vertexCount) + " vertices)");
     }
-    uint32_t v[4];
-    for (size_t k = 0; k < face.size(); ++k) {
-        if (face[k] < 0 || face[k] >= double(vertexCount)) {
-            // Printed as read: an index like 3e32 has no integer type to go through.
-            char value[32];
-            std::snprintf(value, sizeof value, "%.6g", face[k]);
-            throw InputError(path + ": face " + std::to_string(index) + ": vertex index " + value + " out of range (" +
-                             std::to_string(vertexCount) + " vertices)");
+    return uint32_t(x);
+}
+
+// A triangle strip (v0 v1 v2 v3 ...): (v0 v1 v2), (v2 v1 v3), (v2 v3 v4), ..., every other one
+// reversed so that all share the first one's winding; -1 starts a new strip. Triangles with a
+// repeated vertex only join strips and are dropped.
+void addStrip(TriangleMesh& out, const std::vector<double>& strip, size_t vertexCount, size_t index, const std::string& path) {
+    std::vector<uint32_t> run;
+    for (size_t k = 0; k <= strip.size(); ++k) {
+        if (k == strip.size() || strip[k] == -1) {
+            for (size_t i = 0; i + 2 < run.size(); ++i) {
+                std::array<uint32_t, 3> t{run[i], run[i + 1], run[i + 2]};
+                if (i % 2) std::swap(t[0], t[1]);
+                if (t[0] != t[1] && t[1] != t[2] && t[0] != t[2]) out.triangles.push_back(t);
+            }
+            run.clear();
+        } else {
+            run.push_back(vertexIndex(strip[k], vertexCount, "strip", index, path));
         }
-        v[k] = uint32_t(face[k]);
     }
-    out.triangles.push_back({v[0], v[1], v[2]});
-    if (face.size() == 4) out.triangles.push_back({v[3], v[0], v[2]});
+}
+
+// The bytes one element takes at the least: a binary value its size, an ASCII one a character.
+size_t smallestElement(const Element& e, bool ascii) {
+    size_t n = 0;
+    for (const Property& p : e.properties) n += ascii ? 1 : sizeOf(p.list ? p.countType : p.type);
+    return n;
 }
 
 }  // namespace
 
-PlyMesh readPly(const std::string& path, std::vector<std::string>& warnings) {
-    const std::string data = readInputFile(path, kMaxMeshFileBytes, "a mesh");
+MeshFile parsePly(const std::string& data, const std::string& path) {
     const Header header = readHeader(data, path);
     Body body(data, header.bodyStart, header.format, path);
-    PlyMesh out;
-    size_t skipped = 0, vertexCount = 0;
+    MeshFile out;
+    size_t vertexCount = 0;
     for (const Element& e : header.elements)
         if (e.name == "vertex") vertexCount = e.count;
     for (const Element& e : header.elements) {
@@ -210,10 +224,16 @@ PlyMesh readPly(const std::string& path, std::vector<std::string>& warnings) {
         if (vertices && (x < 0 || y < 0 || z < 0)) throw InputError(path + ": the vertex element has no x, y, z");
         int indices = e.find("vertex_indices");
         if (indices < 0) indices = e.find("vertex_index");
-        const bool faces = e.name == "face";
-        if (faces && (indices < 0 || !e.properties[size_t(indices)].list))
-            throw InputError(path + ": the face element has no 'vertex_indices' list");
-        std::vector<double> values, face;
+        const bool faces = e.name == "face", strips = e.name == "tristrips";
+        if ((faces || strips) && (indices < 0 || !e.properties[size_t(indices)].list))
+            throw InputError(path + ": the " + e.name + " element has no 'vertex_indices' list");
+        // An element without properties takes no bytes: its count bounds nothing, so it is not
+        // counted through; any other must fit in what is left of the file.
+        const size_t smallest = smallestElement(e, header.format == Format::Ascii);
+        if (smallest == 0) continue;
+        if (e.count > data.size() / smallest) throw InputError(path + ": ends early, in element '" + e.name + "'");
+        std::vector<double> values, list;
+        std::vector<uint32_t> face;
         for (size_t i = 0; i < e.count; ++i) {
             values.assign(e.properties.size(), 0);
             for (size_t k = 0; k < e.properties.size(); ++k) {
@@ -227,24 +247,27 @@ PlyMesh readPly(const std::string& path, std::vector<std::string>& warnings) {
                 // float count may not even fit the integer it is converted to).
                 if (!(n >= 0 && n == std::floor(n) && n <= double(data.size())))
                     throw InputError(path + ": bad list length in element '" + e.name + "'");
-                const bool keep = faces && int(k) == indices;  // other lists are read past
-                if (keep) face.clear();
+                const bool keep = (faces || strips) && int(k) == indices;  // other lists are read past
+                if (keep) list.clear();
                 for (size_t j = 0; j < size_t(n); ++j) {
                     const double item = body.read(p.type, e.name);
-                    if (keep) face.push_back(item);
+                    if (keep) list.push_back(item);
                 }
             }
             if (vertices) {
                 out.mesh.positions.emplace_back(values[size_t(x)], values[size_t(y)], values[size_t(z)]);
                 if (withNormals) out.normals.emplace_back(values[size_t(nx)], values[size_t(ny)], values[size_t(nz)]);
             }
-            if (faces) addFace(out.mesh, face, vertexCount, i, path, skipped);
+            if (faces) {
+                face.clear();
+                for (double v : list) face.push_back(vertexIndex(v, vertexCount, "face", i, path));
+                addPolygon(out.mesh, face, path + ": face " + std::to_string(i) + ": ");
+            }
+            if (strips) addStrip(out.mesh, list, vertexCount, i, path);
         }
     }
-    if (skipped)
-        addWarning(warnings, path + ": warning: skipped " + std::to_string(skipped) +
-                           " faces that are neither triangles nor quads (as pbrt-v3 does)");
-    if (out.mesh.triangles.empty()) throw InputError(path + ": no triangles (a PLY mesh needs 'vertex' and 'face' elements)");
+    if (out.mesh.triangles.empty())
+        throw InputError(path + ": no triangles (a PLY mesh needs 'vertex' and 'face' or 'tristrips' elements)");
     return out;
 }
 

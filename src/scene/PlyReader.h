@@ -1,21 +1,15 @@
-// PLY meshes as pbrt-v3's "plymesh" reads them: ascii, binary_little_endian or
-// binary_big_endian; vertex x, y, z (and nx, ny, nz when all three are present); face lists
-// "vertex_indices" (or "vertex_index") of 3 or 4 vertices, a quad split into (0, 1, 2) and
-// (3, 0, 2). Faces of other sizes are skipped with a warning, as pbrt-v3 skips them.
+// PLY meshes: ascii, binary_little_endian or binary_big_endian; vertex x, y, z (and nx, ny, nz
+// when all three are present); a "face" element's lists "vertex_indices" (or "vertex_index") as
+// polygons, fanned into triangles, and a "tristrips" element's lists as triangle strips. Other
+// elements and properties are read past.
 #pragma once
 #include <string>
-#include <vector>
 
-#include "tet/TriangleMesh.h"
+#include "scene/MeshFile.h"
 
 namespace tetglow {
 
-struct PlyMesh {
-    TriangleMesh mesh;
-    std::vector<glm::dvec3> normals;  // per vertex, or empty
-};
-
-// Throws InputError "<path>: <problem>".
-PlyMesh readPly(const std::string& path, std::vector<std::string>& warnings);
+// The PLY file `data` read from `path`. Throws InputError "<path>: <problem>".
+MeshFile parsePly(const std::string& data, const std::string& path);
 
 }  // namespace tetglow

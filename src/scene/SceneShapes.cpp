@@ -10,6 +10,7 @@
 #include <glm/matrix.hpp>
 #include <glm/vector_relational.hpp>
 
+#include "scene/MeshFile.h"
 #include "tet/Shapes.h"
 
 namespace tetglow {
@@ -60,11 +61,12 @@ void place(const JsonValue& shape, TriangleMesh& mesh, const glm::dmat4& m) {
         for (auto& t : mesh.triangles) std::swap(t[1], t[2]);
 }
 
-TriangleMesh readMeshFile(const JsonValue& file, const fs::path& dir) {
+// A mesh shape's "file", and of a glTF, FBX or Collada file the "node" it names ("" for all).
+TriangleMesh readShapeMesh(const JsonValue& file, const JsonValue& node, const fs::path& dir) {
     const std::string path = (dir / file.string()).string();
     std::vector<std::string> warnings;
     try {
-        TriangleMesh mesh = readMesh(path, &warnings);
+        TriangleMesh mesh = readMesh(path, &warnings, node ? node.string() : "");
         for (const auto& w : warnings) std::cerr << file.where() << ": warning: " << w << '\n';
         return mesh;
     } catch (const InputError& e) {
@@ -133,9 +135,9 @@ Shape readShape(JsonObject& o, const fs::path& dir, bool closed) {
     Shape s;
     switch (t) {
     case ShapeType::Mesh: {
-        const JsonValue file = o["file"];
+        const JsonValue file = o["file"], node = o["node"];
         s.file = file.string();
-        s.mesh = readMeshFile(file, dir);
+        s.mesh = readShapeMesh(file, node, dir);
         break;
     }
     case ShapeType::Sphere: s.mesh = readSphere(o); break;

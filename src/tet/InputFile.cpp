@@ -38,6 +38,10 @@ struct Fd {
 InputLog::InputLog() : outer_(currentLog) { currentLog = this; }
 InputLog::~InputLog() { currentLog = outer_; }
 
+void noteInputFile(const std::string& path) {
+    if (currentLog) currentLog->files_.push_back(path);
+}
+
 std::string readInputFile(const std::string& path, uint64_t maxBytes, const char* what) {
     // O_NONBLOCK: opening a FIFO without a writer returns at once instead of waiting; the type
     // is then checked on the open file itself, so it cannot change between check and read.

@@ -10,7 +10,7 @@ namespace tetglow {
 
 inline constexpr uint64_t kMiB = uint64_t(1) << 20;
 inline constexpr uint64_t kMaxSceneFileBytes = 64 * kMiB;    // a JSON scene, a pbrt file, each Include
-inline constexpr uint64_t kMaxMeshFileBytes = 1024 * kMiB;   // OBJ, OFF, PLY (also pbrt's plymesh)
+inline constexpr uint64_t kMaxMeshFileBytes = 1024 * kMiB;   // any mesh (also pbrt's plymesh), with the files it names
 inline constexpr uint64_t kMaxImageFileBytes = 1024 * kMiB;  // an OpenEXR image read by diff
 inline constexpr uint64_t kMaxCacheFileBytes = 4096 * kMiB;  // a tet cache entry
 
@@ -20,6 +20,9 @@ inline constexpr uint64_t kMaxCacheFileBytes = 4096 * kMiB;  // a tet cache entr
 //   for a scene file", "<path>: cannot open: <reason>".
 // `what` names the kind of file in the size message ("a scene file", "a mesh").
 std::string readInputFile(const std::string& path, uint64_t maxBytes, const char* what);
+
+// Records in the current InputLog a file read on this thread's behalf by a child process.
+void noteInputFile(const std::string& path);
 
 // While one lives, the path of every file readInputFile opens on this thread is recorded in it
 // (the innermost log, when they nest): a loader learns every file a scene pulls in (Includes,
@@ -34,6 +37,7 @@ public:
 
 private:
     friend std::string readInputFile(const std::string&, uint64_t, const char*);
+    friend void noteInputFile(const std::string&);
     std::vector<std::string> files_;
     InputLog* outer_;
 };

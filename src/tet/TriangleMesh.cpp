@@ -76,14 +76,15 @@ uint32_t objIndex(const std::string& tok, size_t vertexCount, const std::string&
     return static_cast<uint32_t>(resolved);
 }
 
-// Polygons are fanned into triangles.
-void addPolygon(TriangleMesh& mesh, const std::vector<uint32_t>& poly, const std::string& path, size_t line) {
-    if (poly.size() < 3)
-        throw InputError(where(path, line) + "face with " + std::to_string(poly.size()) + " vertices");
+}  // namespace
+
+void addPolygon(TriangleMesh& mesh, const std::vector<uint32_t>& poly, const std::string& where) {
+    if (poly.size() < 3) throw InputError(where + "face with " + std::to_string(poly.size()) + " vertices");
     for (size_t k = 1; k + 1 < poly.size(); ++k) mesh.triangles.push_back({poly[0], poly[k], poly[k + 1]});
 }
 
-TriangleMesh readObj(std::istream& in, const std::string& path, std::vector<std::string>* warnings) {
+TriangleMesh parseObj(const std::string& data, const std::string& path, std::vector<std::string>* warnings) {
+    std::istringstream in(data);
     TriangleMesh mesh;
     std::string text;
     size_t line = 0;
@@ -105,7 +106,7 @@ TriangleMesh readObj(std::istream& in, const std::string& path, std::vector<std:
             std::vector<uint32_t> poly;
             std::string tok;
             while (ls >> tok) poly.push_back(objIndex(tok, mesh.positions.size(), path, line));
-            addPolygon(mesh, poly, path, line);
+            addPolygon(mesh, poly, where(path, line));
         } else if (key == "mtllib") {
             std::string lib;
             std::getline(ls >> std::ws, lib);
@@ -122,7 +123,8 @@ TriangleMesh readObj(std::istream& in, const std::string& path, std::vector<std:
     return mesh;
 }
 
-TriangleMesh readOff(std::istream& in, const std::string& path) {
+TriangleMesh parseOff(const std::string& data, const std::string& path) {
+    std::istringstream in(data);
     // Tokens with '#' comments removed, tracking the line of each token for messages.
     std::vector<std::pair<std::string, size_t>> toks;
     std::string text;
@@ -161,24 +163,8 @@ TriangleMesh readOff(std::istream& in, const std::string& path) {
             v = static_cast<uint32_t>(integer("vertex index"));
             if (v >= nv) throw InputError(where(path, line) + "face index " + std::to_string(v) + " out of range");
         }
-        addPolygon(mesh, poly, path, line);
+        addPolygon(mesh, poly, where(path, line));
     }
-    return mesh;
-}
-
-}  // namespace
-
-TriangleMesh readMesh(const std::string& path, std::vector<std::string>* warnings) {
-    std::string data = readInputFile(path, kMaxMeshFileBytes, "a mesh");
-    const std::string head = data.substr(0, 512);
-    std::istringstream in(std::move(data));
-    std::string ext = std::filesystem::path(path).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
-    // Control characters other than whitespace do not occur in OBJ or OFF text.
-    if (std::any_of(head.begin(), head.end(), [](char c) { return (unsigned char)c < 32 && !std::isspace((unsigned char)c); }))
-        throw InputError(path + ": binary file, not an OBJ or OFF mesh");
-    TriangleMesh mesh = (ext == ".off" || head.rfind("OFF", 0) == 0) ? readOff(in, path) : readObj(in, path, warnings);
-    if (mesh.triangles.empty()) throw InputError(path + ": no triangles (empty file or not a mesh)");
     return mesh;
 }
 

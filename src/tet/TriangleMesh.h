@@ -81,9 +81,14 @@ Bounds3 bounds(const TriangleMesh& mesh);
 // Signed volume by the divergence theorem (positive for outward winding).
 double signedVolume(const TriangleMesh& mesh);
 
-// Reads OBJ or OFF (chosen by extension, then by content). Throws InputError naming file and line.
-// Warnings (such as a missing mtllib) go to `warnings`.
-TriangleMesh readMesh(const std::string& path, std::vector<std::string>* warnings = nullptr);
+// OBJ and OFF text read from `path` (named in messages; an OBJ's mtllib is looked for beside it).
+// readMesh (scene/MeshFile.h) reads the file and picks the reader. Throws InputError naming file
+// and line. Warnings (such as a missing mtllib) go to `warnings`.
+TriangleMesh parseObj(const std::string& text, const std::string& path, std::vector<std::string>* warnings);
+TriangleMesh parseOff(const std::string& text, const std::string& path);
+// Polygon (v0 v1 ... vn-1) as the fan (v0 vk vk+1); fewer than 3 vertices is an InputError
+// starting with `where` ("file:line: ").
+void addPolygon(TriangleMesh& mesh, const std::vector<uint32_t>& polygon, const std::string& where);
 void writeObj(const TriangleMesh& mesh, const std::string& path, const std::string& header = "");
 
 }  // namespace tetglow

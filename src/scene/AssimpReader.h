@@ -1,0 +1,27 @@
+// glTF 2.0 (JSON with its buffers, or GLB), FBX and Collada meshes, read by Assimp. Every mesh of
+// the file is placed by its node's world transform (the product of the transforms of the node and
+// its ancestors, as Assimp's importer builds the hierarchy: glTF and FBX as written, Collada
+// turned from Z-up to Y-up), its winding reversed under a mirroring transform (glTF's rule), and
+// its equal positions welded per node. Points and lines are skipped with a warning. Every file
+// Assimp opens (a glTF's .bin buffers, say) goes through readInputFile: a regular file, and all of
+// them together within the mesh limit. Assimp runs in a child process: a crash is an InputError.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "tet/TriangleMesh.h"
+
+namespace tetglow {
+
+// At most this many triangles once every node's meshes are placed (a node may place a mesh many
+// times): about what the largest OBJ file read holds.
+inline constexpr size_t kMaxSceneMeshTriangles = size_t(1) << 27;
+
+enum class SceneMeshFormat { Gltf, Glb, Fbx, Collada };
+
+// The meshes of the scene file `data` read from `path`. `node`: "" for every mesh, else the
+// meshes of the node of that name and of the nodes below it. Throws InputError "<path>: <problem>".
+TriangleMesh parseSceneMeshes(std::string data, const std::string& path, SceneMeshFormat format, const std::string& node,
+                              std::vector<std::string>* warnings);
+
+}  // namespace tetglow
