@@ -162,6 +162,20 @@ TEST(Regions, TouchingBoxesShareTheirFace) {
     expectConsistent(m, meshes);
 }
 
+// Meshes that meet only at a vertex or along an edge are two regions that share no triangle:
+// accepted (the documentation once said refused), each region exactly its box.
+TEST(Regions, BoxesMeetingAtAnEdgeOrAVertexAreTwoRegions) {
+    for (const glm::dvec3 corner : {glm::dvec3(1, 1, 0), glm::dvec3(1, 1, 1)}) {
+        const std::vector<TriangleMesh> meshes{validated(box()), validated(box(corner, corner + glm::dvec3(1)))};
+        const TetMesh m = tetrahedralize(meshes, {"a", "b"}, test::noCache());
+        EXPECT_EQ(m.regionParent, (std::vector<int32_t>{-1, -1}));
+        EXPECT_EQ(m.surface.size(), 24u) << "no triangle shared";
+        EXPECT_NEAR(m.regionVolume(0), 1.0, 1e-15);
+        EXPECT_NEAR(m.regionVolume(1), 1.0, 1e-15);
+        expectConsistent(m, meshes);
+    }
+}
+
 TEST(Regions, InnerMeshTouchingItsContainerFromInside) {
     const std::vector<TriangleMesh> meshes{validated(doubleBox()), validated(box())};
     const TetMesh m = tetrahedralize(meshes, {"outer", "inner"}, test::noCache());
