@@ -80,8 +80,9 @@ class Server:
 
     def request(self, path, body=None):
         data = None if body is None else body.encode()
+        headers = {} if body is None else {"Content-Type": "application/json"}  # the only body the server takes
         try:
-            with urllib.request.urlopen(urllib.request.Request(self.url + path, data=data), timeout=10 * TIME_SCALE) as r:
+            with urllib.request.urlopen(urllib.request.Request(self.url + path, data=data, headers=headers), timeout=10 * TIME_SCALE) as r:
                 return r.status, r.read()
         except urllib.error.HTTPError as e:
             return e.code, e.read()

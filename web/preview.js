@@ -29,7 +29,10 @@ function emissionForm(m) {
 function showError(message) { $('error').textContent = message || ''; }
 
 async function post(path, body) {
-  const response = await fetch(path, { method: 'POST', body: body === undefined ? '' : JSON.stringify(body) });
+  // Declared JSON: the server takes no other body (a type no other page can send unasked).
+  const response = await fetch(path, {
+    method: 'POST', headers: { 'Content-Type': 'application/json' }, body: body === undefined ? '{}' : JSON.stringify(body),
+  });
   const reply = await response.json();
   if (!response.ok) throw new Error(reply.error || response.statusText);
   return reply;
