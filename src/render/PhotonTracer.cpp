@@ -178,6 +178,7 @@ TracedPhotons tracePhotons(const Scene& scene, const PhotonSource& source, const
     tbb::parallel_for(uint64_t(0), blocks, [&](uint64_t b) {
         TracedPhotons& part = parts[b];
         part.volume.resize(scene.media().size());
+        if (options.cancel && options.cancel->load(std::memory_order_relaxed)) return;
         PathTracer tracer(scene, options, part);
         for (uint64_t i = b * kBlock; i < std::min(options.paths, (b + 1) * kBlock); ++i) {
             Rng rng(options.seed, i, kPhotonStream + options.pass);

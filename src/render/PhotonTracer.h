@@ -6,6 +6,7 @@
 // when it was emitted by a medium. Volume photons are stored at scattering events, surface
 // photons on diffuse surfaces (the caustics under the fish).
 #pragma once
+#include <atomic>
 #include <cstdint>
 #include <vector>
 
@@ -22,6 +23,7 @@ struct PhotonTracingOptions {
     uint64_t seed = 0;
     uint64_t pass = 0;        // independent photons for every pass
     bool caustics = false;    // also keep the caustic photons apart (TracedPhotons::caustic)
+    const std::atomic<bool>* cancel = nullptr;  // once set, the paths not yet begun are skipped
 };
 
 // Where the emitted power went, summed over the paths: emitted = absorbed + escaped + cut in
