@@ -176,6 +176,31 @@ TEST_F(PreviewServer, SlowClientsLeaveThreadsForOthers) {
     EXPECT_EQ(r.status, 200) << "a normal client was not served while 32 slow ones were connected";
 }
 
+TEST_F(PreviewServer, AValueThatOverflowsTheFilmIsNamedAndUndone) {
+    const auto change = [&](const std::string& patch) {
+        return rawHttp(port(), httpRequest("POST", "/settings", port(), {{"Content-Type", "application/json"}}, patch));
+    };
+    const auto waitFor = [&](const auto& condition) {
+        for (int i = 0; i < 600 * timeScale() && !condition(state()); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+        return condition(state());
+    };
+    ASSERT_TRUE(waitFor([](const Json& s) { return !s["image"].is_null() && s["image"]["passes"] == 4; }));
+    const Json good = state()["settings"];
+    ASSERT_EQ(change(R"({"media": [{"emission": 1e30}]})").status, 200);
+    ASSERT_TRUE(waitFor([](const Json& s) { return s["render_error"] != ""; }));
+    const Json failed = state();
+    EXPECT_EQ(failed["render_error"].get<std::string>().rfind("/media/0 emission 1e+30: pixel (", 0), 0u) << failed["render_error"];
+    EXPECT_NE(failed["render_error"].get<std::string>().find("beyond the film's range"), std::string::npos) << failed["render_error"];
+    EXPECT_EQ(failed["settings"], good) << "the settings stayed at the value that failed";
+    // The render goes on with the good values, and shows them.
+    ASSERT_TRUE(waitFor([](const Json& s) { return s["image"]["generation"] == s["generation"] && s["image"]["passes"] == 4; }));
+    // The next good change clears the error.
+    ASSERT_EQ(change(R"({"media": [{"emission": 0.5}]})").status, 200);
+    EXPECT_EQ(state()["render_error"], "");
+    ASSERT_TRUE(waitFor([](const Json& s) { return s["image"]["generation"] == s["generation"] && s["image"]["passes"] == 4; }));
+    EXPECT_EQ(state()["render_error"], "");
+}
+
 TEST_F(PreviewServer, SavesAreBounded) {
     const auto save = [&](const std::string& what) {
         return rawHttp(port(), httpRequest("POST", "/save/" + what, port(), {{"Content-Type", "application/json"}}, "{}"));

@@ -76,7 +76,7 @@ double exposureOf(const std::string& text) {
 class PreviewServer {
 public:
     PreviewServer(const std::string& scenePath, const SceneDesc& desc)
-        : saves_(fs::absolute(scenePath).parent_path(), fs::path(scenePath).stem().string(), kMaxSaves), settings_(desc) {
+        : saves_(fs::absolute(scenePath).parent_path(), fs::path(scenePath).stem().string(), kMaxSaves), settings_(desc), good_(desc) {
         routes();
     }
 
@@ -181,18 +181,35 @@ private:
 
     Json state() {
         Json j;
+        const auto live = live_->latest();
         {
             std::lock_guard lock(settingsMutex_);
+            followRender(live.get());
             j["settings"] = settings_.json();
             j["generation"] = generation_;
+            j["render_error"] = renderError_.empty() ? live_->error() : renderError_;
         }
-        const auto live = live_->latest();
         j["image"] = nullptr;
         if (live)
             j["image"] = {{"version", live->version}, {"generation", live->generation}, {"passes", live->passes},
                           {"seconds", live->seconds}, {"width", live->image.width}, {"height", live->image.height}};
-        j["render_error"] = live_->error();
         return j;
+    }
+
+    // Settings whose first full-size pass rendered are good; settings whose render failed (a
+    // value that overflows the film, say) give way to the last good ones, and the error names
+    // the values that were changed. (settingsMutex_ held.)
+    void followRender(const LiveImage* live) {
+        if (live && live->generation == generation_ && live->passes > 0 && !atGood_) {
+            good_ = settings_;
+            atGood_ = true;
+        }
+        const std::string error = live_->error();
+        if (error.empty() || atGood_) return;
+        renderError_ = settings_.changesFrom(good_) + ": " + error + " (back to the last values that rendered)";
+        settings_ = good_;
+        atGood_ = true;
+        generation_ = live_->restart(settings_.scene());
     }
 
     void image(const httplib::Request& req, httplib::Response& res) {
@@ -212,6 +229,8 @@ private:
         std::lock_guard lock(settingsMutex_);
         settings_.apply(body);  // InputError: 400 with the message, settings unchanged
         generation_ = live_->restart(settings_.scene());
+        atGood_ = false;
+        renderError_.clear();
         sendJson(res, {{"generation", generation_}, {"settings", settings_.json()}});
     }
 
@@ -242,7 +261,9 @@ private:
     std::string host_;  // what the server is bound to, from bind() on
     int port_ = 0;
     std::mutex settingsMutex_, saveMutex_;
-    PreviewSettings settings_;
+    PreviewSettings settings_, good_;  // good_: the last that rendered
+    bool atGood_ = true;               // settings_ are good_ (the loaded scene counts as good)
+    std::string renderError_;          // why the settings went back to good_, until the next change
     uint64_t generation_ = 0;
     std::unique_ptr<LiveRender> live_;  // from serve() on, before any request is read
     httplib::Server server_;

@@ -55,6 +55,24 @@ void PreviewSettings::apply(const std::string& text) {
     settings_ = std::move(next);
 }
 
+std::string PreviewSettings::changesFrom(const PreviewSettings& before) const {
+    std::string out;
+    const auto compare = [&](const std::string& owner, const nlohmann::json& now, const nlohmann::json& was) {
+        for (const auto& [key, value] : now.items())
+            if (!was.contains(key) || was[key] != value) out += (out.empty() ? "" : ", ") + owner + key + " " + value.dump();
+    };
+    for (const auto& [key, value] : settings_.items()) {
+        const nlohmann::json& was = before.settings_[key];
+        if (key == "media")
+            for (size_t i = 0; i < value.size(); ++i) compare(scene_.media[i].name + " ", value[i], was[i]);
+        else if (value.is_object())
+            compare(key + " ", value, was);
+        else if (value != was)
+            out += (out.empty() ? "" : ", ") + key + " " + value.dump();
+    }
+    return out;
+}
+
 SceneDesc PreviewSettings::read(const nlohmann::json& settings) const {
     SceneDesc s = loaded_;
     JsonValue(&settings, nlohmann::json::json_pointer(), kSource).readObject([&](JsonObject& o) {

@@ -23,6 +23,9 @@ public:
     const nlohmann::json& json() const { return settings_; }
     // The loaded scene with the settings: what is rendered and what a save writes.
     const SceneDesc& scene() const { return scene_; }
+    // The values that differ from `before`, named for a person: "/media/0 (fish.obj) emission
+    // [1e+30, 1e+30, 1e+30], integrator photons 20000" ("" when none do).
+    std::string changesFrom(const PreviewSettings& before) const;
 
 private:
     SceneDesc read(const nlohmann::json& settings) const;
