@@ -186,6 +186,7 @@ private:
             std::lock_guard lock(settingsMutex_);
             followRender(live.get());
             j["settings"] = settings_.json();
+            j["media_names"] = settings_.mediumNames();
             j["generation"] = generation_;
             j["render_error"] = renderError_.empty() ? live_->error() : renderError_;
         }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 
 #include "scene/SceneLoader.h"
 #include "scene/SceneWriter.h"
@@ -71,6 +72,17 @@ std::string PreviewSettings::changesFrom(const PreviewSettings& before) const {
             out += (out.empty() ? "" : ", ") + key + " " + value.dump();
     }
     return out;
+}
+
+std::vector<std::string> PreviewSettings::mediumNames() const {
+    std::vector<std::string> names;
+    for (const MediumDesc& m : loaded_.media) {
+        // The loader's name: "/media/0 (meshes/fish.obj)", or "/media/0" for a built-in shape.
+        const size_t open = m.name.find(" (");
+        names.push_back(open == std::string::npos ? m.name
+                                                  : std::filesystem::path(m.name.substr(open + 2, m.name.size() - open - 3)).filename().string());
+    }
+    return names;
 }
 
 SceneDesc PreviewSettings::read(const nlohmann::json& settings) const {

@@ -7,6 +7,7 @@
 // loader's one-line error and no key the loader does not know (a mesh file, say) gets through.
 #pragma once
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -26,6 +27,9 @@ public:
     // The values that differ from `before`, named for a person: "/media/0 (fish.obj) emission
     // [1e+30, 1e+30, 1e+30], integrator photons 20000" ("" when none do).
     std::string changesFrom(const PreviewSettings& before) const;
+    // Per medium, what the page calls it: its mesh's file name, or its place in the scene file
+    // ("/media/2") when it is a built-in shape.
+    std::vector<std::string> mediumNames() const;
 
 private:
     SceneDesc read(const nlohmann::json& settings) const;
