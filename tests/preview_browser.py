@@ -71,6 +71,15 @@ def test_scene(folder):
     return path
 
 
+def differences(a, b, path=""):
+    """The JSON pointers at which a and b differ (a value, or a key one of them lacks)."""
+    if isinstance(a, dict) and isinstance(b, dict):
+        return [d for k in a.keys() | b.keys() for d in differences(a.get(k), b.get(k), path + "/" + k)]
+    if isinstance(a, list) and isinstance(b, list) and len(a) == len(b) and any(isinstance(x, (dict, list)) for x in a):
+        return [d for i, (x, y) in enumerate(zip(a, b)) for d in differences(x, y, f"{path}/{i}")]
+    return [] if a == b else [path]
+
+
 class Server:
     def __init__(self, tetglow, scene):
         self.process = subprocess.Popen([tetglow, "preview", scene, "--port", str(free_port())],
@@ -258,6 +267,13 @@ def main():
         with open(scene) as f:
             tuned = json.load(f)
         check(tuned["media"][0]["g"] == g and tuned["integrator"]["photons"] == 12000, f"the saved scene holds {tuned['media'][0]}")
+        # Against the file loaded, only the values changed in the page (no mesh copied, the
+        # spot's scale kept).
+        with open(os.path.join(work, "fish.json")) as f:
+            original = json.load(f)
+        changed = sorted(differences(original, tuned))
+        check(changed == ["/integrator/photons", "/media/0/emission", "/media/0/g"], f"the saved scene differs at {changed}")
+        check(not [n for n in os.listdir(work) if n.endswith(".obj")], "a mesh was copied beside the saved scene")
         browser.find_element(By.ID, "save-image").click()
         wait_for("the image saved", lambda: f"({PASSES} passes)" in saved())
         exr = os.path.join(work, "fish-image-1.exr")

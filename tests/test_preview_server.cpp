@@ -201,6 +201,31 @@ TEST_F(PreviewServer, AValueThatOverflowsTheFilmIsNamedAndUndone) {
     EXPECT_EQ(state()["render_error"], "");
 }
 
+TEST_F(PreviewServer, ASavedSceneChangesOnlyWhatWasChanged) {
+    std::ifstream in(dir_ / "sphere.json");
+    const nlohmann::ordered_json original = nlohmann::ordered_json::parse(in);
+    const auto post = [&](const std::string& path, const std::string& body) {
+        return rawHttp(port(), httpRequest("POST", path, port(), {{"Content-Type", "application/json"}}, body));
+    };
+    ASSERT_EQ(post("/settings", R"({"media": [{"g": 0.5, "sigma_s": [1, 2, 3], "scale": 2}], "integrator": {"spp": 8}})").status, 200);
+    const HttpReply saved = post("/save/scene", "{}");
+    ASSERT_EQ(saved.status, 200) << saved.body;
+    EXPECT_EQ(Json::parse(saved.body)["scene"], (dir_ / "sphere-tuned-1.json").string());
+    std::ifstream back(dir_ / "sphere-tuned-1.json");
+    nlohmann::ordered_json expected = original;
+    expected["media"][0]["g"] = 0.5;
+    expected["media"][0]["sigma_s"] = {1.0, 2.0, 3.0};  // the file had no scale: units of 1
+    expected["media"][0]["scale"] = 2.0;
+    expected["integrator"]["spp"] = 8;
+    EXPECT_EQ(nlohmann::ordered_json::parse(back), expected) << "the shape, the units or the order changed";
+    EXPECT_EQ(files(), 2u) << "a mesh was written beside the scene";
+    // Over the original only when asked.
+    ASSERT_EQ(post("/save/scene", R"({"overwrite": true})").status, 200);
+    std::ifstream over(dir_ / "sphere.json");
+    EXPECT_EQ(nlohmann::ordered_json::parse(over), expected);
+    EXPECT_EQ(files(), 2u);
+}
+
 TEST_F(PreviewServer, SavesAreBounded) {
     const auto save = [&](const std::string& what) {
         return rawHttp(port(), httpRequest("POST", "/save/" + what, port(), {{"Content-Type", "application/json"}}, "{}"));

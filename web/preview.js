@@ -245,8 +245,10 @@ $('lookup').addEventListener('change', () => {
 });
 $('resolution-scale').addEventListener('change', () => change({ resolution_scale: Number($('resolution-scale').value) }));
 $('exposure').addEventListener('input', () => { $('exposure-value').textContent = $('exposure').value; });
-$('save-scene').addEventListener('click', () =>
-  post('/save/scene').then((r) => { $('saved').textContent = 'saved ' + r.scene; setError('save', ''); }).catch((e) => setError('save', e.message)));
+const saveScene = (body) =>
+  post('/save/scene', body).then((r) => { $('saved').textContent = 'saved ' + r.scene; setError('save', ''); }).catch((e) => setError('save', e.message));
+$('save-scene').addEventListener('click', () => saveScene({}));
+$('save-over').addEventListener('click', () => { if (window.confirm('Write the changed values into the scene file itself?')) saveScene({ overwrite: true }); });
 $('save-image').addEventListener('click', () =>
   post('/save/image', { exposure: Number($('exposure').value) })
     .then((r) => { $('saved').textContent = 'saved ' + r.exr + ' and ' + r.png + ' (' + r.passes + ' passes)'; setError('save', ''); })

@@ -24,6 +24,7 @@
 #include "render/LiveRender.h"
 #include "scene/SceneLoader.h"
 #include "scene/SceneWriter.h"
+#include "tet/InputFile.h"
 
 namespace tetglow::cli {
 namespace {
@@ -73,10 +74,31 @@ double exposureOf(const std::string& text) {
     });
 }
 
+// A true/false key of a request's JSON body ("" and absent: false).
+bool flagOf(const std::string& text, const char* key) {
+    if (text.empty()) return false;
+    const Json j = parseJson(text, "request");
+    return JsonValue(&j, Json::json_pointer(), "request").readObject([&](JsonObject& o) {
+        const JsonValue v = o[key];
+        return v && v.boolean();
+    });
+}
+
+// The scene file as JSON, keys in their order, or null for a pbrt scene.
+nlohmann::ordered_json jsonScene(const std::string& path) {
+    const std::string text = readInputFile(path, kMaxSceneFileBytes, "a scene file");
+    nlohmann::ordered_json doc = nlohmann::ordered_json::parse(text, nullptr, false, true);
+    return doc.is_discarded() ? nlohmann::ordered_json() : doc;
+}
+
 class PreviewServer {
 public:
     PreviewServer(const std::string& scenePath, const SceneDesc& desc)
-        : saves_(fs::absolute(scenePath).parent_path(), fs::path(scenePath).stem().string(), kMaxSaves), settings_(desc), good_(desc) {
+        : scenePath_(fs::absolute(scenePath).string()),
+          original_(jsonScene(scenePath)),
+          saves_(fs::absolute(scenePath).parent_path(), fs::path(scenePath).stem().string(), kMaxSaves),
+          settings_(desc),
+          good_(desc) {
         routes();
     }
 
@@ -142,7 +164,7 @@ private:
         server_.Get("/state", [this](const httplib::Request&, httplib::Response& res) { sendJson(res, state()); });
         server_.Get("/image.png", [this](const httplib::Request& req, httplib::Response& res) { image(req, res); });
         post("/settings", [this](const std::string& body, httplib::Response& res) { change(body, res); });
-        post("/save/scene", [this](const std::string&, httplib::Response& res) { saveScene(res); });
+        post("/save/scene", [this](const std::string& body, httplib::Response& res) { saveScene(body, res); });
         post("/save/image", [this](const std::string& body, httplib::Response& res) { saveImage(body, res); });
         server_.set_error_handler([](const httplib::Request&, httplib::Response& res) {
             if (!res.body.empty()) return;
@@ -235,15 +257,19 @@ private:
         sendJson(res, {{"generation", generation_}, {"settings", settings_.json()}});
     }
 
-    void saveScene(httplib::Response& res) {
+    // A JSON scene: the user's file with only the values changed ({"overwrite": true}: over it,
+    // else as <scene>-tuned-<n>.json beside it, so its mesh references hold). A pbrt scene: the
+    // scene writer's JSON, its meshes beside it.
+    void saveScene(const std::string& body, httplib::Response& res) {
+        const bool overwrite = flagOf(body, "overwrite");
         std::lock_guard lock(saveMutex_);
-        SceneDesc scene;
-        {
-            std::lock_guard settingsLock(settingsMutex_);
-            scene = settings_.scene();
-        }
-        const std::string path = saves_.next("tuned", {".json"}) + ".json";
-        writeScene(scene, path);
+        std::lock_guard settingsLock(settingsMutex_);
+        if (overwrite && original_.is_null()) return sendError(res, "not saved: a pbrt scene is saved as JSON beside it, never over it");
+        const std::string path = overwrite ? scenePath_ : saves_.next("tuned", {".json"}) + ".json";
+        if (original_.is_null())
+            writeScene(settings_.scene(), path);
+        else
+            writeSceneJson(settings_.editedScene(original_), path);
         sendJson(res, {{"scene", path}});
     }
 
@@ -258,6 +284,8 @@ private:
         sendJson(res, {{"exr", exr}, {"png", previewPath(exr)}, {"passes", live->passes}, {"generation", live->generation}});
     }
 
+    const std::string scenePath_;
+    const nlohmann::ordered_json original_;  // the JSON scene file as read; null for pbrt
     PreviewSaves saves_;
     std::string host_;  // what the server is bound to, from bind() on
     int port_ = 0;

@@ -30,12 +30,17 @@ public:
     // Per medium, what the page calls it: its mesh's file name, or its place in the scene file
     // ("/media/2") when it is a built-in shape.
     std::vector<std::string> mediumNames() const;
+    // The JSON scene file `original`, as it was read, with the values changed since loading in
+    // the file's own terms: only changed keys are written (sigma_a and sigma_s in units of the
+    // medium's own "scale", a new scale as a multiple of it); every other key, mesh references,
+    // light scales and units included, stays as it was.
+    nlohmann::ordered_json editedScene(nlohmann::ordered_json original) const;
 
 private:
     SceneDesc read(const nlohmann::json& settings) const;
 
     SceneDesc loaded_;
-    nlohmann::json settings_;
+    nlohmann::json initial_, settings_;  // initial_: as loaded
     SceneDesc scene_;
 };
 
