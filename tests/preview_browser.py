@@ -4,8 +4,10 @@
 Starts the server on a free port with a small copy of the demo fish, then: other paths get 404;
 malformed and out-of-range requests get the loader's one-line errors and change nothing; the page
 shows the image; dragging the g slider restarts the render (the pass counter starts again) and
-changes the image; a bad value typed into the page shows the error there; a second tab sees the
-same settings and render; the saved scene holds the new values, never overwrites, and renders the
+changes the image; a bad value typed into the page shows the error there, in the field's words;
+an emission that overflows the film and a negative photon count, typed in turn, show two errors
+(the first naming the medium and field) while the render goes on, each cleared when its field
+takes a good value; a second tab sees the same settings and render; the saved scene holds the new values, never overwrites, and renders the
 same through `tetglow render`, bit for bit. A screenshot of the page goes to OUT/preview.png.
 
   tests/preview_browser.py --tetglow build/tetglow --out build/preview-browser
@@ -69,6 +71,15 @@ def test_scene(folder):
     return path
 
 
+def differences(a, b, path=""):
+    """The JSON pointers at which a and b differ (a value, or a key one of them lacks)."""
+    if isinstance(a, dict) and isinstance(b, dict):
+        return [d for k in a.keys() | b.keys() for d in differences(a.get(k), b.get(k), path + "/" + k)]
+    if isinstance(a, list) and isinstance(b, list) and len(a) == len(b) and any(isinstance(x, (dict, list)) for x in a):
+        return [d for i, (x, y) in enumerate(zip(a, b)) for d in differences(x, y, f"{path}/{i}")]
+    return [] if a == b else [path]
+
+
 class Server:
     def __init__(self, tetglow, scene):
         self.process = subprocess.Popen([tetglow, "preview", scene, "--port", str(free_port())],
@@ -80,8 +91,9 @@ class Server:
 
     def request(self, path, body=None):
         data = None if body is None else body.encode()
+        headers = {} if body is None else {"Content-Type": "application/json"}  # the only body the server takes
         try:
-            with urllib.request.urlopen(urllib.request.Request(self.url + path, data=data), timeout=10 * TIME_SCALE) as r:
+            with urllib.request.urlopen(urllib.request.Request(self.url + path, data=data, headers=headers), timeout=10 * TIME_SCALE) as r:
                 return r.status, r.read()
         except urllib.error.HTTPError as e:
             return e.code, e.read()
@@ -191,15 +203,46 @@ def main():
         box.send_keys(Keys.CONTROL, "a")  # not clear(): it sends a change of its own
         box.send_keys("1.5", Keys.TAB)
         shown = wait_for("the error in the page", lambda: browser.find_element(By.ID, "error").text)
-        check(shown == "request: /media/0/g: expected a number in (-1, 1), got 1.5", "page error: " + shown)
+        check(shown == "fish.obj · g: 1.5 is outside the range allowed, a number (-1, 1)", "page error: " + shown)
         wait_for("the good g back in the page", lambda: float(box.get_attribute("value")) == g)
         check(server.state()["generation"] == generation, "a bad value restarted the render")
+        g = round(g - 0.05, 2)  # another value: typing the one shown again changes nothing
+        box.send_keys(Keys.CONTROL, "a")
+        box.send_keys(str(g), Keys.TAB)
+        wait_for("the error cleared by a good g", lambda: browser.find_element(By.ID, "error").text == "")
+        wait_for("the good g sent", lambda: server.state()["settings"]["media"][0]["g"] == g)
+
+        # Two bad values in turn: an emission that overflows the film (the server's render fails,
+        # names the medium and field, and goes back to the last good values) and a negative
+        # photon count (refused in the page). Both errors stay in view, the render goes on, and
+        # each clears when its field is fixed.
+        errors = lambda: js("return [...document.querySelectorAll('#error li')].map((e) => e.textContent)")
+        def type_into(selector, text):
+            field = browser.find_element(By.CSS_SELECTOR, selector)
+            field.send_keys(Keys.CONTROL, "a")
+            field.send_keys(text, Keys.TAB)
+        strength = browser.find_element(By.CSS_SELECTOR, ".medium .emission-strength").get_attribute("value")
+        photons_before = server.state()["settings"]["integrator"]["photons"]
+        type_into(".medium .emission-strength", "1e30")
+        wait_for("the overflow named", lambda: any(e.startswith("/media/0 (") and " emission " in e and "beyond the film's range" in e for e in errors()))
+        type_into("[data-key=photons]", "-5")
+        wait_for("both errors", lambda: len(errors()) == 2)
+        check(any(e == "photons per pass: -5 is outside the range allowed, an integer [1, 1099511627776]" for e in errors()), f"errors: {errors()}")
+        state = wait_for("the render going on with the good values",
+                         lambda: server.state()["image"]["generation"] == server.state()["generation"] and server.state())
+        check(state["settings"]["integrator"]["photons"] == photons_before, "the bad photon count was sent")
+        check(max(state["settings"]["media"][0]["emission"]) < 1e29 if isinstance(state["settings"]["media"][0]["emission"], list)
+              else state["settings"]["media"][0]["emission"] < 1e29, "the overflowing emission stayed")
+        type_into(".medium .emission-strength", "0.5" if strength != "0.5" else "0.25")  # not the value shown: no change
+        wait_for("the overflow's error cleared", lambda: len(errors()) == 1)
+        type_into("[data-key=photons]", str(photons_before // 2))
+        wait_for("every error cleared", lambda: errors() == [])
 
         # A second tab sees the same render; a change made there shows in the first.
         browser.switch_to.new_window("tab")
         browser.get(server.url + "/")
         wait_for("the second tab's image", lambda: js("return document.getElementById('image').naturalWidth") == 128)
-        check(float(browser.find_element(By.CSS_SELECTOR, ".medium .g").get_attribute("value")) == g, "the second tab shows another g")
+        wait_for("the second tab's g", lambda: float(browser.find_element(By.CSS_SELECTOR, ".medium .g").get_attribute("value")) == g)
         photons = browser.find_element(By.CSS_SELECTOR, "[data-key=photons]")
         photons.send_keys(Keys.CONTROL, "a")
         photons.send_keys("12000", Keys.TAB)
@@ -224,6 +267,13 @@ def main():
         with open(scene) as f:
             tuned = json.load(f)
         check(tuned["media"][0]["g"] == g and tuned["integrator"]["photons"] == 12000, f"the saved scene holds {tuned['media'][0]}")
+        # Against the file loaded, only the values changed in the page (no mesh copied, the
+        # spot's scale kept).
+        with open(os.path.join(work, "fish.json")) as f:
+            original = json.load(f)
+        changed = sorted(differences(original, tuned))
+        check(changed == ["/integrator/photons", "/media/0/emission", "/media/0/g"], f"the saved scene differs at {changed}")
+        check(not [n for n in os.listdir(work) if n.endswith(".obj")], "a mesh was copied beside the saved scene")
         browser.find_element(By.ID, "save-image").click()
         wait_for("the image saved", lambda: f"({PASSES} passes)" in saved())
         exr = os.path.join(work, "fish-image-1.exr")

@@ -1,12 +1,8 @@
 // tetglow preview's own failures, before any page is served: each a one-line error and a
 // non-zero exit, never a server left running. (The page itself: tests/preview_browser.py.)
-#include <arpa/inet.h>
-#include <netinet/in.h>
-#include <sys/socket.h>
-#include <unistd.h>
-
 #include <gtest/gtest.h>
 
+#include "PreviewProcess.h"
 #include "TestMeshes.h"
 
 namespace tetglow {
@@ -20,19 +16,12 @@ void expectRefused(const test::CommandResult& r, int code, const std::string& ex
     EXPECT_EQ(r.out.find("preview: http"), std::string::npos) << "served anyway: " << r.out;
 }
 
-TEST(PreviewCommand, PortInUseIsAnError) {
-    const int s = socket(AF_INET, SOCK_STREAM, 0);
-    sockaddr_in address{};
-    address.sin_family = AF_INET;
-    address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-    ASSERT_EQ(bind(s, reinterpret_cast<sockaddr*>(&address), sizeof address), 0);
-    ASSERT_EQ(listen(s, 1), 0);
-    socklen_t size = sizeof address;
-    getsockname(s, reinterpret_cast<sockaddr*>(&address), &size);
-    const std::string port = std::to_string(ntohs(address.sin_port));
-    const auto r = test::runTetglow("preview " + kScene + " --port " + port);
-    close(s);
-    expectRefused(r, 1, "cannot listen on 127.0.0.1:" + port);
+TEST(PreviewCommand, ASecondPreviewOnTheSamePortIsRefused) {
+    // Both would print their URL and split the requests between them, each page mixing two renders.
+    test::PreviewProcess first(kScene + " --port 0 --threads 1");
+    const std::string port = std::to_string(first.port());
+    expectRefused(test::runTetglow("preview " + kScene + " --port " + port, 30), 1, "cannot listen on 127.0.0.1:" + port);
+    EXPECT_EQ(test::rawHttp(first.port(), test::httpRequest("GET", "/", first.port())).status, 200) << "the first preview stopped serving";
 }
 
 TEST(PreviewCommand, BadArguments) {

@@ -1,16 +1,21 @@
 'use strict';
 // tetglow preview: polls /state, shows the newest image, and sends every change as a JSON merge
-// patch on the settings (POST /settings). The server checks each value; its one-line error is
-// shown here and the render goes on with the last good settings.
+// patch on the settings (POST /settings). Each value typed is checked here first, in the words of
+// its field (what was typed, the range allowed); the server checks again. Errors are kept per
+// field, all shown at once, each until its field takes a good value; the render goes on with the
+// last good settings.
 const $ = (id) => document.getElementById(id);
 let settings = null;      // the last good settings, as the server holds them
 let generation = -1;      // which of them the controls show
 let shownImage = '', imageLoading = false;  // shownImage: the version and exposure on screen
 let sending = false, queued = null;
+let mediumNames = [];     // the scene's names of its media
 
-// Colours are linear [0, 1] values shown as #rrggbb.
-const hex = (rgb) => '#' + rgb.map((v) => Math.round(255 * Math.min(1, Math.max(0, v))).toString(16).padStart(2, '0')).join('');
-const unhex = (s) => [1, 3, 5].map((i) => parseInt(s.substr(i, 2), 16) / 255);
+// Colours are linear [0, 1] values, shown as the sRGB #rrggbb a screen shows them by.
+const encode = (v) => (v <= 0.0031308 ? 12.92 * v : 1.055 * Math.pow(v, 1 / 2.4) - 0.055);
+const decode = (c) => (c <= 0.04045 ? c / 12.92 : Math.pow((c + 0.055) / 1.055, 2.4));
+const hex = (rgb) => '#' + rgb.map((v) => Math.round(255 * encode(Math.min(1, Math.max(0, v)))).toString(16).padStart(2, '0')).join('');
+const unhex = (s) => [1, 3, 5].map((i) => decode(parseInt(s.substr(i, 2), 16) / 255));
 const scaled = (rgb, s) => rgb.map((v) => v * s);
 const largest = (...rgbs) => Math.max(...rgbs.flat());
 
@@ -26,30 +31,93 @@ function emissionForm(m) {
   return { strength, colour: strength > 0 ? scaled(m.emission, 1 / strength) : [1, 1, 1] };
 }
 
-function showError(message) { $('error').textContent = message || ''; }
+// What each field takes (the scene loader's ranges): lo, hi, whether the ends are excluded, integers only.
+const kLargest = 3.40282e38;  // colours and scales are floats
+const RANGES = {
+  spp: { lo: 1, hi: 2 ** 20, integer: true }, photons: { lo: 1, hi: 2 ** 40, integer: true },
+  k: { lo: 1, hi: 100000, integer: true }, radius: { lo: 0, hi: kLargest, loOpen: true },
+  max_depth: { lo: 1, hi: 2 ** 20, integer: true }, g: { lo: -1, hi: 1, loOpen: true, hiOpen: true },
+};
+const rangeOf = (input) => RANGES[input.dataset.key || input.className] || { lo: 0, hi: kLargest };
+function rangeText(r) {
+  return (r.integer ? 'an integer ' : 'a number ') + (r.loOpen ? '(' : '[') + r.lo + ', ' + r.hi + (r.hiOpen ? ')' : ']');
+}
+// The number typed into `input`, or why not in the user's words: "photons per pass: -5 is
+// outside the range allowed, an integer [1, 1099511627776]".
+function typed(input) {
+  const r = rangeOf(input), text = input.value.trim(), x = Number(text);
+  const what = input.validity.badInput || text === '' ? 'what was typed' : text;
+  let why = '';
+  if (input.validity.badInput || text === '' || !Number.isFinite(x)) why = ' is not a number';
+  else if (x < r.lo || x > r.hi || (r.loOpen && x === r.lo) || (r.hiOpen && x === r.hi) || (r.integer && !Number.isInteger(x)))
+    why = ' is outside the range allowed';
+  return why ? { error: input.dataset.label + ': ' + what + why + ', ' + rangeText(r) } : { value: x };
+}
+
+const errors = new Map();  // field -> its message; 'render': the render's own
+function setError(field, message) {
+  if ((errors.get(field) || '') === (message || '')) return;
+  if (message) errors.set(field, message);
+  else errors.delete(field);
+  const list = $('error');
+  list.textContent = '';
+  for (const [key, text] of errors) {
+    const item = document.createElement('li');
+    item.dataset.field = key;
+    item.textContent = text;
+    list.appendChild(item);
+  }
+}
 
 async function post(path, body) {
-  const response = await fetch(path, { method: 'POST', body: body === undefined ? '' : JSON.stringify(body) });
+  // Declared JSON: the server takes no other body (a type no other page can send unasked).
+  const response = await fetch(path, {
+    method: 'POST', headers: { 'Content-Type': 'application/json' }, body: body === undefined ? '{}' : JSON.stringify(body),
+  });
   const reply = await response.json();
   if (!response.ok) throw new Error(reply.error || response.statusText);
   return reply;
 }
 
-// Sends one patch at a time; patches made meanwhile are merged and sent next.
-function change(patch) {
+// Sends one patch at a time; patches made meanwhile are merged and sent next. `fields`: the
+// fields the patch comes from, whose errors it clears or sets ("<label> <typed>: <the server's error>").
+let queuedFields = {};
+function change(patch, fields = {}) {
   if (sending) {
     queued = mergePatch(queued || {}, patch);
+    Object.assign(queuedFields, fields);
     return;
   }
   sending = true;
   post('/settings', patch)
-    .then((reply) => { settings = reply.settings; generation = reply.generation; showError(''); })
-    .catch((e) => showError(e.message))
+    .then((reply) => {
+      settings = reply.settings;
+      generation = reply.generation;
+      for (const field of Object.keys(fields)) setError(field, '');
+    })
+    .catch((e) => { for (const [field, words] of Object.entries(fields)) setError(field, words + ': ' + e.message); })
     .finally(() => {
       sending = false;
       showControls();  // the good settings, also after an error
-      if (queued) { const next = queued; queued = null; change(next); }
+      if (queued) {
+        const next = queued, nextFields = queuedFields;
+        queued = null;
+        queuedFields = {};
+        change(next, nextFields);
+      }
     });
+}
+// A number field: checked here, then sent as the patch makePatch(value) builds.
+function onNumber(input, field, makePatch) {
+  input.addEventListener('change', () => {
+    const t = typed(input);
+    if (t.error) {
+      setError(field, t.error);
+      showControls();
+      return;
+    }
+    change(makePatch(t.value), { [field]: input.dataset.label + ' ' + input.value });
+  });
 }
 function mergePatch(a, b) {
   const out = { ...a };
@@ -78,27 +146,30 @@ function buildMedia() {
   settings.media.forEach((_, i) => {
     const f = $('medium-template').content.firstElementChild.cloneNode(true);
     f.dataset.index = i;
-    f.querySelector('legend').textContent = 'Medium ' + i;
+    f.querySelector('legend').textContent = mediumNames[i] || 'Medium ' + i;
     const q = (c) => f.querySelector('.' + c);
     const all = (c) => [...f.querySelectorAll('.' + c)];
     const m = () => settings.media[i];
     q('mode').addEventListener('change', () => f.classList.toggle('sigma', q('mode').value === 'sigma'));
     q('scatter-colour').addEventListener('change', () => change(mediumPatch(i, { sigma_s: scaled(unhex(q('scatter-colour').value), colourForm(m()).density) })));
     q('absorb-colour').addEventListener('change', () => change(mediumPatch(i, { sigma_a: scaled(unhex(q('absorb-colour').value), colourForm(m()).density) })));
-    q('density').addEventListener('change', () => {
-      const c = colourForm(m()), d = number(q('density'));
-      change(mediumPatch(i, { sigma_s: scaled(c.scatter, d), sigma_a: scaled(c.absorb, d) }));
+    const name = (c) => f.querySelector('legend').textContent + ' · ' + c;
+    for (const input of f.querySelectorAll('input[type=number]')) input.dataset.label = name(input.dataset.label);
+    const field = (c) => 'media/' + i + '/' + c;
+    onNumber(q('density'), field('density'), (d) => {
+      const c = colourForm(m());
+      return mediumPatch(i, { sigma_s: scaled(c.scatter, d), sigma_a: scaled(c.absorb, d) });
     });
     for (const key of ['sigma_a', 'sigma_s'])
-      all(key).forEach((input) => input.addEventListener('change', () => change(mediumPatch(i, { [key]: all(key).map(number) }))));
-    q('g-slider').addEventListener('input', () => change(mediumPatch(i, { g: number(q('g-slider')) })));
-    q('g').addEventListener('change', () => change(mediumPatch(i, { g: number(q('g')) })));
-    q('scale-slider').addEventListener('input', () => change(mediumPatch(i, { scale: number(q('scale-slider')) })));
-    q('scale').addEventListener('change', () => change(mediumPatch(i, { scale: number(q('scale')) })));
+      all(key).forEach((input, k) => onNumber(input, field(key + k), (x) => mediumPatch(i, { [key]: m()[key].map((v, j) => (j === k ? x : v)) })));
+    q('g-slider').addEventListener('input', () => change(mediumPatch(i, { g: number(q('g-slider')) }), { [field('g')]: name('g') + ' ' + q('g-slider').value }));
+    onNumber(q('g'), field('g'), (g) => mediumPatch(i, { g }));
+    q('scale-slider').addEventListener('input', () =>
+      change(mediumPatch(i, { scale: number(q('scale-slider')) }), { [field('scale')]: name('density scale') + ' ' + q('scale-slider').value }));
+    onNumber(q('scale'), field('scale'), (scale) => mediumPatch(i, { scale }));
     q('emission-colour').addEventListener('change', () =>
       change(mediumPatch(i, { emission: scaled(unhex(q('emission-colour').value), emissionForm(m()).strength) })));
-    q('emission-strength').addEventListener('change', () =>
-      change(mediumPatch(i, { emission: scaled(emissionForm(m()).colour, number(q('emission-strength'))) })));
+    onNumber(q('emission-strength'), field('emission'), (x) => mediumPatch(i, { emission: scaled(emissionForm(m()).colour, x) }));
     box.appendChild(f);
   });
 }
@@ -148,35 +219,38 @@ async function poll() {
   try {
     const state = await (await fetch('/state')).json();
     // Another tab's change: show its settings (unless one of ours is on its way).
+    mediumNames = state.media_names || [];
     if (!sending && state.generation !== generation) {
       settings = state.settings;
       generation = state.generation;
       showControls();
-      showError('');  // an error from before that change is stale
     }
     showImage(state.image);
-    if (state.render_error) showError(state.render_error);
+    setError('render', state.render_error);
+    setError('server', '');
   } catch (e) {
-    showError('the preview server does not answer: ' + e.message);
+    setError('server', 'the preview server does not answer: ' + e.message);
   }
   setTimeout(poll, 150);
 }
 
-document.querySelectorAll('[data-key]').forEach((input) =>
-  input.addEventListener('change', () => {
-    const key = input.dataset.key;
-    change({ integrator: { [key]: input.type === 'number' ? number(input) : input.value } });
-  }));
+document.querySelectorAll('[data-key]').forEach((input) => {
+  const key = input.dataset.key;
+  if (input.type === 'number') onNumber(input, 'integrator/' + key, (x) => ({ integrator: { [key]: x } }));
+  else input.addEventListener('change', () => change({ integrator: { [key]: input.value } }));
+});
 $('lookup').addEventListener('change', () => {
   // The server forgets "radius" on null (merge patch) and uses k again.
   change({ integrator: { radius: $('lookup').value === 'radius' ? (settings.integrator.radius ?? 0.05) : null } });
 });
 $('resolution-scale').addEventListener('change', () => change({ resolution_scale: Number($('resolution-scale').value) }));
 $('exposure').addEventListener('input', () => { $('exposure-value').textContent = $('exposure').value; });
-$('save-scene').addEventListener('click', () =>
-  post('/save/scene').then((r) => { $('saved').textContent = 'saved ' + r.scene; showError(''); }).catch((e) => showError(e.message)));
+const saveScene = (body) =>
+  post('/save/scene', body).then((r) => { $('saved').textContent = 'saved ' + r.scene; setError('save', ''); }).catch((e) => setError('save', e.message));
+$('save-scene').addEventListener('click', () => saveScene({}));
+$('save-over').addEventListener('click', () => { if (window.confirm('Write the changed values into the scene file itself?')) saveScene({ overwrite: true }); });
 $('save-image').addEventListener('click', () =>
   post('/save/image', { exposure: Number($('exposure').value) })
-    .then((r) => { $('saved').textContent = 'saved ' + r.exr + ' and ' + r.png + ' (' + r.passes + ' passes)'; showError(''); })
-    .catch((e) => showError(e.message)));
+    .then((r) => { $('saved').textContent = 'saved ' + r.exr + ' and ' + r.png + ' (' + r.passes + ' passes)'; setError('save', ''); })
+    .catch((e) => setError('save', e.message)));
 poll();

@@ -1,7 +1,7 @@
 // tetglow preview SCENE: a local web page that shows the render refining pass after pass and
 // tunes the media and the integrator while it runs (cpp-httplib). The server answers only its
 // own page (compiled in from web/), the current image, the settings and two saves whose file
-// names it chooses itself; every other request gets 404.
+// names it chooses itself; every other request gets 404. Who may ask: PreviewAccess.h.
 #include <atomic>
 #include <chrono>
 #include <csignal>
@@ -11,15 +11,20 @@
 #include <regex>
 #include <thread>
 
+#include <sys/socket.h>
+
 #include <httplib.h>
 
 #include "WebFiles.h"
 #include "cli/Commands.h"
+#include "cli/PreviewAccess.h"
+#include "cli/PreviewSaves.h"
 #include "cli/PreviewSettings.h"
 #include "render/ImageIO.h"
 #include "render/LiveRender.h"
 #include "scene/SceneLoader.h"
 #include "scene/SceneWriter.h"
+#include "tet/InputFile.h"
 
 namespace tetglow::cli {
 namespace {
@@ -34,23 +39,15 @@ struct Options {
 
 constexpr Range kExposure{.lo = -20, .hi = 20};
 constexpr size_t kMaxRequestBytes = 64 * 1024;
+constexpr int kMaxSaves = 100;  // scenes and images together, in one run
+// One thread per connection up to this many: a few slow or idle clients cannot hold every
+// thread (each waits at most kReadTimeoutSeconds for each byte, and the connection closes after
+// one request, so no idle keep-alive connection holds one either).
+constexpr size_t kConnectionThreads = 64;
+constexpr time_t kReadTimeoutSeconds = 2;
 
 std::atomic<bool> stopRequested{false};
 void onStop(int) { stopRequested = true; }
-
-// "<base>-<n>": the first n for which no file in `dir` starts with "<base>-<n>." or
-// "<base>-<n>-", so that a save never overwrites a file (a scene's meshes go beside it).
-std::string freshStem(const fs::path& dir, const std::string& base) {
-    for (int n = 1;; ++n) {
-        const std::string stem = base + "-" + std::to_string(n);
-        bool taken = false;
-        for (const auto& entry : fs::directory_iterator(dir)) {
-            const std::string name = entry.path().filename().string();
-            if (name.rfind(stem + ".", 0) == 0 || name.rfind(stem + "-", 0) == 0) taken = true;
-        }
-        if (!taken) return (dir / stem).string();
-    }
-}
 
 std::string contentType(const std::string& file) {
     const std::string ext = fs::path(file).extension().string();
@@ -77,17 +74,47 @@ double exposureOf(const std::string& text) {
     });
 }
 
+// A true/false key of a request's JSON body ("" and absent: false).
+bool flagOf(const std::string& text, const char* key) {
+    if (text.empty()) return false;
+    const Json j = parseJson(text, "request");
+    return JsonValue(&j, Json::json_pointer(), "request").readObject([&](JsonObject& o) {
+        const JsonValue v = o[key];
+        return v && v.boolean();
+    });
+}
+
+// The scene file as JSON, keys in their order, or null for a pbrt scene.
+nlohmann::ordered_json jsonScene(const std::string& path) {
+    const std::string text = readInputFile(path, kMaxSceneFileBytes, "a scene file");
+    nlohmann::ordered_json doc = nlohmann::ordered_json::parse(text, nullptr, false, true);
+    return doc.is_discarded() ? nlohmann::ordered_json() : doc;
+}
+
 class PreviewServer {
 public:
     PreviewServer(const std::string& scenePath, const SceneDesc& desc)
-        : dir_(fs::absolute(scenePath).parent_path()), stem_(fs::path(scenePath).stem().string()), settings_(desc) {
+        : scenePath_(fs::absolute(scenePath).string()),
+          original_(jsonScene(scenePath)),
+          saves_(fs::absolute(scenePath).parent_path(), fs::path(scenePath).stem().string(), kMaxSaves),
+          settings_(desc),
+          good_(desc) {
         routes();
     }
 
     // Before the scene is built, so that a taken port costs no tetrahedralization.
     int bind(const std::string& host, int port) {
+        // SO_REUSEADDR alone: a restart may take a port whose old connections linger in
+        // TIME_WAIT, but a port another server listens on is refused. (httplib's default adds
+        // SO_REUSEPORT, with which a second preview binds the same port and takes half the requests.)
+        server_.set_socket_options([](socket_t s) {
+            const int yes = 1;
+            setsockopt(s, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
+        });
         const int bound = port == 0 ? server_.bind_to_any_port(host) : (server_.bind_to_port(host, port) ? port : -1);
         if (bound < 0) throw InputError("cannot listen on " + host + ":" + std::to_string(port) + " (in use, or not an address of this machine)");
+        host_ = host;
+        port_ = bound;
         return bound;
     }
 
@@ -112,6 +139,18 @@ public:
 private:
     void routes() {
         server_.set_payload_max_length(kMaxRequestBytes);
+        server_.new_task_queue = [] { return new httplib::ThreadPool(kConnectionThreads); };
+        server_.set_keep_alive_max_count(1);
+        server_.set_read_timeout(kReadTimeoutSeconds);
+        // Before a byte of the body is read.
+        server_.set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
+            Refusal refusal = accessRefusal(req, host_, port_);
+            if (!refusal.status && req.has_header("Content-Length") && req.get_header_value<uint64_t>("Content-Length") > kMaxRequestBytes)
+                refusal = {413, tooLarge()};
+            if (!refusal.status) return httplib::Server::HandlerResponse::Unhandled;
+            sendError(res, refusal.message, refusal.status);
+            return httplib::Server::HandlerResponse::Handled;
+        });
         for (const web::File& file : web::kFiles) {
             const std::string name = file.name;
             const std::string body(reinterpret_cast<const char*>(file.bytes), file.size);
@@ -124,15 +163,12 @@ private:
         }
         server_.Get("/state", [this](const httplib::Request&, httplib::Response& res) { sendJson(res, state()); });
         server_.Get("/image.png", [this](const httplib::Request& req, httplib::Response& res) { image(req, res); });
-        server_.Post("/settings", [this](const httplib::Request& req, httplib::Response& res) { change(req, res); });
-        server_.Post("/save/scene", [this](const httplib::Request&, httplib::Response& res) { saveScene(res); });
-        server_.Post("/save/image", [this](const httplib::Request& req, httplib::Response& res) { saveImage(req, res); });
+        post("/settings", [this](const std::string& body, httplib::Response& res) { change(body, res); });
+        post("/save/scene", [this](const std::string& body, httplib::Response& res) { saveScene(body, res); });
+        post("/save/image", [this](const std::string& body, httplib::Response& res) { saveImage(body, res); });
         server_.set_error_handler([](const httplib::Request&, httplib::Response& res) {
             if (!res.body.empty()) return;
-            sendError(res, res.status == 404   ? "not found"
-                           : res.status == 413 ? "request too large: at most " + std::to_string(kMaxRequestBytes) + " bytes"
-                                               : "bad request",
-                      res.status);
+            sendError(res, res.status == 404 ? "not found" : res.status == 413 ? tooLarge() : "bad request", res.status);
         });
         server_.set_exception_handler([](const httplib::Request&, httplib::Response& res, std::exception_ptr e) {
             try {
@@ -145,20 +181,58 @@ private:
         });
     }
 
+    static std::string tooLarge() { return "request too large: at most " + std::to_string(kMaxRequestBytes) + " bytes"; }
+
+    // A POST route whose body is read here, kMaxRequestBytes at most, also when it comes in
+    // chunks (httplib checks only a Content-Length against its limit): reading stops at the first
+    // byte too many, and the connection closes.
+    void post(const std::string& path, std::function<void(const std::string&, httplib::Response&)> handler) {
+        server_.Post(path, [handler](const httplib::Request&, httplib::Response& res, const httplib::ContentReader& read) {
+            std::string body;
+            bool over = false;
+            const bool complete = read([&](const char* data, size_t size) {
+                over = body.size() + size > kMaxRequestBytes;
+                if (!over) body.append(data, size);
+                return !over;
+            });
+            if (over) return sendError(res, tooLarge(), 413);
+            if (!complete) return sendError(res, "bad request: the body is incomplete", 400);
+            handler(body, res);
+        });
+    }
+
     Json state() {
         Json j;
+        const auto live = live_->latest();
         {
             std::lock_guard lock(settingsMutex_);
+            followRender(live.get());
             j["settings"] = settings_.json();
+            j["media_names"] = settings_.mediumNames();
             j["generation"] = generation_;
+            j["render_error"] = renderError_.empty() ? live_->error() : renderError_;
         }
-        const auto live = live_->latest();
         j["image"] = nullptr;
         if (live)
             j["image"] = {{"version", live->version}, {"generation", live->generation}, {"passes", live->passes},
                           {"seconds", live->seconds}, {"width", live->image.width}, {"height", live->image.height}};
-        j["render_error"] = live_->error();
         return j;
+    }
+
+    // Settings whose first full-size pass rendered are good; settings whose render failed (a
+    // value that overflows the film, say) give way to the last good ones, and the error names
+    // the values that were changed. (settingsMutex_ held.)
+    void followRender(const LiveImage* live) {
+        if (live && live->generation == generation_ && live->passes > 0 && !atGood_) {
+            good_ = settings_;
+            atGood_ = true;
+        }
+        const std::string error = live_->error();
+        if (error.empty() || atGood_) return;
+        renderError_ = settings_.changesFrom(good_) + ": " + error + " (back to the last values that rendered)";
+        settings_ = good_;
+        atGood_ = true;
+        generation_ = live_->restart(settings_.scene());
     }
 
     void image(const httplib::Request& req, httplib::Response& res) {
@@ -174,40 +248,51 @@ private:
         res.set_content(std::string(png.begin(), png.end()), "image/png");
     }
 
-    void change(const httplib::Request& req, httplib::Response& res) {
+    void change(const std::string& body, httplib::Response& res) {
         std::lock_guard lock(settingsMutex_);
-        settings_.apply(req.body);  // InputError: 400 with the message, settings unchanged
+        settings_.apply(body);  // InputError: 400 with the message, settings unchanged
         generation_ = live_->restart(settings_.scene());
+        atGood_ = false;
+        renderError_.clear();
         sendJson(res, {{"generation", generation_}, {"settings", settings_.json()}});
     }
 
-    void saveScene(httplib::Response& res) {
+    // A JSON scene: the user's file with only the values changed ({"overwrite": true}: over it,
+    // else as <scene>-tuned-<n>.json beside it, so its mesh references hold). A pbrt scene: the
+    // scene writer's JSON, its meshes beside it.
+    void saveScene(const std::string& body, httplib::Response& res) {
+        const bool overwrite = flagOf(body, "overwrite");
         std::lock_guard lock(saveMutex_);
-        SceneDesc scene;
-        {
-            std::lock_guard settingsLock(settingsMutex_);
-            scene = settings_.scene();
-        }
-        const std::string path = freshStem(dir_, stem_ + "-tuned") + ".json";
-        writeScene(scene, path);
+        std::lock_guard settingsLock(settingsMutex_);
+        if (overwrite && original_.is_null()) return sendError(res, "not saved: a pbrt scene is saved as JSON beside it, never over it");
+        const std::string path = overwrite ? scenePath_ : saves_.next("tuned", {".json"}) + ".json";
+        if (original_.is_null())
+            writeScene(settings_.scene(), path);
+        else
+            writeSceneJson(settings_.editedScene(original_), path);
         sendJson(res, {{"scene", path}});
     }
 
-    void saveImage(const httplib::Request& req, httplib::Response& res) {
-        const double exposure = exposureOf(req.body);
+    void saveImage(const std::string& body, httplib::Response& res) {
+        const double exposure = exposureOf(body);
         const auto live = live_->latest();
         if (!live) return sendError(res, "no image yet", 503);
         std::lock_guard lock(saveMutex_);
-        const std::string exr = freshStem(dir_, stem_ + "-image") + ".exr";
+        const std::string exr = saves_.next("image", {".exr", ".png"}) + ".exr";
         writeExr(exr, live->image);
         writePng(previewPath(exr), live->image, exposure);
         sendJson(res, {{"exr", exr}, {"png", previewPath(exr)}, {"passes", live->passes}, {"generation", live->generation}});
     }
 
-    const fs::path dir_;
-    const std::string stem_;
+    const std::string scenePath_;
+    const nlohmann::ordered_json original_;  // the JSON scene file as read; null for pbrt
+    PreviewSaves saves_;
+    std::string host_;  // what the server is bound to, from bind() on
+    int port_ = 0;
     std::mutex settingsMutex_, saveMutex_;
-    PreviewSettings settings_;
+    PreviewSettings settings_, good_;  // good_: the last that rendered
+    bool atGood_ = true;               // settings_ are good_ (the loaded scene counts as good)
+    std::string renderError_;          // why the settings went back to good_, until the next change
     uint64_t generation_ = 0;
     std::unique_ptr<LiveRender> live_;  // from serve() on, before any request is read
     httplib::Server server_;

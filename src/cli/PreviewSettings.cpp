@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 
 #include "scene/SceneLoader.h"
 #include "scene/SceneWriter.h"
@@ -35,6 +36,7 @@ PreviewSettings::PreviewSettings(const SceneDesc& loaded) : loaded_(loaded), sce
         settings_["media"].push_back(medium);
     }
     settings_["resolution_scale"] = 1;
+    initial_ = settings_;
 }
 
 void PreviewSettings::apply(const std::string& text) {
@@ -53,6 +55,71 @@ void PreviewSettings::apply(const std::string& text) {
     if (integrator.is_object() && integrator.contains("radius") && integrator["radius"].is_null()) integrator.erase("radius");
     scene_ = read(next);
     settings_ = std::move(next);
+}
+
+std::string PreviewSettings::changesFrom(const PreviewSettings& before) const {
+    std::string out;
+    const auto compare = [&](const std::string& owner, const nlohmann::json& now, const nlohmann::json& was) {
+        for (const auto& [key, value] : now.items())
+            if (!was.contains(key) || was[key] != value) out += (out.empty() ? "" : ", ") + owner + key + " " + value.dump();
+    };
+    for (const auto& [key, value] : settings_.items()) {
+        const nlohmann::json& was = before.settings_[key];
+        if (key == "media")
+            for (size_t i = 0; i < value.size(); ++i) compare(scene_.media[i].name + " ", value[i], was[i]);
+        else if (value.is_object())
+            compare(key + " ", value, was);
+        else if (value != was)
+            out += (out.empty() ? "" : ", ") + key + " " + value.dump();
+    }
+    return out;
+}
+
+std::vector<std::string> PreviewSettings::mediumNames() const {
+    std::vector<std::string> names;
+    for (const MediumDesc& m : loaded_.media) {
+        // The loader's name: "/media/0 (meshes/fish.obj)", or "/media/0" for a built-in shape.
+        const size_t open = m.name.find(" (");
+        names.push_back(open == std::string::npos ? m.name
+                                                  : std::filesystem::path(m.name.substr(open + 2, m.name.size() - open - 3)).filename().string());
+    }
+    return names;
+}
+
+nlohmann::ordered_json PreviewSettings::editedScene(nlohmann::ordered_json doc) const {
+    const auto changed = [](const nlohmann::json& now, const nlohmann::json& was, const char* key) {
+        return now.contains(key) && (!was.contains(key) || now[key] != was[key]);
+    };
+    const nlohmann::json &integrator = settings_["integrator"], &wasIntegrator = initial_["integrator"];
+    for (const auto& [key, value] : integrator.items())
+        if (changed(integrator, wasIntegrator, key.c_str())) doc["integrator"][key] = value;
+    for (const auto& [key, value] : wasIntegrator.items())
+        if (!integrator.contains(key) && doc.contains("integrator")) doc["integrator"].erase(key);  // "radius": back to k
+    if (settings_["resolution_scale"] != initial_["resolution_scale"])
+        doc["camera"]["resolution"] = {scene_.camera.width, scene_.camera.height};
+    size_t entry = 0;  // in the file's "media" (the cavities follow them in the scene, apart in the file)
+    for (size_t i = 0; i < loaded_.media.size(); ++i) {
+        if (loaded_.media[i].cavity) continue;
+        nlohmann::ordered_json& m = doc["media"][entry++];
+        const nlohmann::json &now = settings_["media"][i], &was = initial_["media"][i];
+        // The file's sigma_a and sigma_s are in units of its "scale". (A scale of 0 made the loaded
+        // ones 0: any change writes both as the page has them, with the page's scale.)
+        const double fileScale = m.contains("scale") ? m["scale"].get<double>() : 1.0;
+        const double unit = fileScale > 0 ? fileScale : 1.0;
+        const auto inUnits = [&](const nlohmann::json& v) {
+            if (!v.is_array()) return nlohmann::ordered_json(v.get<double>() / unit);
+            nlohmann::ordered_json out = nlohmann::ordered_json::array();
+            for (const auto& x : v) out.push_back(x.get<double>() / unit);
+            return out;
+        };
+        for (const char* key : {"g", "emission"})
+            if (changed(now, was, key)) m[key] = now[key];
+        const bool zero = fileScale <= 0 && (changed(now, was, "sigma_a") || changed(now, was, "sigma_s") || changed(now, was, "scale"));
+        for (const char* key : {"sigma_a", "sigma_s"})
+            if (zero || changed(now, was, key)) m[key] = inUnits(now[key]);
+        if (zero || changed(now, was, "scale")) m["scale"] = unit * now["scale"].get<double>();
+    }
+    return doc;
 }
 
 SceneDesc PreviewSettings::read(const nlohmann::json& settings) const {

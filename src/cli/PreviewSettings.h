@@ -7,6 +7,7 @@
 // loader's one-line error and no key the loader does not know (a mesh file, say) gets through.
 #pragma once
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -23,12 +24,23 @@ public:
     const nlohmann::json& json() const { return settings_; }
     // The loaded scene with the settings: what is rendered and what a save writes.
     const SceneDesc& scene() const { return scene_; }
+    // The values that differ from `before`, named for a person: "/media/0 (fish.obj) emission
+    // [1e+30, 1e+30, 1e+30], integrator photons 20000" ("" when none do).
+    std::string changesFrom(const PreviewSettings& before) const;
+    // Per medium, what the page calls it: its mesh's file name, or its place in the scene file
+    // ("/media/2") when it is a built-in shape.
+    std::vector<std::string> mediumNames() const;
+    // The JSON scene file `original`, as it was read, with the values changed since loading in
+    // the file's own terms: only changed keys are written (sigma_a and sigma_s in units of the
+    // medium's own "scale", a new scale as a multiple of it); every other key, mesh references,
+    // light scales and units included, stays as it was.
+    nlohmann::ordered_json editedScene(nlohmann::ordered_json original) const;
 
 private:
     SceneDesc read(const nlohmann::json& settings) const;
 
     SceneDesc loaded_;
-    nlohmann::json settings_;
+    nlohmann::json initial_, settings_;  // initial_: as loaded
     SceneDesc scene_;
 };
 

@@ -24,6 +24,7 @@ uint64_t LiveRender::restart(const SceneDesc& desc) {
     std::lock_guard lock(mutex_);
     pending_ = desc;  // a change not yet started is simply replaced
     cancel_ = true;
+    error_.clear();  // the last settings' failure, not these
     wake_.notify_one();
     return ++generation_;
 }
@@ -55,7 +56,7 @@ void LiveRender::work() {
             renderGeneration(desc, generation);
         } catch (const std::exception& e) {
             std::lock_guard lock(mutex_);
-            error_ = e.what();
+            if (generation == generation_) error_ = e.what();  // else settings came that may not fail
         }
     }
 }

@@ -36,7 +36,7 @@ public:
     // media coefficients, camera and integrator. Returns the generation that shows it.
     uint64_t restart(const SceneDesc& desc);
     std::shared_ptr<const LiveImage> latest() const;  // null before the first image
-    std::string error() const;  // why the last render failed ("" when none did)
+    std::string error() const;  // why the render of the last restart() failed ("" when it did not)
 
 private:
     void work();

@@ -61,10 +61,10 @@ double PhotonIntegrator::radiusScale(uint64_t pass, double alpha, int dim) {
     return std::pow(shrink, 1.0 / dim);
 }
 
-void PhotonIntegrator::beginPass(uint64_t pass) {
+void PhotonIntegrator::beginPass(uint64_t pass, const std::atomic<bool>* cancel) {
     const auto start = std::chrono::steady_clock::now();
     const auto maxStored = uint64_t(physicalMemory() / kBytesPerStoredPhoton);
-    TracedPhotons traced = tracePhotons(scene_, source_, {desc_.photons, desc_.maxDepth, desc_.seed, pass, desc_.finalGather, maxStored, deadline_});
+    TracedPhotons traced = tracePhotons(scene_, source_, {desc_.photons, desc_.maxDepth, desc_.seed, pass, desc_.finalGather, maxStored, deadline_, cancel});
     // k-NN balls are three-dimensional kernels, beam discs and surface discs two-dimensional.
     auto scale = [&](int dim) { return radiusScale(pass, desc_.alpha > 0 ? desc_.alpha : balancedAlpha(dim), dim); };
     volumeScale_ = scale(desc_.estimate == PhotonEstimate::Beam ? 2 : 3);

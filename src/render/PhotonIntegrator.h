@@ -44,7 +44,7 @@ class PhotonIntegrator : public Integrator {
 public:
     PhotonIntegrator(const Scene& scene, const IntegratorDesc& desc);
     ~PhotonIntegrator() override;
-    void beginPass(uint64_t pass) override;
+    void beginPass(uint64_t pass, const std::atomic<bool>* cancel = nullptr) override;
     RGB radiance(const Ray& ray, Rng& rng) const override;
     const PhotonStats& stats() const { return stats_; }
 

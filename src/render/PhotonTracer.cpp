@@ -192,6 +192,7 @@ TracedPhotons tracePhotons(const Scene& scene, const PhotonSource& source, const
         TracedPhotons& part = parts[b];
         part.volume.resize(scene.media().size());
         if (b > 0 && options.deadline && std::chrono::steady_clock::now() > *options.deadline) return;
+        if (options.cancel && options.cancel->load(std::memory_order_relaxed)) return;
         part.paths = std::min(options.paths, (b + 1) * kBlock) - b * kBlock;
         PathTracer tracer(scene, options, part, stored);
         for (uint64_t i = b * kBlock; i < std::min(options.paths, (b + 1) * kBlock); ++i) {

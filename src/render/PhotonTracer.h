@@ -6,6 +6,7 @@
 // when it was emitted by a medium. Volume photons are stored at scattering events, surface
 // photons on diffuse surfaces (the caustics under the fish).
 #pragma once
+#include <atomic>
 #include <chrono>
 #include <cstdint>
 #include <optional>
@@ -31,6 +32,7 @@ struct PhotonTracingOptions {
     // Blocks of paths not begun by then are not traced (the first always is), and the photons'
     // power is scaled to the paths that were: a pass under a time limit ends in time.
     std::optional<std::chrono::steady_clock::time_point> deadline = std::nullopt;
+    const std::atomic<bool>* cancel = nullptr;  // once set, the paths not yet begun are skipped
 };
 
 // Where the emitted power went, summed over the paths: emitted = absorbed + escaped + cut in

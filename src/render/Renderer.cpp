@@ -30,7 +30,7 @@ RenderResult render(const Scene& scene, Integrator& integrator, const RenderOpti
     for (int pass = options.firstPass; pass < endPass && !cancelled(); ++pass) {
         if (pass > options.firstPass && options.timeLimit > 0 && elapsed() >= options.timeLimit) break;
         arena.execute([&] {
-            integrator.beginPass(uint64_t(pass));
+            integrator.beginPass(uint64_t(pass), options.cancel);
             tbb::parallel_for(tbb::blocked_range2d<int>(0, camera.height(), 16, 0, camera.width(), 16), [&](const auto& tile) {
                 if (cancelled()) return;
                 for (int y = tile.rows().begin(); y < tile.rows().end(); ++y)

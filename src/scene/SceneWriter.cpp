@@ -159,11 +159,14 @@ Json mediumCoefficientsJson(const MediumDesc& m) {
 
 std::vector<std::string> writeScene(const SceneDesc& scene, const std::string& jsonPath) {
     Writer writer(scene, jsonPath);
-    const Json j = writer.scene();
-    std::string text;
-    print(j, "", text);
-    writeStream(jsonPath, [&](std::ostream& out) { out << text << '\n'; });
+    writeSceneJson(writer.scene(), jsonPath);
     return writer.written;
+}
+
+void writeSceneJson(const nlohmann::ordered_json& scene, const std::string& jsonPath) {
+    std::string text;
+    print(scene, "", text);
+    writeStream(jsonPath, [&](std::ostream& out) { out << text << '\n'; });
 }
 
 }  // namespace tetglow

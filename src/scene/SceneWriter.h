@@ -15,6 +15,10 @@ namespace tetglow {
 // be written.
 std::vector<std::string> writeScene(const SceneDesc& scene, const std::string& jsonPath);
 
+// A scene file's JSON as writeScene lays it out (arrays of numbers on one line), in place of
+// `jsonPath` at once (a temporary file renamed). Throws InputError when it cannot be written.
+void writeSceneJson(const nlohmann::ordered_json& scene, const std::string& jsonPath);
+
 // The "integrator" object, and a medium's "sigma_a", "sigma_s", "g", "emission" and "density",
 // as writeScene writes them (keys in the order FORMAT.md lists them).
 nlohmann::ordered_json integratorJson(const IntegratorDesc& d);

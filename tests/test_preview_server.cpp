@@ -1,0 +1,249 @@
+// tetglow preview against hostile and unlucky clients, over raw HTTP with the headers a browser
+// sends: other pages cannot drive it, a rebound DNS name cannot read it, and no client can make
+// it read an unbounded body, fill the disk, or hold every thread.
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <thread>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "PreviewProcess.h"
+
+namespace tetglow::test {
+namespace {
+
+namespace fs = std::filesystem;
+using Json = nlohmann::json;
+
+// The sanitizer build runs several times slower; waits are bounds for a stuck server.
+double timeScale() { return std::getenv("TETGLOW_TEST_TIME_SCALE") ? std::atof(std::getenv("TETGLOW_TEST_TIME_SCALE")) : 1.0; }
+
+// A small sphere scene in a folder of its own (saves go beside the scene).
+class PreviewServer : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir_ = fs::temp_directory_path() / ("tetglow-preview-server-" + std::to_string(getpid()) + "-" +
+                                            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+        std::ofstream(dir_ / "sphere.json") << R"({
+  "camera": {"position": [0.3, 0.2, 4], "look_at": [0, 0, 0], "fov": 35, "resolution": [32, 32]},
+  "integrator": {"type": "volpath", "spp": 4, "seed": 1, "step": 0.05},
+  "lights": [{"type": "point", "position": [2, 3, 2], "intensity": 20}],
+  "media": [{"shape": {"type": "sphere", "center": [0, 0, 0], "radius": 1, "subdivisions": 2},
+             "sigma_a": 0.3, "sigma_s": 1.5, "g": 0, "boundary": {"type": "interface"}}]
+})";
+        server_ = std::make_unique<PreviewProcess>((dir_ / "sphere.json").string() + " --port 0 --threads 1");
+    }
+    void TearDown() override {
+        server_.reset();
+        fs::remove_all(dir_);
+    }
+
+    int port() const { return server_->port(); }
+    Json state() const { return Json::parse(rawHttp(port(), httpRequest("GET", "/state", port())).body); }
+    size_t files() const { return size_t(std::distance(fs::directory_iterator(dir_), fs::directory_iterator())); }
+    std::string own() const { return "http://127.0.0.1:" + std::to_string(port()); }
+
+    fs::path dir_;
+    std::unique_ptr<PreviewProcess> server_;
+};
+
+// What Chromium sends for a fetch(url, {method: 'POST', mode: 'no-cors', body: '...'}) or a
+// form posted from a page at http://evil.example: a "simple" request, sent without a preflight.
+std::map<std::string, std::string> crossSite() {
+    return {{"Origin", "http://evil.example"},
+            {"Referer", "http://evil.example/"},
+            {"Sec-Fetch-Site", "cross-site"},
+            {"Sec-Fetch-Mode", "no-cors"},
+            {"Sec-Fetch-Dest", "empty"},
+            {"Content-Type", "text/plain;charset=UTF-8"}};
+}
+
+TEST_F(PreviewServer, AnotherPageCannotChangeOrSave) {
+    const Json before = state();
+    for (const std::string path : {"/settings", "/save/scene", "/save/image"}) {
+        const HttpReply r = rawHttp(port(), httpRequest("POST", path, port(), crossSite(), R"({"media": [{"g": 0.5}]})"));
+        EXPECT_EQ(r.status, 403) << path << ": " << r.body;
+        EXPECT_NE(r.body.find("from another page (http://evil.example)"), std::string::npos) << r.body;
+    }
+    // The same page's headers without an Origin (as some browsers send for a navigation).
+    auto noOrigin = crossSite();
+    noOrigin.erase("Origin");
+    EXPECT_EQ(rawHttp(port(), httpRequest("POST", "/settings", port(), noOrigin, R"({"media": [{"g": 0.5}]})")).status, 403);
+    // The page's own origin, but a text/plain body: what a page elsewhere could send.
+    const HttpReply plain = rawHttp(port(), httpRequest("POST", "/settings", port(), {{"Origin", own()}, {"Content-Type", "text/plain"}},
+                                                        R"({"media": [{"g": 0.5}]})"));
+    EXPECT_EQ(plain.status, 415) << plain.body;
+    const Json after = state();
+    EXPECT_EQ(after["settings"], before["settings"]);
+    EXPECT_EQ(after["generation"], before["generation"]);
+    EXPECT_EQ(files(), 1u) << "a refused save wrote a file";
+
+    // The preview's own page: changed.
+    const HttpReply mine = rawHttp(port(), httpRequest("POST", "/settings", port(),
+                                                       {{"Origin", own()}, {"Sec-Fetch-Site", "same-origin"}, {"Content-Type", "application/json"}},
+                                                       R"({"media": [{"g": 0.5}]})"));
+    EXPECT_EQ(mine.status, 200) << mine.body;
+    EXPECT_EQ(state()["settings"]["media"][0]["g"], 0.5);
+}
+
+TEST_F(PreviewServer, ARebindingHostCannotRead) {
+    // A page at evil.example:PORT whose name now resolves to 127.0.0.1: same origin for the
+    // browser, so it would read the reply; only the Host says where the request was meant to go.
+    const std::string evil = "evil.example:" + std::to_string(port());
+    for (const std::string path : {"/state", "/image.png", "/"}) {
+        const HttpReply r = rawHttp(port(), httpRequest("GET", path, port(), {{"Host", evil}, {"Sec-Fetch-Site", "same-origin"}}));
+        EXPECT_EQ(r.status, 403) << path;
+        EXPECT_NE(r.body.find("refused: Host \\\"" + evil + "\\\" is not this preview's address"), std::string::npos) << r.body;
+    }
+    EXPECT_EQ(rawHttp(port(), httpRequest("GET", "/state", port(), {{"Host", "127.0.0.1:1"}})).status, 403) << "another port";
+    for (const std::string host : {"127.0.0.1", "localhost", "LocalHost"})
+        EXPECT_EQ(rawHttp(port(), httpRequest("GET", "/state", port(), {{"Host", host + ":" + std::to_string(port())}})).status, 200) << host;
+}
+
+TEST_F(PreviewServer, AChunkedBodyStopsAtTheLimit) {
+    const long peakBefore = server_->peakMemoryKiB();
+    const int s = connectTo(port());
+    ASSERT_GE(s, 0);
+    const timeval wait{5, 0};  // a server that stops reading: the send gives up
+    setsockopt(s, SOL_SOCKET, SO_SNDTIMEO, &wait, sizeof wait);
+    const std::string head = "POST /settings HTTP/1.1\r\nHost: 127.0.0.1:" + std::to_string(port()) +
+                             "\r\nContent-Type: application/json\r\nTransfer-Encoding: chunked\r\n\r\n";
+    const std::string chunk = "10000\r\n" + std::string(65536, ' ') + "\r\n";
+    const size_t chunks = 1600;  // 100 MiB
+    size_t sent = send(s, head.data(), head.size(), MSG_NOSIGNAL) == ssize_t(head.size()) ? 0 : chunks;
+    for (; sent < chunks; ++sent)
+        if (send(s, chunk.data(), chunk.size(), MSG_NOSIGNAL) != ssize_t(chunk.size())) break;
+    close(s);
+    EXPECT_LT(sent, chunks) << "the server read a 100 MiB body to its end";
+    const long grown = server_->peakMemoryKiB() - peakBefore;
+    EXPECT_LT(grown, 32 * 1024) << "the body was read into memory: " << grown << " KiB";
+    EXPECT_EQ(rawHttp(port(), httpRequest("GET", "/", port())).status, 200) << "the server stopped serving";
+
+    // The reply, where the client reads it: the limit applied.
+    const HttpReply r = rawHttp(port(), httpRequest("POST", "/settings", port(), {{"Content-Type", "application/json"}, {"Transfer-Encoding", "chunked"}}) +
+                                            "10000\r\n" + std::string(65536, ' ') + "\r\n1\r\n \r\n0\r\n\r\n");
+    EXPECT_EQ(r.status, 413);
+    EXPECT_EQ(Json::parse(r.body)["error"], "request too large: at most 65536 bytes");
+}
+
+TEST_F(PreviewServer, TheTooLargeMessageNamesTheLimitApplied) {
+    // A form-encoded body: httplib's own 8 KiB limit used to refuse it, named as 65536 bytes.
+    const HttpReply form = rawHttp(port(), httpRequest("POST", "/settings", port(), {{"Content-Type", "application/x-www-form-urlencoded"}},
+                                                       "pad=" + std::string(9000, 'x')));
+    EXPECT_EQ(form.status, 415) << form.body;
+    EXPECT_NE(form.body.find("must be declared \\\"Content-Type: application/json\\\""), std::string::npos) << form.body;
+    // A JSON body of 9000 bytes is within the limit; one of 70000 is not, and is refused unread.
+    const HttpReply within = rawHttp(port(), httpRequest("POST", "/settings", port(), {{"Content-Type", "application/json"}},
+                                                         R"({"media": [{"g": 0.25)" + std::string(9000, ' ') + "}]}"));
+    EXPECT_EQ(within.status, 200) << within.body;
+    const HttpReply over = rawHttp(port(), httpRequest("POST", "/settings", port(), {{"Content-Type", "application/json"}},
+                                                       R"({"media": [{"g": 0.25)" + std::string(70000, ' ') + "}]}"));
+    EXPECT_EQ(over.status, 413);
+    EXPECT_EQ(Json::parse(over.body)["error"], "request too large: at most 65536 bytes");
+}
+
+TEST_F(PreviewServer, SlowClientsLeaveThreadsForOthers) {
+    // Clients that send their request one byte a second: each holds a connection open.
+    std::vector<int> slow;
+    for (int i = 0; i < 32; ++i) {
+        const int s = connectTo(port());
+        ASSERT_GE(s, 0);
+        slow.push_back(s);
+    }
+    std::atomic<bool> done{false};
+    std::thread trickle([&] {
+        const std::string request = "GET /state HTTP/1.1\r\nHost: 127.0.0.1\r\n";
+        for (size_t i = 0; i < request.size() && !done; ++i) {
+            for (const int s : slow) send(s, &request[i], 1, MSG_NOSIGNAL);
+            for (int t = 0; t < 10 && !done; ++t) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+        }
+    });
+    std::this_thread::sleep_for(std::chrono::milliseconds(500));  // every slow client accepted
+    const HttpReply r = rawHttp(port(), httpRequest("GET", "/state", port()), 4 * timeScale());
+    done = true;
+    trickle.join();
+    for (const int s : slow) close(s);
+
+    EXPECT_EQ(r.status, 200) << "a normal client was not served while 32 slow ones were connected";
+}
+
+TEST_F(PreviewServer, AValueThatOverflowsTheFilmIsNamedAndUndone) {
+    const auto change = [&](const std::string& patch) {
+        return rawHttp(port(), httpRequest("POST", "/settings", port(), {{"Content-Type", "application/json"}}, patch));
+    };
+    const auto waitFor = [&](const auto& condition) {
+        for (int i = 0; i < 600 * timeScale() && !condition(state()); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+        return condition(state());
+    };
+    ASSERT_TRUE(waitFor([](const Json& s) { return !s["image"].is_null() && s["image"]["passes"] == 4; }));
+    const Json good = state()["settings"];
+    ASSERT_EQ(change(R"({"media": [{"emission": 1e30}]})").status, 200);
+    ASSERT_TRUE(waitFor([](const Json& s) { return s["render_error"] != ""; }));
+    const Json failed = state();
+    EXPECT_EQ(failed["render_error"].get<std::string>().rfind("/media/0 emission 1e+30: pixel (", 0), 0u) << failed["render_error"];
+    EXPECT_NE(failed["render_error"].get<std::string>().find("beyond the film's range"), std::string::npos) << failed["render_error"];
+    EXPECT_EQ(failed["settings"], good) << "the settings stayed at the value that failed";
+    // The render goes on with the good values, and shows them.
+    ASSERT_TRUE(waitFor([](const Json& s) { return s["image"]["generation"] == s["generation"] && s["image"]["passes"] == 4; }));
+    // The next good change clears the error.
+    ASSERT_EQ(change(R"({"media": [{"emission": 0.5}]})").status, 200);
+    EXPECT_EQ(state()["render_error"], "");
+    ASSERT_TRUE(waitFor([](const Json& s) { return s["image"]["generation"] == s["generation"] && s["image"]["passes"] == 4; }));
+    EXPECT_EQ(state()["render_error"], "");
+}
+
+TEST_F(PreviewServer, ASavedSceneChangesOnlyWhatWasChanged) {
+    std::ifstream in(dir_ / "sphere.json");
+    const nlohmann::ordered_json original = nlohmann::ordered_json::parse(in);
+    const auto post = [&](const std::string& path, const std::string& body) {
+        return rawHttp(port(), httpRequest("POST", path, port(), {{"Content-Type", "application/json"}}, body));
+    };
+    ASSERT_EQ(post("/settings", R"({"media": [{"g": 0.5, "sigma_s": [1, 2, 3], "scale": 2}], "integrator": {"spp": 8}})").status, 200);
+    const HttpReply saved = post("/save/scene", "{}");
+    ASSERT_EQ(saved.status, 200) << saved.body;
+    EXPECT_EQ(Json::parse(saved.body)["scene"], (dir_ / "sphere-tuned-1.json").string());
+    std::ifstream back(dir_ / "sphere-tuned-1.json");
+    nlohmann::ordered_json expected = original;
+    expected["media"][0]["g"] = 0.5;
+    expected["media"][0]["sigma_s"] = {1.0, 2.0, 3.0};  // the file had no scale: units of 1
+    expected["media"][0]["scale"] = 2.0;
+    expected["integrator"]["spp"] = 8;
+    EXPECT_EQ(nlohmann::ordered_json::parse(back), expected) << "the shape, the units or the order changed";
+    EXPECT_EQ(files(), 2u) << "a mesh was written beside the scene";
+    // Over the original only when asked.
+    ASSERT_EQ(post("/save/scene", R"({"overwrite": true})").status, 200);
+    std::ifstream over(dir_ / "sphere.json");
+    EXPECT_EQ(nlohmann::ordered_json::parse(over), expected);
+    EXPECT_EQ(files(), 2u);
+}
+
+TEST_F(PreviewServer, SavesAreBounded) {
+    const auto save = [&](const std::string& what) {
+        return rawHttp(port(), httpRequest("POST", "/save/" + what, port(), {{"Content-Type", "application/json"}}, "{}"));
+    };
+    for (int i = 0; i < 200; ++i) {
+        if (!state()["image"].is_null()) break;
+        std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    }
+    for (int i = 1; i <= 100; ++i) ASSERT_EQ(save("image").status, 200) << "save " << i;
+    EXPECT_TRUE(fs::exists(dir_ / "sphere-image-100.exr"));
+    const size_t before = files();
+    for (const std::string what : {"image", "scene"}) {
+        const HttpReply r = save(what);
+        EXPECT_EQ(r.status, 400) << what;
+        EXPECT_EQ(Json::parse(r.body)["error"], "not saved: this preview has saved 100 times, its limit (restart it to save more)");
+    }
+    EXPECT_EQ(files(), before);
+}
+
+}  // namespace
+}  // namespace tetglow::test
