@@ -4,8 +4,8 @@
 #include <string>
 #include <vector>
 
+#include "base/Error.h"
 #include "cli/Commands.h"
-#include "tet/TriangleMesh.h"  // InputError
 
 namespace {
 

@@ -1,7 +1,7 @@
 // The OpenEXR reader behind `tetglow diff`: the header's claims, then the pixels.
 #include "FuzzInput.h"
+#include "base/Error.h"
 #include "render/ImageIO.h"
-#include "tet/TriangleMesh.h"  // InputError
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     try {

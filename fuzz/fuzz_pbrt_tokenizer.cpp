@@ -1,7 +1,7 @@
 // The pbrt-v3 tokenizer alone: strings, escapes, comments, numbers, brackets.
 #include "FuzzInput.h"
+#include "base/Error.h"
 #include "scene/PbrtTokenizer.h"
-#include "tet/TriangleMesh.h"  // InputError
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     try {

@@ -4,7 +4,7 @@
 #include <cstring>
 
 #include "FuzzInput.h"
-#include "tet/Hash.h"
+#include "base/Hash.h"
 #include "tet/TetMesh.h"
 
 namespace {

@@ -9,9 +9,9 @@
 #include <gtest/gtest.h>
 
 #include "TestMeshes.h"
+#include "base/OutputFile.h"
 #include "scene/SceneLoader.h"
 #include "scene/SceneWriter.h"
-#include "tet/OutputFile.h"
 
 namespace tetglow::test {
 namespace {

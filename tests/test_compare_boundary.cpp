@@ -10,8 +10,8 @@
 
 #include "StabilityCases.h"
 #include "TestMeshes.h"
-#include "render/BoundaryComparison.h"
-#include "render/BoundaryPicture.h"
+#include "evidence/BoundaryComparison.h"
+#include "evidence/BoundaryPicture.h"
 #include "tet/Tetrahedralizer.h"
 
 namespace tetglow::test {

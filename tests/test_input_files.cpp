@@ -14,12 +14,12 @@
 #include <gtest/gtest.h>
 
 #include "TestMeshes.h"
+#include "base/InputFile.h"
 #include "render/ImageIO.h"
 #include "scene/JsonReader.h"
 #include "scene/MeshFile.h"
 #include "scene/PbrtParser.h"
 #include "scene/SceneLoader.h"
-#include "tet/InputFile.h"
 
 namespace tetglow {
 namespace {

@@ -5,9 +5,9 @@
 
 #include <gtest/gtest.h>
 
-#include "photon/Rng.h"
-#include "photon/Sampling.h"
 #include "render/Light.h"
+#include "sampling/Rng.h"
+#include "sampling/Sampling.h"
 
 namespace tetglow::test {
 namespace {

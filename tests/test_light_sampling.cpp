@@ -5,12 +5,12 @@
 
 #include <gtest/gtest.h>
 
-#include "photon/Rng.h"
-#include "photon/Sampling.h"
-#include "render/Integrator.h"
+#include "integrators/Integrator.h"
 #include "render/LightSelection.h"
 #include "render/Scene.h"
 #include "render/SphericalRectangle.h"
+#include "sampling/Rng.h"
+#include "sampling/Sampling.h"
 #include "tet/Shapes.h"
 
 namespace tetglow::test {

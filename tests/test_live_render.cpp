@@ -6,7 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "TestScenes.h"
-#include "render/LiveRender.h"
+#include "cli/LiveRender.h"
 
 namespace tetglow::test {
 namespace {

@@ -10,16 +10,16 @@
 
 #include "TestMeshes.h"
 #include "TestScenes.h"
-#include "render/DirectLighting.h"
-#include "render/Integrator.h"
-#include "render/PhotonDomains.h"
-#include "render/PhotonIntegrator.h"
-#include "render/PhotonTracer.h"
-#include "render/Renderer.h"
-#include "render/PathStep.h"
+#include "integrators/DirectLighting.h"
+#include "integrators/Integrator.h"
+#include "integrators/PathStep.h"
+#include "integrators/Renderer.h"
+#include "integrators/SingleScatterIntegrator.h"
+#include "integrators/VolPathIntegrator.h"
+#include "integrators/photon/PhotonDomains.h"
+#include "integrators/photon/PhotonIntegrator.h"
+#include "integrators/photon/PhotonTracer.h"
 #include "render/Scene.h"
-#include "render/SingleScatterIntegrator.h"
-#include "render/VolPathIntegrator.h"
 #include "tet/Shapes.h"
 
 namespace tetglow::test {
@@ -385,7 +385,7 @@ TEST(NestedRender, OnlyVolumesNoShadowRayLeavesAreSealed) {
         int lit = 0;
         for (int i = 0; i < 200; ++i) {
             const glm::dvec3 p(u(random), u(random), u(random));
-            const MediumState at = scene.mediumAt(p);
+            const VolumeState at = scene.mediumAt(p);
             ASSERT_TRUE(at.inside());
             Rng rng(9, uint64_t(i));
             // A light sample as directInMedium takes it, without its skip for sealed volumes.

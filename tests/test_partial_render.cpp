@@ -9,9 +9,9 @@
 
 #include "TestMeshes.h"
 #include "TestScenes.h"
-#include "render/Integrator.h"
+#include "integrators/Integrator.h"
+#include "integrators/Renderer.h"
 #include "render/PartialRender.h"
-#include "render/Renderer.h"
 
 namespace tetglow::test {
 namespace {

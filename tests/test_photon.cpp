@@ -6,10 +6,10 @@
 #include <gtest/gtest.h>
 
 #include "TestScenes.h"
-#include "render/Integrator.h"
-#include "render/PhotonIntegrator.h"
-#include "render/PhotonTracer.h"
-#include "render/Renderer.h"
+#include "integrators/Integrator.h"
+#include "integrators/Renderer.h"
+#include "integrators/photon/PhotonIntegrator.h"
+#include "integrators/photon/PhotonTracer.h"
 #include "tet/Shapes.h"
 
 namespace tetglow::test {

@@ -10,9 +10,9 @@
 #include <gtest/gtest.h>
 #include <tbb/parallel_for.h>
 
-#include "photon/OctahedralDirection.h"
-#include "photon/PhotonBeams.h"
-#include "photon/PhotonMap.h"
+#include "integrators/photon/OctahedralDirection.h"
+#include "integrators/photon/PhotonBeams.h"
+#include "integrators/photon/PhotonMap.h"
 
 namespace tetglow {
 namespace {

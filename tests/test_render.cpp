@@ -8,10 +8,10 @@
 
 #include "TestMeshes.h"
 #include "TestScenes.h"
-#include "photon/ColumnProfile.h"
-#include "render/Integrator.h"
-#include "render/PathStep.h"
-#include "render/Renderer.h"
+#include "integrators/Integrator.h"
+#include "integrators/PathStep.h"
+#include "integrators/Renderer.h"
+#include "media/ColumnProfile.h"
 #include "tet/Shapes.h"
 
 namespace tetglow::test {
@@ -54,7 +54,7 @@ TEST(Render, SurfacesInsideAMediumBlockShadowRaysFromInside) {
     desc.surfaces.push_back(wall);
     const Scene scene(desc);
     const Ray ray{{0, 0, -0.5}, {0, 0, 1}};
-    const MediumState inside = scene.mediumAt(ray.o);
+    const VolumeState inside = scene.mediumAt(ray.o);
     ASSERT_TRUE(inside.inside());
     const auto hit = scene.intersect(ray, inside);
     ASSERT_TRUE(hit.has_value());
@@ -67,7 +67,7 @@ TEST(Render, SurfacesInsideAMediumBlockShadowRaysFromInside) {
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(tr[c], std::exp(-chord * sigmaA[c]), 1e-3) << c;  // the sphere's facets
 }
 
-// Shadow rays with Russian roulette (Medium::shadowFlight) have the exact transmittance as
+// Shadow rays with Russian roulette (RegionMedia::shadowFlight) have the exact transmittance as
 // their mean: 0 or exp(-depth) times 4 per survival. A channel that keeps the transmittance
 // above 1/20 leaves no room for roulette: then every estimate is exact.
 TEST(Render, ShadowRayRouletteKeepsTheTransmittance) {
@@ -75,7 +75,7 @@ TEST(Render, ShadowRayRouletteKeepsTheTransmittance) {
     for (const RGB sigmaA : {RGB(1.7, 1.8, 2.0), RGB(1.7, 1.8, 0.5)}) {
         const Scene scene(sceneWith(sphereMedium(sigmaA, RGB(0), 0, 4), 8));
         const Ray ray{{0, 0, -3}, {0, 0, 1}};
-        const MediumState outside = scene.mediumAt(ray.o);
+        const VolumeState outside = scene.mediumAt(ray.o);
         const RGB exact = transmittance(scene, ray, 10, outside);
         const int n = 40000;
         RGB sum(0), sum2(0);
@@ -98,7 +98,7 @@ TEST(Render, ShadowRayRouletteKeepsTheTransmittance) {
 
 // The photon integrator draws its single-scattering distance from the eye stretch's column
 // profile (ColumnProfile::atDepth) instead of walking the tets again: the same point and tet as
-// a free flight (Medium::sampleFlight) with that optical depth as its target, also where the
+// a free flight (RegionMedia::sampleFlight) with that optical depth as its target, also where the
 // density varies linearly inside each tet.
 TEST(Render, ColumnProfileEventsAreFreeFlights) {
     MediumDesc m = sphereMedium(RGB(0.2, 0.5, 1.0), RGB(1, 2, 3));
@@ -106,9 +106,9 @@ TEST(Render, ColumnProfileEventsAreFreeFlights) {
     m.density.offset = 1, m.density.amplitude = 0.9, m.density.frequency = 3;
     m.tetOptions.maxVolume = 0.01;
     const Scene scene(sceneWith(m, 8));
-    const Medium& medium = *scene.volumes()[0].medium;
+    const RegionMedia& medium = *scene.volumes()[0].medium;
     ASSERT_FALSE(medium.homogeneous());
-    const MediumState centre = scene.mediumAt({0.05, -0.02, 0.03});
+    const VolumeState centre = scene.mediumAt({0.05, -0.02, 0.03});
     std::mt19937 random(11);
     std::uniform_real_distribution<double> u(0, 1);
     int events = 0;

@@ -5,7 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "TestScenes.h"
-#include "render/Integrator.h"
+#include "integrators/Integrator.h"
 #include "tet/SurfaceBVH.h"
 
 namespace tetglow::test {

@@ -6,8 +6,8 @@
 #include <gtest/gtest.h>
 
 #include "TestScenes.h"
-#include "render/Integrator.h"
-#include "render/Renderer.h"
+#include "integrators/Integrator.h"
+#include "integrators/Renderer.h"
 #include "scene/SceneLoader.h"
 #include "scene/SceneWriter.h"
 

@@ -11,9 +11,9 @@
 #include <gtest/gtest.h>
 
 #include "TestScenes.h"
-#include "photon/Sampling.h"
-#include "render/Integrator.h"
-#include "render/Renderer.h"
+#include "integrators/Integrator.h"
+#include "integrators/Renderer.h"
+#include "sampling/Sampling.h"
 
 namespace tetglow::test {
 namespace {

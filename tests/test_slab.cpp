@@ -5,7 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "TestMeshes.h"
-#include "photon/Slab.h"
+#include "evidence/Slab.h"
 
 namespace tetglow::test {
 namespace {

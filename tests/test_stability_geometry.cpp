@@ -11,9 +11,9 @@
 
 #include "StabilityCases.h"
 #include "TestMeshes.h"
-#include "photon/Rng.h"
-#include "photon/Sampling.h"
-#include "render/BoundaryComparison.h"
+#include "evidence/BoundaryComparison.h"
+#include "sampling/Rng.h"
+#include "sampling/Sampling.h"
 #include "scene/MeshFile.h"
 #include "tet/Tetrahedralizer.h"
 

@@ -11,9 +11,9 @@
 #include "StabilityCases.h"
 #include "TestMeshes.h"
 #include "TestScenes.h"
+#include "integrators/Integrator.h"
+#include "integrators/Renderer.h"
 #include "render/Image.h"
-#include "render/Integrator.h"
-#include "render/Renderer.h"
 
 namespace tetglow::test {
 namespace {

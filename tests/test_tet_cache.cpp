@@ -9,7 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "TestMeshes.h"
-#include "tet/Hash.h"
+#include "base/Hash.h"
 #include "tet/Tetrahedralizer.h"
 
 namespace tetglow {

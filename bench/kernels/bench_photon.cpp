@@ -9,9 +9,9 @@
 #include <benchmark/benchmark.h>
 #include <glm/geometric.hpp>
 
-#include "photon/PhotonBeams.h"
-#include "photon/PhotonMap.h"
-#include "render/PhotonTracer.h"
+#include "integrators/photon/PhotonBeams.h"
+#include "integrators/photon/PhotonMap.h"
+#include "integrators/photon/PhotonTracer.h"
 #include "scene/SceneLoader.h"
 
 namespace tetglow {

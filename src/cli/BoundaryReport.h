@@ -5,7 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "render/BoundaryComparison.h"
+#include "evidence/BoundaryComparison.h"
 
 namespace tetglow::cli {
 

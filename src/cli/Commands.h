@@ -4,8 +4,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "base/OutputFile.h"   // prepareOutput: every command checks its outputs with it
 #include "scene/JsonReader.h"  // Range
-#include "tet/OutputFile.h"   // prepareOutput: every command checks its outputs with it
 
 namespace tetglow::cli {
 

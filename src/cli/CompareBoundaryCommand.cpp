@@ -1,13 +1,13 @@
-// tetglow compare-boundary MESH|SCENE: the tets against the seed's parity test and the bounding
+// tetglow compare-boundary MESH|SCENE: the tets against the parity baseline and the bounding
 // box on the same points and rays (classification error and time per query, optical-depth error
-// and time per ray), and optionally the seed's red/green debug picture.
+// and time per ray), and optionally the baseline's red/green debug picture.
 #include <filesystem>
 #include <iostream>
 #include <memory>
 
 #include "cli/BoundaryReport.h"
 #include "cli/Commands.h"
-#include "render/BoundaryPicture.h"
+#include "evidence/BoundaryPicture.h"
 #include "render/ImageIO.h"
 #include "render/Scene.h"
 #include "scene/MeshFile.h"

@@ -6,7 +6,7 @@
 #include <regex>
 #include <sstream>
 
-#include "tet/TriangleMesh.h"  // InputError, shorten
+#include "base/Error.h", shorten
 
 namespace tetglow::cli {
 namespace {

@@ -8,12 +8,12 @@
 #include <fstream>
 #include <thread>
 
+#include "base/OutputFile.h"
 #include "cli/Commands.h"
 #include "cli/FarmChecks.h"
 #include "cli/FarmScripts.h"
 #include "cli/RenderArgs.h"
 #include "tet/CacheDirectory.h"
-#include "tet/OutputFile.h"
 #include "tet/TriangleMesh.h"
 
 namespace tetglow::cli {

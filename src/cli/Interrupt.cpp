@@ -1,6 +1,6 @@
 #include "cli/Interrupt.h"
 
-#include "tet/OutputFile.h"
+#include "base/OutputFile.h"
 
 namespace tetglow::cli {
 namespace {

@@ -2,10 +2,10 @@
 // image one process would have rendered, bit for bit (render/Film.h says why it is exact).
 #include <cstdio>
 
+#include "base/OutputFile.h"
 #include "cli/Commands.h"
 #include "render/ImageIO.h"
 #include "render/PartialRender.h"
-#include "tet/OutputFile.h"
 #include "tet/TriangleMesh.h"
 
 namespace tetglow::cli {

@@ -16,15 +16,15 @@
 #include <httplib.h>
 
 #include "WebFiles.h"
+#include "base/InputFile.h"
 #include "cli/Commands.h"
+#include "cli/LiveRender.h"
 #include "cli/PreviewAccess.h"
 #include "cli/PreviewSaves.h"
 #include "cli/PreviewSettings.h"
 #include "render/ImageIO.h"
-#include "render/LiveRender.h"
 #include "scene/SceneLoader.h"
 #include "scene/SceneWriter.h"
-#include "tet/InputFile.h"
 
 namespace tetglow::cli {
 namespace {

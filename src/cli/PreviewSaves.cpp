@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cctype>
 
-#include "tet/TriangleMesh.h"  // InputError
+#include "base/Error.h"
 
 namespace tetglow::cli {
 

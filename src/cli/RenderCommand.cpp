@@ -6,18 +6,18 @@
 #include <filesystem>
 #include <tuple>
 
+#include "base/OutputFile.h"
 #include "cli/Commands.h"
 #include "cli/Interrupt.h"
 #include "cli/Progress.h"
 #include "cli/RenderArgs.h"
+#include "integrators/Renderer.h"
+#include "integrators/photon/PhotonIntegrator.h"
 #include "render/ImageIO.h"
 #include "render/PartialRender.h"
-#include "render/PhotonIntegrator.h"
-#include "render/Renderer.h"
 #include "render/UnsampledLight.h"
 #include "scene/SceneFingerprint.h"
 #include "scene/Turntable.h"
-#include "tet/OutputFile.h"
 
 namespace tetglow::cli {
 namespace {

@@ -4,7 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/Commands.h"
-#include "photon/Slab.h"
+#include "evidence/Slab.h"
 
 namespace tetglow::cli {
 namespace {

@@ -2,8 +2,8 @@
 #pragma once
 #include <glm/geometric.hpp>
 
+#include "base/Ray.h"
 #include "scene/SceneDescription.h"
-#include "tet/Ray.h"
 
 namespace tetglow {
 

@@ -11,8 +11,8 @@
 #include <OpenEXR/ImfIO.h>
 #include <OpenEXR/ImfVersion.h>
 
+#include "base/InputFile.h"
 #include "scene/SceneDescription.h"  // kMaxResolution
-#include "tet/InputFile.h"
 #include "tet/TriangleMesh.h"
 
 namespace tetglow {

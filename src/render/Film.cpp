@@ -2,7 +2,7 @@
 
 #include <string>
 
-#include "tet/TriangleMesh.h"  // InputError
+#include "base/Error.h"
 
 namespace tetglow {
 

@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "photon/Spectrum.h"
+#include "base/Spectrum.h"
 #include "render/Image.h"
 
 namespace tetglow {

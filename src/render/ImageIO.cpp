@@ -16,10 +16,10 @@
 #include <OpenEXR/ImfOutputFile.h>
 #include <png.h>
 
+#include "base/InputFile.h"
+#include "base/OutputFile.h"
 #include "render/ExrMemoryStream.h"
 #include "scene/SceneDescription.h"  // kMaxResolution
-#include "tet/InputFile.h"
-#include "tet/OutputFile.h"
 #include "tet/TriangleMesh.h"
 
 namespace tetglow {

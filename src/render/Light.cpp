@@ -8,8 +8,8 @@
 
 #include <glm/geometric.hpp>
 
-#include "photon/Sampling.h"
 #include "render/SphericalRectangle.h"
+#include "sampling/Sampling.h"
 #include "tet/Shapes.h"
 
 namespace tetglow {

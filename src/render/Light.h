@@ -6,9 +6,9 @@
 
 #include <glm/vec2.hpp>
 
-#include "photon/Spectrum.h"
+#include "base/Ray.h"
+#include "base/Spectrum.h"
 #include "scene/SceneDescription.h"
-#include "tet/Ray.h"
 
 namespace tetglow {
 

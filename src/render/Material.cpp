@@ -4,7 +4,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "photon/Sampling.h"
+#include "sampling/Sampling.h"
 
 namespace tetglow {
 

@@ -2,7 +2,7 @@
 #pragma once
 #include <glm/vec2.hpp>
 
-#include "photon/Spectrum.h"
+#include "base/Spectrum.h"
 #include "scene/SceneDescription.h"
 
 namespace tetglow {

@@ -12,10 +12,10 @@
 #include <OpenEXR/ImfOutputFile.h>
 #include <OpenEXR/ImfStringAttribute.h>
 
+#include "base/Memory.h"
+#include "base/OutputFile.h"
 #include "render/ExrMemoryStream.h"
 #include "render/ImageIO.h"
-#include "tet/Memory.h"
-#include "tet/OutputFile.h"
 #include "tet/TriangleMesh.h"
 
 namespace tetglow {

@@ -72,7 +72,7 @@ void Scene::buildVolumes() {
             std::vector<bool> stops;
             for (size_t s = 0; s < mesh.surface.size(); ++s)
                 stops.push_back(mesh.surfaceRegions[s][1] >= 0 && v.materials[v.triangleMaterial[s]].type != MaterialType::Interface);
-            v.medium = std::make_unique<Medium>(MediumParams{}, std::move(mesh));
+            v.medium = std::make_unique<RegionMedia>(MediumParams{}, std::move(mesh));
             v.medium->setStops(std::move(stops));
         } catch (const InputError& e) {
             if (group.size() > 1) throw;
@@ -221,7 +221,7 @@ std::optional<Intersection> Scene::intersect(const Ray& ray, double tMax) const 
     return hit;
 }
 
-std::optional<Intersection> Scene::intersect(const Ray& ray, const MediumState& state, double tMax) const {
+std::optional<Intersection> Scene::intersect(const Ray& ray, const VolumeState& state, double tMax) const {
     if (!state.inside()) return intersect(ray, tMax);
     return surfacesWithin_[size_t(state.volume)] ? intersect(surfaces_, surfaceGeometries_, ray, tMax) : std::nullopt;
 }
@@ -252,7 +252,7 @@ const MaterialDesc& Scene::material(const Intersection& hit) const {
     return black;
 }
 
-MediumState Scene::afterHit(const Intersection& hit, const glm::dvec3& d, const MediumState& before) const {
+VolumeState Scene::afterHit(const Intersection& hit, const glm::dvec3& d, const VolumeState& before) const {
     if (hit.touch) return {};
     if (hit.kind == HitKind::MediumBoundary) {
         const TetMesh& mesh = volumes_[hit.index].medium->mesh();
@@ -267,10 +267,10 @@ MediumState Scene::afterHit(const Intersection& hit, const glm::dvec3& d, const 
     if (!before.inside()) return before;
     // A surface inside a medium: the path goes on in the same volume, from the tet at the hit.
     const int64_t tet = volumes_[before.volume].medium->volume().locate(hit.p);
-    return tet >= 0 ? MediumState{before.volume, WalkStart::inside(uint32_t(tet))} : MediumState{};
+    return tet >= 0 ? VolumeState{before.volume, WalkStart::inside(uint32_t(tet))} : VolumeState{};
 }
 
-bool Scene::crossInterface(const Intersection& hit, Ray& ray, MediumState& state, double* moved) const {
+bool Scene::crossInterface(const Intersection& hit, Ray& ray, VolumeState& state, double* moved) const {
     if (moved) *moved = 0;
     if (!indexMatched(hit)) return false;
     const bool entering = !state.inside();
@@ -286,7 +286,7 @@ RGB Scene::emitted(const Ray& ray, const Intersection* hit) const {
     return hit->kind == HitKind::Light ? lights_[hit->index]->emitted(ray.d, hit->triangle) : RGB(0);
 }
 
-MediumState Scene::mediumAt(const glm::dvec3& p) const {
+VolumeState Scene::mediumAt(const glm::dvec3& p) const {
     for (size_t v = 0; v < volumes_.size(); ++v)
         if (const int64_t tet = volumes_[v].medium->volume().locate(p); tet >= 0) return {int(v), WalkStart::inside(uint32_t(tet))};
     return {};

@@ -11,7 +11,7 @@
 
 #include <embree3/rtcore.h>
 
-#include "photon/Medium.h"
+#include "media/RegionMedia.h"
 #include "render/Camera.h"
 #include "render/Light.h"
 #include "scene/SceneDescription.h"
@@ -30,24 +30,24 @@ struct Intersection {
 };
 
 // The volume a path is in, and where its next walk through that volume's tets begins.
-struct MediumState {
+struct VolumeState {
     int volume = -1;  // -1: outside every medium
     WalkStart start;
     bool inside() const { return volume >= 0; }
 };
 
 // A medium of the description (or a cavity: a region with no medium), as a region of a volume.
-struct SceneMedium {
+struct SceneRegion {
     std::string name;
     int volume = 0;
     int32_t region = 0;
 };
 
-// Media that nest or touch, found from their meshes and tetrahedralized together: one Medium
+// Media that nest or touch, found from their meshes and tetrahedralized together: one RegionMedia
 // whose region r is the scene medium media[r]. A medium apart from all others is a volume alone.
 struct SceneVolume {
     std::string name;  // its media's names, joined by " + "
-    std::unique_ptr<Medium> medium;
+    std::unique_ptr<RegionMedia> medium;
     std::vector<int> media;  // per region
     TetStats stats;
     size_t steinerPoints = 0;
@@ -73,7 +73,7 @@ public:
     void setCamera(const CameraDesc& camera);
     const Camera& camera() const { return camera_; }
     const std::vector<std::unique_ptr<Light>>& lights() const { return lights_; }
-    const std::vector<SceneMedium>& media() const { return media_; }
+    const std::vector<SceneRegion>& media() const { return media_; }
     const std::vector<SceneVolume>& volumes() const { return volumes_; }
     const Light* environment() const { return environment_; }
     double tetrahedralizeSeconds() const { return tetSeconds_; }
@@ -85,21 +85,21 @@ public:
     std::optional<Intersection> intersect(const Ray& ray, double tMax = INFINITY) const;
     // The closest hit for a path in `state`: outside the media every surface; inside a volume
     // only the surfaces and lights, as the walk finds its boundary and interfaces exactly.
-    std::optional<Intersection> intersect(const Ray& ray, const MediumState& state, double tMax = INFINITY) const;
+    std::optional<Intersection> intersect(const Ray& ray, const VolumeState& state, double tMax = INFINITY) const;
     // Where a walk through volume v left it or stopped at an interface: the point, normal and
     // triangle of the walk's exit face, not a float hit.
     Intersection boundaryHit(int v, const Ray& ray, const WalkExit& exit) const;
     // The material at a hit (surfaces and medium boundaries; lights are black diffuse).
     const MaterialDesc& material(const Intersection& hit) const;
     // The medium state after the path leaves `hit` in direction `d`, having been in `before`.
-    MediumState afterHit(const Intersection& hit, const glm::dvec3& d, const MediumState& before) const;
+    VolumeState afterHit(const Intersection& hit, const glm::dvec3& d, const VolumeState& before) const;
     // Whether `hit` is index-matched (material "interface"): every ray crosses it unchanged.
     bool indexMatched(const Intersection& hit) const { return material(hit).type == MaterialType::Interface; }
     // Passes an index-matched boundary: when `hit` is one, updates `state` and the ray and
     // returns true. Entering a volume from outside keeps the ray, so that the walk finds the
     // exact entry on it (Embree's float hit only says which triangle); anywhere else the ray
     // restarts at the hit, and *moved receives how far along it that is (else 0).
-    bool crossInterface(const Intersection& hit, Ray& ray, MediumState& state, double* moved = nullptr) const;
+    bool crossInterface(const Intersection& hit, Ray& ray, VolumeState& state, double* moved = nullptr) const;
     // Radiance reaching ray.o from an emitter the ray ends at: the environment where it
     // escapes (hit null), an area light it hit. (A camera path's weight applies.)
     RGB emitted(const Ray& ray, const Intersection* hit) const;
@@ -108,7 +108,7 @@ public:
     // estimation there is exactly 0 and is skipped; light gets in along specular paths only.
     bool sealed(int v) const { return sealed_[size_t(v)]; }
     // The volume and tet that hold point p (the camera), for starting paths.
-    MediumState mediumAt(const glm::dvec3& p) const;
+    VolumeState mediumAt(const glm::dvec3& p) const;
     // The closest hit that is not an index-matched boundary (those pass light unchanged), as
     // the seed found it: Embree's float hits on every surface, media boundaries and interfaces
     // included, whatever medium the ray is in (for the single-scattering baseline).
@@ -133,7 +133,7 @@ private:
     Camera camera_;
     std::vector<std::unique_ptr<Light>> lights_;
     const Light* environment_ = nullptr;
-    std::vector<SceneMedium> media_;
+    std::vector<SceneRegion> media_;
     std::vector<SceneVolume> volumes_;
     // By Embree geometry id in surfaces_ and in all_: kind and index, and per triangle the unit
     // normal (for a medium boundary, the volume's own).

@@ -19,8 +19,8 @@
 #include <glm/mat4x4.hpp>
 #include <glm/matrix.hpp>
 
+#include "base/InputFile.h"
 #include "scene/MeshWeld.h"
-#include "tet/InputFile.h"
 
 namespace tetglow {
 namespace {

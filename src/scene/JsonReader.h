@@ -13,7 +13,7 @@
 #include <glm/vec3.hpp>
 #include <nlohmann/json.hpp>
 
-#include "tet/TriangleMesh.h"  // InputError
+#include "base/Error.h"
 
 namespace tetglow {
 

@@ -4,10 +4,10 @@
 #include <cstring>
 #include <filesystem>
 
+#include "base/InputFile.h"
 #include "scene/AssimpReader.h"
 #include "scene/PlyReader.h"
 #include "scene/StlReader.h"
-#include "tet/InputFile.h"
 
 namespace tetglow {
 namespace {

@@ -2,8 +2,8 @@
 
 #include <utility>
 
-#include "tet/InputFile.h"
-#include "tet/TriangleMesh.h"  // InputError
+#include "base/Error.h"
+#include "base/InputFile.h"
 
 namespace tetglow {
 namespace {

@@ -6,9 +6,9 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "base/Hash.h"
+#include "base/InputFile.h"
 #include "scene/SceneWriter.h"
-#include "tet/Hash.h"
-#include "tet/InputFile.h"
 
 namespace tetglow {
 

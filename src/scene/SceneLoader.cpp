@@ -7,10 +7,10 @@
 
 #include <glm/geometric.hpp>
 
+#include "base/InputFile.h"
 #include "scene/JsonReader.h"
 #include "scene/PbrtParser.h"
 #include "scene/SceneShapes.h"
-#include "tet/InputFile.h"
 
 namespace tetglow {
 namespace {

@@ -5,7 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "tet/OutputFile.h"
+#include "base/OutputFile.h"
 
 namespace tetglow {
 namespace {

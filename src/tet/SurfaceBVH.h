@@ -10,7 +10,7 @@
 #include <embree3/rtcore.h>
 #include <glm/vec3.hpp>
 
-#include "tet/Ray.h"
+#include "base/Ray.h"
 #include "tet/TriangleMesh.h"
 
 namespace tetglow {

@@ -6,9 +6,9 @@
 
 #include <glm/geometric.hpp>
 
-#include "tet/Hash.h"
-#include "tet/InputFile.h"
-#include "tet/OutputFile.h"
+#include "base/Hash.h"
+#include "base/InputFile.h"
+#include "base/OutputFile.h"
 #include "tet/Predicates.h"
 
 namespace tetglow {

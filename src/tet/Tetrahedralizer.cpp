@@ -15,8 +15,8 @@
 #include <glm/common.hpp>
 #include <tetgen.h>
 
+#include "base/Hash.h"
 #include "tet/CacheDirectory.h"
-#include "tet/Hash.h"
 #include "tet/Predicates.h"
 #include "tet/RegionComplex.h"
 

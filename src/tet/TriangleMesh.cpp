@@ -8,8 +8,8 @@
 
 #include <glm/geometric.hpp>
 
-#include "tet/InputFile.h"
-#include "tet/OutputFile.h"
+#include "base/InputFile.h"
+#include "base/OutputFile.h"
 
 namespace tetglow {
 

@@ -1,0 +1,61 @@
+#include "integrators/Renderer.h"
+
+#include <chrono>
+#include <mutex>
+
+#include <tbb/blocked_range2d.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include "base/Memory.h"
+
+namespace tetglow {
+
+RenderResult render(const Scene& scene, Integrator& integrator, const RenderOptions& options) {
+    const auto start = std::chrono::steady_clock::now();
+    const Camera& camera = scene.camera();
+    // The film, the image made from it and the PNG preview's bytes.
+    checkMemory(double(camera.width()) * camera.height() * (sizeof(FixedSum) + 3 * sizeof(uint32_t) + sizeof(glm::vec3) + 3),
+                "an image of " + std::to_string(camera.width()) + "x" + std::to_string(camera.height()) + " pixels");
+    Film film(camera.width(), camera.height());
+    RenderResult result;
+    std::mutex progressMutex;
+    std::atomic<uint64_t> pixelsDone{0};
+    const int endPass = options.endPass > 0 ? options.endPass : options.spp;
+    const double totalPixels = double(endPass - options.firstPass) * camera.height() * camera.width();
+    auto cancelled = [&] { return options.cancel && options.cancel->load(std::memory_order_relaxed); };
+
+    tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
+    auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+    for (int pass = options.firstPass; pass < endPass && !cancelled(); ++pass) {
+        if (pass > options.firstPass && options.timeLimit > 0 && elapsed() >= options.timeLimit) break;
+        arena.execute([&] {
+            integrator.beginPass(uint64_t(pass), options.cancel);
+            tbb::parallel_for(tbb::blocked_range2d<int>(0, camera.height(), 16, 0, camera.width(), 16), [&](const auto& tile) {
+                if (cancelled()) return;
+                for (int y = tile.rows().begin(); y < tile.rows().end(); ++y)
+                    for (int x = tile.cols().begin(); x < tile.cols().end(); ++x) {
+                        // The pass is the sample's index in the pixel's sequence: passes stratify.
+                        Rng rng = Rng::pixelSample(options.seed, uint64_t(y) * camera.width() + x, uint32_t(pass));
+                        const double jx = rng.uniform(), jy = rng.uniform();
+                        film.add(x, y, integrator.radiance(camera.generateRay(x + jx, y + jy), rng));
+                    }
+                if (!options.progress) return;
+                const uint64_t done = pixelsDone += uint64_t(tile.rows().size()) * tile.cols().size();
+                std::unique_lock lock(progressMutex, std::try_to_lock);
+                if (lock) options.progress(options.timeLimit > 0 ? std::min(1.0, elapsed() / options.timeLimit) : double(done) / totalPixels);
+            });
+        });
+        if (cancelled()) break;
+        result.passes = pass + 1 - options.firstPass;
+        if (options.passDone) options.passDone(film, result.passes);
+    }
+    result.cancelled = cancelled();
+    result.image = film.image();
+    result.droppedSamples = film.droppedSamples();
+    result.film = std::move(film);
+    result.seconds = elapsed();
+    return result;
+}
+
+}  // namespace tetglow

@@ -1,0 +1,39 @@
+// Runs an integrator over the image: passes of one sample per pixel, tiles in parallel.
+#pragma once
+#include <atomic>
+#include <functional>
+
+#include "integrators/Integrator.h"
+#include "render/Film.h"
+
+namespace tetglow {
+
+struct RenderOptions {
+    int spp = 16;
+    // Passes firstPass .. endPass - 1 of the spp (endPass 0: spp). Each keeps its global index
+    // (its seeds, its photon radius), so parts rendered apart merge into the full render.
+    int firstPass = 0, endPass = 0;
+    uint64_t seed = 0;
+    int threads = 0;  // 0: all cores
+    double timeLimit = 0;  // > 0: no pass starts after this many seconds (at least one runs)
+    const std::atomic<bool>* cancel = nullptr;    // checked between tiles
+    std::function<void(double fraction)> progress;  // called from one thread at a time
+    // After each complete pass, with the film so far (live previews), on the thread that called render().
+    std::function<void(const Film& film, int passes)> passDone;
+};
+
+struct RenderResult {
+    Image image;
+    Film film{0, 0};         // the exact sums behind `image`, for partial renders
+    int passes = 0;          // complete passes (samples per pixel)
+    bool cancelled = false;
+    uint64_t droppedSamples = 0;  // NaN or Inf radiance, discarded
+    double seconds = 0;
+};
+
+// Pixel (x, y) in pass s uses Rng::pixelSample(seed, pixel index, s) only, so the image is the
+// same for any thread count and any tile schedule; the first numbers it draws (the point in the
+// pixel, then the path's) are stratified over the passes.
+RenderResult render(const Scene& scene, Integrator& integrator, const RenderOptions& options);
+
+}  // namespace tetglow

@@ -1,0 +1,105 @@
+#include "integrators/VolPathIntegrator.h"
+
+#include "integrators/DirectLighting.h"
+#include "integrators/PathStep.h"
+#include "media/Roulette.h"
+#include "media/SpectralPath.h"
+#include "render/Material.h"
+
+namespace tetglow {
+
+VolPathIntegrator::VolPathIntegrator(const Scene& scene, int maxDepth)
+    : scene_(scene), maxDepth_(maxDepth), cameraMedium_(scene.mediumAt(scene.camera().position())) {}
+
+RGB VolPathIntegrator::radiance(const Ray& cameraRay, Rng& rng) const {
+    RGB L(0);
+    SpectralPath path = SpectralPath::pick(rng.uniform());
+    Ray ray = cameraRay;
+    VolumeState state = cameraMedium_;
+    // How the current direction was chosen, for the MIS weight of an emitter it reaches:
+    // from the camera or a specular event (weight 1), else with lastPdf at lastPoint.
+    bool specular = true;
+    double lastPdf = 0;
+    glm::dvec3 lastPoint = ray.o;
+    auto emitterWeight = [&](const Light& light, const glm::dvec3& point, uint32_t triangle) {
+        return specular ? 1.0 : powerHeuristic(lastPdf, lightPdf(scene_, light, lastPoint, ray.d, point, triangle));
+    };
+    auto visibility = [&](const VolumeState& from) {
+        return [this, from, &rng](const Ray& r, double tMax) { return transmittance(scene_, r, tMax, from, &rng); };
+    };
+    int depth = 0;
+    auto survives = [&] {
+        if (!path.alive()) return false;
+        const double keep = eyePathSurvival(path.weight(), depth, rng);
+        if (keep == 0) return false;
+        path.beta /= keep;
+        return true;
+    };
+    for (int crossings = 0; crossings < kMaxCrossings; ++crossings) {
+        auto hit = scene_.intersect(ray, state);
+        FreeFlight flight;
+        if (state.inside()) {
+            const RegionMedia& medium = *scene_.volumes()[state.volume].medium;
+            const double tMax = hit ? hit->t : INFINITY;
+            if (!medium.scatters() && !medium.emissive()) {
+                // Nothing scatters or glows: attenuate exactly instead of sampling where light dies.
+                flight = medium.sampleFlight(ray, state.start, tMax, 0, 1.0);
+                path.beta *= flight.transmittance;
+                if (!path.alive()) break;
+            } else {
+                flight = medium.sampleFlight(ray, state.start, tMax, path.hero, rng.uniform(), path.r);
+                // Regions without extinction glow along the whole stretch they hold, exactly.
+                L += path.beta * flight.glow;
+                if (!flight.scattered) {
+                    path.pass(flight.transmittance);
+                } else {
+                    const RegionOptics& optics = medium.at(flight.tet);
+                    path.interact(flight.transmittance, optics.sigmaT * flight.density);
+                    L += path.weight() * flight.density * optics.params.emission;
+                    path.beta *= flight.density * optics.params.sigmaS;
+                    if (++depth >= maxDepth_) break;
+                    const glm::dvec3 p = ray.at(flight.t);
+                    const VolumeState here{state.volume, WalkStart::inside(flight.tet)};
+                    if (!scene_.sealed(state.volume))
+                        L += path.weight() * sampleDirect(scene_, p, rng, true, phaseScattering(optics.phase, ray.d), visibility(here));
+                    const double u0 = rng.uniform(), u1 = rng.uniform();
+                    const glm::dvec3 wi = optics.phase.sample(ray.d, {u0, u1});
+                    specular = false, lastPdf = optics.phase.eval(glm::dot(ray.d, wi)), lastPoint = p;
+                    ray = {p, wi};
+                    state = here;
+                    if (!survives()) break;
+                    continue;
+                }
+            }
+        }
+        const StretchEnd end = endStretch(scene_, hit, flight.exit, ray, state);
+        if (end == StretchEnd::Crossed) continue;
+        if (end == StretchEnd::Escaped) {
+            if (const Light* env = scene_.environment())
+                L += path.weight() * env->emitted(ray.d, 0) * emitterWeight(*env, ray.o + ray.d, 0);
+            break;
+        }
+        if (end == StretchEnd::Emitter) {
+            const Light& light = *scene_.lights()[hit->index];
+            L += path.weight() * light.emitted(ray.d, hit->triangle) * emitterWeight(light, hit->p, hit->triangle);
+            break;
+        }
+        const MaterialDesc& material = scene_.material(*hit);
+        if (++depth >= maxDepth_) break;
+        if (!isSpecular(material)) {
+            const VolumeState here = scene_.afterHit(*hit, ray.d, state);
+            L += path.weight() * sampleDirect(scene_, hit->p, rng, true, [&](const glm::dvec3& wi) {
+                return Scattering{evaluateMaterial(material, ray.d, hit->n, wi), materialPdf(material, ray.d, hit->n, wi)};
+            }, visibility(here));
+        }
+        const double u0 = rng.uniform(), u1 = rng.uniform();
+        const BsdfSample bs = sampleMaterial(material, ray.d, hit->n, {u0, u1});
+        path.beta *= bs.weight;
+        specular = bs.specular, lastPdf = bs.pdf, lastPoint = hit->p;
+        leaveSurface(scene_, *hit, bs.direction, ray, state);
+        if (!survives()) break;
+    }
+    return L;
+}
+
+}  // namespace tetglow

@@ -1,0 +1,143 @@
+#include "media/RegionMedia.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include <glm/geometric.hpp>
+#include <glm/mat3x3.hpp>
+#include <glm/matrix.hpp>
+
+namespace tetglow {
+
+namespace {
+
+// The affine function through four (vertex, value) pairs: solves for the gradient from the
+// three edges at vertex 0.
+glm::dvec4 affineThrough(const TetMesh& mesh, uint32_t t, const std::vector<double>& value) {
+    const auto& v = mesh.tets[t];
+    const glm::dvec3 p0 = mesh.vertices[v[0]];
+    const glm::dmat3 edges(mesh.vertices[v[1]] - p0, mesh.vertices[v[2]] - p0, mesh.vertices[v[3]] - p0);
+    const glm::dvec3 rise(value[v[1]] - value[v[0]], value[v[2]] - value[v[0]], value[v[3]] - value[v[0]]);
+    // rise_k = dot(gradient, edge_k): gradient = inverse(transpose(edges)) * rise.
+    const glm::dvec3 gradient = glm::inverse(glm::transpose(edges)) * rise;
+    return {gradient, value[v[0]] - glm::dot(gradient, p0)};
+}
+
+}  // namespace
+
+RegionMedia::RegionMedia(const MediumParams& params, TetMesh mesh, std::vector<double> vertexDensity) : volume_(std::move(mesh)) {
+    std::vector<RegionMedium> regions(std::max<size_t>(1, this->mesh().regionCount()), RegionMedium{params, {}});
+    for (RegionMedium& r : regions) r.vertexDensity = vertexDensity;
+    setRegions(std::move(regions));
+}
+
+RegionMedia::RegionMedia(TetMesh mesh, std::vector<RegionMedium> regions) : volume_(std::move(mesh)) { setRegions(std::move(regions)); }
+
+void RegionMedia::setRegions(std::vector<RegionMedium> regions) {
+    const TetMesh& m = volume_.mesh();
+    if (regions.size() != std::max<size_t>(1, m.regionCount())) throw std::invalid_argument("RegionMedia: one medium per region expected");
+    regions_.clear();
+    emissive_ = scatters_ = false;
+    bool varying = false;
+    for (const RegionMedium& r : regions) {
+        if (!r.vertexDensity.empty() && r.vertexDensity.size() != m.vertices.size())
+            throw std::invalid_argument("RegionMedia: one density per tet vertex expected");
+        regions_.emplace_back(r.params);
+        emissive_ |= maxComponent(r.params.emission) > 0;
+        scatters_ |= maxComponent(r.params.sigmaS) > 0;
+        varying |= !r.vertexDensity.empty();
+    }
+    densityPlane_.assign(varying ? m.tets.size() : 0, glm::dvec4(0, 0, 0, 1));
+    for (uint32_t t = 0; t < densityPlane_.size(); ++t)
+        if (const auto& density = regions[size_t(std::max(0, m.region(t)))].vertexDensity; !density.empty())
+            densityPlane_[t] = affineThrough(m, t, density);
+}
+
+double RegionMedia::density(uint32_t tet, const glm::dvec3& p) const {
+    if (homogeneous()) return 1;
+    const glm::dvec4& a = densityPlane_[tet];
+    return std::max(0.0, a.w + glm::dot(glm::dvec3(a), p));
+}
+
+double RegionMedia::densityIntegral(uint32_t tet, const Ray& ray, double tIn, double tOut) const {
+    if (homogeneous()) return tOut - tIn;
+    // Linear along the segment: the midpoint rule is exact.
+    return (tOut - tIn) * density(tet, ray.at(0.5 * (tIn + tOut)));
+}
+
+double RegionMedia::columnDistance(uint32_t tet, const Ray& ray, double tIn, double tOut, double column) const {
+    if (homogeneous()) return std::min(column, tOut - tIn);
+    // density(tIn + x) = r0 + k x: r0 x + k x^2 / 2 = column, in the cancellation-free form.
+    const double r0 = density(tet, ray.at(tIn));
+    const double k = (density(tet, ray.at(tOut)) - r0) / (tOut - tIn);
+    return std::min(2 * column / (r0 + std::sqrt(std::max(0.0, r0 * r0 + 2 * k * column))), tOut - tIn);
+}
+
+TetWalk RegionMedia::beginWalk(const Ray& ray, WalkStart start) const {
+    return start.throughSurface ? TetWalk::enter(mesh(), ray, start.index) : TetWalk::start(mesh(), ray, start.index, 0);
+}
+
+FreeFlight RegionMedia::sampleFlight(const Ray& ray, WalkStart start, double tMax, int hero, double u, const RGB& ratios) const {
+    // The distance solves the hero channel's optical depth = -ln(1 - u), region by region.
+    const double target = -std::log1p(-u);
+    RGB depth(0);  // optical depth so far
+    FreeFlight flight;
+    const TetWalk walk = this->walk(ray, start, [&](const WalkSegment& s) {
+        const double tIn = std::max(s.tIn, 0.0), tOut = std::min(s.tOut, tMax);
+        if (tOut <= tIn) return s.tIn < tMax;
+        const RegionOptics& optics = at(s.tet);
+        const double piece = densityIntegral(s.tet, ray, tIn, tOut), sigma = optics.sigmaT[hero];
+        if (sigma > 0 && depth[hero] + sigma * piece >= target) {
+            const double need = (target - depth[hero]) / sigma;  // column still to go
+            flight.scattered = true;
+            flight.t = tIn + columnDistance(s.tet, ray, tIn, tOut, need);
+            flight.tet = s.tet;
+            flight.density = density(s.tet, ray.at(flight.t));
+            depth += optics.sigmaT * need;
+            return false;
+        }
+        if (isBlack(optics.sigmaT) && maxComponent(optics.params.emission) > 0) {
+            // The transmittance is constant here: the emission integrates exactly, weighted
+            // like a path that passed the stretch (SpectralPath::pass) against its pdf ratios.
+            const RGB tr = exp(-depth);
+            flight.glow += optics.params.emission * piece * tr / average(ratios * tr);
+        }
+        depth += optics.sigmaT * piece;
+        return s.tOut < tMax;
+    });
+    flight.transmittance = exp(-depth);
+    if (!flight.scattered) flight.exit = WalkExit::of(walk, tMax);
+    return flight;
+}
+
+RGB RegionMedia::transmittance(const Ray& ray, WalkStart start, double tMax) const {
+    return sampleFlight(ray, start, tMax, 0, 1.0).transmittance;  // u = 1: an infinite target, no interaction
+}
+
+FreeFlight RegionMedia::shadowFlight(const Ray& ray, WalkStart start, double tMax, Rng& rng) const {
+    constexpr double kSurvive = 0.25;
+    RGB depth(0);
+    // Roulette once every channel's depth passes rouletteAt: where weight * exp(-depth) < 1/20.
+    double rouletteAt = std::log(20.0), weight = 1;
+    bool stopped = false;
+    const TetWalk walk = this->walk(ray, start, [&](const WalkSegment& s) {
+        const double tIn = std::max(s.tIn, 0.0), tOut = std::min(s.tOut, tMax);
+        if (tOut <= tIn) return s.tIn < tMax;
+        depth += at(s.tet).sigmaT * densityIntegral(s.tet, ray, tIn, tOut);
+        while (std::min({depth.x, depth.y, depth.z}) > rouletteAt) {
+            if (rng.uniform() >= kSurvive) {
+                stopped = true;
+                return false;
+            }
+            weight /= kSurvive, rouletteAt -= std::log(kSurvive);
+        }
+        return s.tOut < tMax;
+    });
+    FreeFlight flight;
+    flight.transmittance = stopped ? RGB(0) : exp(-depth) * weight;
+    if (!stopped) flight.exit = WalkExit::of(walk, tMax);
+    return flight;
+}
+
+}  // namespace tetglow

@@ -1,0 +1,140 @@
+// Participating media confined to a tetrahedralized set of closed meshes, one medium per region
+// (RegionComplex: nested or touching meshes in one tet mesh; a cavity is a region whose
+// coefficients are all zero). Optical depth is exact: density is constant or linear inside
+// each tet, so every segment of a ray walk integrates in closed form, region by region, and
+// free-flight distances are sampled by inverting that integral.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec4.hpp>
+
+#include "base/Spectrum.h"
+#include "media/PhaseFunction.h"
+#include "sampling/Rng.h"
+#include "tet/TetVolume.h"
+
+namespace tetglow {
+
+struct MediumParams {
+    RGB sigmaA{0}, sigmaS{1};  // per unit length at density 1
+    double g = 0;              // Henyey-Greenstein asymmetry
+    RGB emission{0};           // radiance emitted per unit length at density 1
+};
+
+// Where a walk through the medium begins.
+struct WalkStart {
+    uint32_t index = 0;          // a surface triangle, or a tet
+    bool throughSurface = false; // true: the ray enters through that triangle; false: starts inside that tet
+    static WalkStart surface(uint32_t triangle) { return {triangle, true}; }
+    static WalkStart inside(uint32_t tet) { return {tet, false}; }
+};
+
+// One region's medium: its coefficients and what follows from them.
+struct RegionOptics {
+    MediumParams params;
+    RGB sigmaT{1};
+    HenyeyGreenstein phase;
+    explicit RegionOptics(const MediumParams& p = {}) : params(p), sigmaT(p.sigmaA + p.sigmaS), phase(p.g) {}
+};
+
+// Where a walk left a medium, or stopped at an interface (see RegionMedia::setStops), before the end
+// of its stretch: through surface triangle `triangle` at ray parameter t, from tet `tet`; tet is
+// kTouch where a walk entering through a triangle found that the ray only touches the medium.
+struct WalkExit {
+    bool left = false;
+    uint32_t triangle = 0, tet = 0;
+    double t = 0;
+    static constexpr uint32_t kTouch = UINT32_MAX;
+    static WalkExit of(const TetWalk& walk, double tMax) {
+        if (!walk.exited() || !(walk.exitT() < tMax)) return {};
+        return {true, walk.exitTriangle(), walk.steps() == 0 ? kTouch : walk.exitTet(), walk.exitT()};
+    }
+};
+
+struct FreeFlight {
+    bool scattered = false;  // an interaction at t (in tet); otherwise the ray passed tMax or left the medium
+    double t = 0;
+    uint32_t tet = 0;
+    double density = 1;      // at the interaction
+    RGB transmittance{1};    // from the start to the interaction, or to where the flight ended
+    // Emission collected exactly on the way, in the regions without extinction (where the
+    // transmittance stays what it was on entering them): emission times density, integrated.
+    RGB glow{0};
+    WalkExit exit;           // without an interaction
+};
+
+// What one region holds: its coefficients, and its density as one value >= 0 per tet vertex
+// (only its own tets' vertices are read), or empty for density 1 everywhere.
+struct RegionMedium {
+    MediumParams params;
+    std::vector<double> vertexDensity;
+};
+
+class RegionMedia {
+public:
+    // The same medium in every region.
+    RegionMedia(const MediumParams& params, TetMesh mesh, std::vector<double> vertexDensity = {});
+    // One medium per region of the mesh.
+    RegionMedia(TetMesh mesh, std::vector<RegionMedium> regions);
+    // New coefficients and densities on the same tets (the preview's re-tuning: no new tets).
+    void setRegions(std::vector<RegionMedium> regions);
+    // Free flights stop at these interface triangles (true: a dielectric between two regions)
+    // and cross the others, index-matched, inside the walk. By default they cross every one.
+    void setStops(std::vector<bool> stops) { stops_ = std::move(stops); }
+    bool stopsAt(uint32_t triangle) const { return !stops_.empty() && stops_[triangle]; }
+
+    const TetVolume& volume() const { return volume_; }
+    const TetMesh& mesh() const { return volume_.mesh(); }
+    const RegionOptics& region(int32_t r) const { return regions_[size_t(r)]; }
+    const RegionOptics& at(uint32_t tet) const { return regions_[size_t(mesh().region(tet))]; }
+    bool homogeneous() const { return densityPlane_.empty(); }
+    bool emissive() const { return emissive_; }
+    bool scatters() const { return scatters_; }
+    double density(uint32_t tet, const glm::dvec3& p) const;
+    // Density integrated along the ray (unit direction) over [tIn, tOut] inside `tet`.
+    double densityIntegral(uint32_t tet, const Ray& ray, double tIn, double tOut) const;
+    // The distance x from tIn at which the density integrated inside `tet` reaches `column`
+    // (at most tOut - tIn): densityIntegral inverted.
+    double columnDistance(uint32_t tet, const Ray& ray, double tIn, double tOut, double column) const;
+
+    TetWalk beginWalk(const Ray& ray, WalkStart start) const;
+    // Calls visit(segment) for the walk's segments from `start` in order, crossing the
+    // interfaces it does not stop at, until visit returns false; returns the walk, exited()
+    // where the ray left the medium or stopped at an interface.
+    template <class Visit>
+    TetWalk walk(const Ray& ray, WalkStart start, Visit&& visit) const;
+
+    // Free flight along `ray` (unit direction) from `start` up to tMax, the distance sampled
+    // exactly for the hero channel's extinction (see SpectralPath). `ratios` are the path's
+    // pdf ratios (SpectralPath::r), for the spectral MIS weight of FreeFlight::glow.
+    FreeFlight sampleFlight(const Ray& ray, WalkStart start, double tMax, int hero, double u, const RGB& ratios = RGB(1)) const;
+    // exp(-optical depth) from `start` to tMax or to where the ray leaves the medium (or
+    // stops at an interface).
+    RGB transmittance(const Ray& ray, WalkStart start, double tMax) const;
+    // The same for a shadow ray, with Russian roulette once the transmittance has fallen below
+    // 1/20 (as pbrt-v4's ratio tracking does): the walk stops there with probability 3/4 (a
+    // transmittance of 0, no exit) and a survivor counts 4 times, tested again whenever its
+    // weighted transmittance is below 1/20.
+    // Unbiased; deep in a dense medium a shadow ray walks a few tets, not all to the boundary.
+    FreeFlight shadowFlight(const Ray& ray, WalkStart start, double tMax, Rng& rng) const;
+
+private:
+    std::vector<RegionOptics> regions_;
+    bool emissive_ = false, scatters_ = false;
+    TetVolume volume_;
+    std::vector<glm::dvec4> densityPlane_;  // per tet: density(p) = w + dot(xyz, p)
+    std::vector<bool> stops_;               // per surface triangle, or empty: none
+};
+
+template <class Visit>
+TetWalk RegionMedia::walk(const Ray& ray, WalkStart start, Visit&& visit) const {
+    TetWalk w = beginWalk(ray, start);
+    do {
+        for (WalkSegment s; w.next(s);)
+            if (!visit(s)) return w;
+    } while (w.exited() && !stopsAt(w.exitTriangle()) && w.crossInterface());
+    return w;
+}
+
+}  // namespace tetglow
