@@ -7,8 +7,9 @@ namespace tetglow {
 // mean's error has E[e^2] = s^2 / n. So e^2 is estimated by d^2 nE nO / n^2: a quarter of d^2
 // when the halves are equal. The passes are not independent: the first numbers of a pixel's
 // samples are stratified over the passes (render/Renderer.h), which makes the full image better
-// than independent samples would, and better than each half lets one predict. The estimate leans
-// to the safe side by that gain: about 2 on the scenes of bench/results/noise_target.py (docs/RESULTS.md).
+// than independent samples would, and better than each half lets one predict: on a smooth scene
+// the estimate is about twice the error. After few passes of a scene lit by rare bright paths it
+// is low instead: the passes have not met those paths yet (docs/RESULTS.md, --noise).
 std::optional<double> estimateRelMse(const Film& all, const Film& half) {
     double sum = 0;
     size_t terms = 0;
