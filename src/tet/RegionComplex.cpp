@@ -132,7 +132,8 @@ RegionComplex buildRegionComplex(const std::vector<TriangleMesh>& surfaces, cons
                     throw InputError(names[a.surface] + " and " + names[b.surface] + " cross: triangle " +
                                      std::to_string(a.triangle) + " of " + names[a.surface] + " meets triangle " +
                                      std::to_string(b.triangle) + " of " + names[b.surface] +
-                                     " (media may nest or share whole triangles, not overlap)");
+                                     " (media may nest or share whole triangles, not overlap; an open vessel is one closed, "
+                                     "cup-shaped mesh, not a solid with a cavity reaching its rim: docs/FORMAT.md, cavities)");
         throw std::logic_error("buildRegionComplex: a surface intersects itself after validation");
     }
     c.parent = findNesting(surfaces, vertexIds, names);
