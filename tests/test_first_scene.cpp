@@ -9,6 +9,9 @@
 #include <nlohmann/json.hpp>
 
 #include "TestMeshes.h"
+#include "TestScenes.h"
+#include "render/Integrator.h"
+#include "render/Renderer.h"
 #include "tet/Shapes.h"
 #include "tet/Tetrahedralizer.h"
 
@@ -72,6 +75,39 @@ TEST(Init, OpenVesselAsCavityGetsAHint) {
         const std::string what = e.what();
         EXPECT_NE(what.find("glass and inside cross"), std::string::npos) << what;
         EXPECT_NE(what.find("cup-shaped mesh"), std::string::npos) << what;
+    }
+}
+
+// A floor inside an absorbing medium (a floor under water), camera and point light in the medium
+// too: the pixel that sees the floor straight below the light has the closed form
+// reflectance / pi * I cos / d^2 * exp(-sigma_a (d + camera distance)); the medium attenuates
+// both legs, the floor reflects as in air.
+TEST(SurfaceInsideAMedium, FloorUnderWaterMatchesTheClosedForm) {
+    const RGB sigmaA(0.5, 1.0, 2.0);
+    SceneDesc desc = sceneWith(sphereMedium(sigmaA, RGB(0), 0, 4), 1);
+    desc.camera.position = {0, 0, 0.5};
+    desc.camera.lookAt = {0, -0.4, 0};
+    desc.camera.fov = 0.01;  // the pixel sees one point
+    SurfaceDesc floor;
+    floor.name = "floor";
+    floor.mesh = quad({-0.4, -0.4, -0.4}, {0, 0, 0.8}, {0.8, 0, 0});
+    floor.material.type = MaterialType::Diffuse;
+    floor.material.reflectance = RGB(0.5);
+    desc.surfaces.push_back(floor);
+    LightDesc light;
+    light.position = {0, 0.3, 0};
+    light.intensity = RGB(2);
+    desc.lights.push_back(light);
+    const Scene scene(desc);
+    ASSERT_TRUE(scene.mediumAt(desc.camera.position).inside());
+    const auto integrator = makeIntegrator(scene, IntegratorDesc{});
+    RenderOptions options;
+    options.spp = 16;
+    const Image image = render(scene, *integrator, options).image;
+    const double toLight = 0.7, toCamera = std::sqrt(0.5 * 0.5 + 0.4 * 0.4);
+    for (int c = 0; c < 3; ++c) {
+        const double expected = 0.5 / M_PI * 2 / (toLight * toLight) * std::exp(-sigmaA[c] * (toLight + toCamera));
+        EXPECT_NEAR(image.pixels[0][c], expected, 1e-3 * expected) << c;
     }
 }
 
