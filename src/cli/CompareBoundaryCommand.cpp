@@ -1,6 +1,6 @@
-// tetglow compare-boundary MESH|SCENE: the tets against the seed's parity test and the bounding
+// tetglow compare-boundary MESH|SCENE: the tets against the parity baseline's test and the bounding
 // box on the same points and rays (classification error and time per query, optical-depth error
-// and time per ray), and optionally the seed's red/green debug picture.
+// and time per ray), and optionally the parity baseline's red/green debug picture.
 #include <filesystem>
 #include <iostream>
 #include <memory>

@@ -1,4 +1,4 @@
-// Where is the medium? The exact tets against the seed's parity test and the bounding box, on
+// Where is the medium? The exact tets against the parity baseline's test and the bounding box, on
 // the same points and the same rays: error against a ground truth and time per query. The
 // truth is the tets by default; the tests give an analytic shape instead.
 #pragma once
@@ -61,7 +61,7 @@ struct ChordTest {
     std::function<double(const Line&)> length;
 };
 
-// tets (the walk's segments, exact), the seed's march (1 parity ray per step, each step's
+// tets (the walk's segments, exact), the parity baseline's march (1 parity ray per step, each step's
 // sample standing for the whole step) at each step, and `box` (the whole box is medium).
 std::vector<ChordTest> chordTests(const TetVolume* tets, const SurfaceBVH& bvh, const std::vector<double>& steps);
 double tetChord(const TetVolume& tets, const Line& line);

@@ -47,7 +47,7 @@ int SingleScatterIntegrator::pick(size_t v, const glm::dvec3& p) const {
 RGB SingleScatterIntegrator::visibility(const Ray& ray, double tMax, Rng& rng) const {
     if (mode_ == BoundaryMode::Tet) return transmittance(scene_, ray, tMax, scene_.mediumAt(ray.o));
     if (!scene_.unoccluded(ray, tMax)) return RGB(0);
-    // The seed's shadow ray: march through each volume's box, asking the boundary test per step.
+    // The parity baseline's shadow ray: march through each volume's box, asking the boundary test per step.
     RGB tau(0);
     for (size_t v = 0; v < boxes_.size(); ++v) {
         double t0 = 0, t1 = tMax;
@@ -72,7 +72,7 @@ RGB SingleScatterIntegrator::visibility(const Ray& ray, double tMax, Rng& rng) c
 }
 
 RGB SingleScatterIntegrator::inScattered(size_t v, const RegionOptics& optics, const glm::dvec3& p, const glm::dvec3& d, int64_t tet, Rng& rng) const {
-    // Exact transmittance: the seed's march is the baseline, compared mode against mode.
+    // Exact transmittance: the parity baseline's march is the baseline, compared mode against mode.
     if (mode_ == BoundaryMode::Tet) return directInMedium(scene_, int(v), p, d, uint32_t(tet), rng, false);
     return sampleDirect(scene_, p, rng, false, phaseScattering(optics.phase, d),
                         [&](const Ray& r, double t) { return visibility(r, t, rng); });

@@ -97,7 +97,7 @@ bool TetVolume::traverse(const Ray& ray, double tmin, double tmax, Visitor&& vis
     }
 }
 
-// The seed's inside test, kept as the independent cross-check and as a baseline: count the
+// The parity baseline's inside test, kept as the independent cross-check and as a baseline: count the
 // surface crossings of rays from p (odd = inside); with several rays, the majority decides.
 // Directions are pseudo-random but fixed for a given p, so results are reproducible.
 bool insideByParity(const SurfaceBVH& bvh, const glm::dvec3& p, int rays = 1);
