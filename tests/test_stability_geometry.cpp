@@ -120,7 +120,7 @@ TEST(Stability, SliverTets) {
     EXPECT_LT(chords.methods[0].maxAbsError, 1e-6 * bounds(surface).diagonal());
 }
 
-// Two interpenetrating cubes: the tets refuse them; the parity test counts two crossings out of
+// Two interpenetrating cubes: strict tets refuse them (the default repairs them: InteriorRepair); the parity test counts two crossings out of
 // the shared part and calls it outside, whatever the number of rays.
 TEST(Stability, SelfIntersectionHidesTheOverlapFromParity) {
     const TriangleMesh a = box(), b = box(glm::dvec3(0.5), glm::dvec3(1.5)), both = merge(a, b);

@@ -94,7 +94,8 @@ struct BoundaryComparison {
     ChordTable chords;
 };
 
-// Every method against the tets.
-BoundaryComparison compareBoundary(const TetVolume& volume, const ComparisonOptions& options);
+// Every method against the tets. With `input` (a broken mesh the tets repaired), the parity
+// tests use the input as it was, and the input's winding number (> 1/2) joins them.
+BoundaryComparison compareBoundary(const TetVolume& volume, const ComparisonOptions& options, const TriangleMesh* input = nullptr);
 
 }  // namespace tetglow

@@ -5,7 +5,7 @@
 
 #include "render/DirectLighting.h"
 #include "render/Material.h"
-#include "tet/MeshValidation.h"
+#include "tet/InteriorRepair.h"
 
 namespace tetglow {
 
@@ -28,7 +28,7 @@ SingleScatterIntegrator::SingleScatterIntegrator(const Scene& scene, const Integ
     if (mode_ == BoundaryMode::Tet) return;
     for (const MediumDesc& m : scene.desc().media) {
         TriangleMesh own = m.boundary;
-        validateAndRepair(own);  // the mesh as its tets have it
+        prepareSurface(own, m.tetOptions.strict);  // the mesh as its tets have it (repaired where broken)
         mediumBoxes_.push_back(bounds(own));
         parity_.push_back(mode_ == BoundaryMode::Parity ? std::make_unique<SurfaceBVH>(own.positions, own.triangles) : nullptr);
     }

@@ -10,6 +10,7 @@
 
 #include "tet/Predicates.h"
 #include "tet/SelfIntersection.h"
+#include "tet/WindingNumber.h"
 
 namespace tetglow {
 namespace {
@@ -22,6 +23,8 @@ std::string vec(const glm::dvec3& p) {
 
 std::string face(uint32_t t) { return "triangle " + std::to_string(t); }
 
+}  // namespace
+
 void checkFinite(const TriangleMesh& mesh) {
     for (size_t v = 0; v < mesh.positions.size(); ++v) {
         const auto& p = mesh.positions[v];
@@ -32,8 +35,8 @@ void checkFinite(const TriangleMesh& mesh) {
     }
 }
 
-// Snaps to float, merges identical positions and drops unreferenced vertices; indices are remapped.
-void weldAndCompact(TriangleMesh& mesh, ValidationReport& report) {
+WeldCounts weldVertices(TriangleMesh& mesh) {
+    WeldCounts report;
     for (auto& p : mesh.positions) p = {roundToFloat(p.x), roundToFloat(p.y), roundToFloat(p.z)};
     std::vector<uint32_t> order(mesh.positions.size());
     std::iota(order.begin(), order.end(), 0u);
@@ -46,7 +49,7 @@ void weldAndCompact(TriangleMesh& mesh, ValidationReport& report) {
     for (size_t i = 0; i < order.size(); ++i) {
         const bool same = i > 0 && mesh.positions[order[i]] == mesh.positions[order[i - 1]];
         canonical[order[i]] = same ? canonical[order[i - 1]] : order[i];
-        report.weldedVertices += same;
+        report.welded += same;
     }
     std::vector<uint32_t> remap(mesh.positions.size(), UINT32_MAX);
     std::vector<glm::dvec3> kept;
@@ -59,8 +62,9 @@ void weldAndCompact(TriangleMesh& mesh, ValidationReport& report) {
             }
             v = remap[c];
         }
-    report.unusedVertices = mesh.positions.size() - report.weldedVertices - kept.size();
+    report.unused = mesh.positions.size() - report.welded - kept.size();
     mesh.positions = std::move(kept);
+    return report;
 }
 
 bool collinear(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
@@ -68,6 +72,8 @@ bool collinear(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
     return orient2d({a.x, a.y}, {b.x, b.y}, {c.x, c.y}) == 0 && orient2d({a.y, a.z}, {b.y, b.z}, {c.y, c.z}) == 0 &&
            orient2d({a.z, a.x}, {b.z, b.x}, {c.z, c.x}) == 0;
 }
+
+namespace {
 
 void checkTriangles(const TriangleMesh& mesh) {
     std::map<std::array<uint32_t, 3>, uint32_t> seen;
@@ -155,16 +161,11 @@ std::vector<uint32_t> orientShells(TriangleMesh& mesh, const std::unordered_map<
     return shell;
 }
 
-// Generalized winding number of the given triangles around p (Van Oosterom-Strackee solid
-// angles): +-1 inside a closed shell, 0 outside, robust for p off the surface.
+// Generalized winding number of the given triangles around p: +-1 inside a closed shell, 0
+// outside, robust for p off the surface.
 double windingNumber(const TriangleMesh& mesh, const std::vector<uint32_t>& tris, const glm::dvec3& p) {
     double omega = 0;
-    for (uint32_t t : tris) {
-        const glm::dvec3 a = mesh.corner(t, 0) - p, b = mesh.corner(t, 1) - p, c = mesh.corner(t, 2) - p;
-        const double la = glm::length(a), lb = glm::length(b), lc = glm::length(c);
-        omega += 2 * std::atan2(glm::dot(a, glm::cross(b, c)),
-                                la * lb * lc + glm::dot(a, b) * lc + glm::dot(b, c) * la + glm::dot(c, a) * lb);
-    }
+    for (uint32_t t : tris) omega += solidAngle(mesh.corner(t, 0), mesh.corner(t, 1), mesh.corner(t, 2), p);
     return omega / (4 * M_PI);
 }
 
@@ -197,7 +198,8 @@ ValidationReport validateAndRepair(TriangleMesh& mesh) {
     ValidationReport report;
     if (mesh.triangles.empty()) throw InputError("mesh has no triangles");
     checkFinite(mesh);
-    weldAndCompact(mesh, report);
+    const WeldCounts weld = weldVertices(mesh);
+    report.weldedVertices = weld.welded, report.unusedVertices = weld.unused;
     checkTriangles(mesh);
     const auto edges = edgeFaces(mesh);
     checkManifold(mesh, edges);

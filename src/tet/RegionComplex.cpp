@@ -8,7 +8,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "tet/MeshValidation.h"
+#include "tet/InteriorRepair.h"
 #include "tet/Nesting.h"
 #include "tet/SelfIntersection.h"
 
@@ -144,10 +144,10 @@ RegionComplex buildRegionComplex(const std::vector<TriangleMesh>& surfaces, cons
     return c;
 }
 
-RegionComplex validatedComplex(std::vector<TriangleMesh> surfaces, const std::vector<std::string>& names) {
+RegionComplex validatedComplex(std::vector<TriangleMesh> surfaces, const std::vector<std::string>& names, bool strict) {
     for (size_t i = 0; i < surfaces.size(); ++i) {
         try {
-            validateAndRepair(surfaces[i]);
+            prepareSurface(surfaces[i], strict);
         } catch (const InputError& e) {
             throw InputError(names[i] + ": " + e.what());
         }
