@@ -7,6 +7,7 @@
 #include <set>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 #include <glm/geometric.hpp>
 
 #include "TestMeshes.h"
@@ -111,7 +112,9 @@ TEST(InteriorRepair, SharedMeshesWithHoles) {
         ASSERT_LT(holed.triangles.size(), closed.triangles.size()) << name;
         ValidationReport report;
         const TetMesh mesh = tets(holed, &report);
-        std::printf("%s: %s\n", name, report.repair.summary().c_str());
+        std::printf("%s, %zu of %zu triangles: volume closed %.9g, repaired %.9g (bound %.3g); %s\n", name, holed.triangles.size(),
+                    closed.triangles.size(), volume, mesh.volume(), 3 * 4.0 / 3 * M_PI * radius * radius * radius,
+                    report.repair.summary().c_str());
         EXPECT_GE(report.repair.holes.size(), 3u) << name;
         EXPECT_NEAR(mesh.volume(), volume, 3 * 4.0 / 3 * M_PI * radius * radius * radius) << name;
         // All but the odd triangle that a punch leaves hanging by one edge (a fin: it encloses nothing).
@@ -204,6 +207,32 @@ TEST(InteriorRepair, StrictRefusesCountingEveryProblem) {
         EXPECT_NE(s.find("in all: 6 hole edges (first at ("), std::string::npos) << s;
         EXPECT_NE(s.find(" crossing pairs (first at ("), std::string::npos) << s;
     }
+}
+
+// What a user sees: the summary line, the repairs with positions in --json, the spanned faces
+// as triangle cells in the VTK file.
+TEST(InteriorRepair, CommandReportsAndMarksTheRepairs) {
+    TriangleMesh m = merge(box(), box(glm::dvec3(0.5), glm::dvec3(1.5)));
+    m.triangles.erase(m.triangles.begin());  // a hole in the first box's floor (area 1/2), outside the second
+    const std::string obj = test::tempDir() + "/broken.obj", vtk = test::tempDir() + "/broken.vtk";
+    writeObj(m, obj);
+    const auto text = test::runTetglow("tetrahedralize " + obj + " --no-cache");
+    ASSERT_EQ(text.exitCode, 0) << text.err;
+    EXPECT_NE(text.out.find("repaired         1 hole spanned ("), std::string::npos) << text.out;
+    EXPECT_NE(text.out.find(" crossing pairs resolved, 2 parts unioned"), std::string::npos) << text.out;
+    const auto json = test::runTetglow("tetrahedralize " + obj + " --no-cache --json -o " + vtk);
+    ASSERT_EQ(json.exitCode, 0) << json.err;
+    const auto repair = nlohmann::json::parse(json.out)["regions"][0]["repair"];
+    ASSERT_EQ(repair["holes"].size(), 1u) << repair.dump();
+    // Spanned by tet faces through the missing triangle's rim: in or near the floor, no smaller.
+    EXPECT_LT(std::abs(repair["holes"][0]["centre"][2].get<double>()), 0.2);
+    EXPECT_GE(repair["holes"][0]["area"].get<double>(), 0.5 - 1e-12);
+    EXPECT_LT(repair["holes"][0]["area"].get<double>(), 0.75);
+    EXPECT_EQ(repair["crossings_at"].size(), repair["crossing_pairs"].get<size_t>());
+    EXPECT_EQ(repair["parts_unioned"], 2);
+    const std::string cells = test::readFile(vtk);
+    EXPECT_NE(cells.find("SCALARS spanned int 1"), std::string::npos);
+    EXPECT_NE(cells.find("\n5\n"), std::string::npos);  // a triangle cell
 }
 
 }  // namespace

@@ -22,12 +22,6 @@
 namespace tetglow {
 namespace {
 
-std::string at(const glm::dvec3& p) {
-    char buf[96];
-    std::snprintf(buf, sizeof buf, "(%g, %g, %g)", p.x, p.y, p.z);
-    return buf;
-}
-
 void keep(std::vector<glm::dvec3>& list, const glm::dvec3& p) {
     if (list.size() < RepairReport::kMaxPositions) list.push_back(p);
 }
@@ -325,7 +319,7 @@ std::string surveyProblems(const TriangleMesh& input) {
     const SoupCleaning cleaning = dropDegenerateAndDuplicates(mesh);
     std::vector<std::string> found;
     const auto add = [&](size_t n, const std::string& one, const std::string& many, const glm::dvec3& first) {
-        if (n) found.push_back(plural(n, one, many) + " (first at " + at(first) + ")");
+        if (n) found.push_back(plural(n, one, many) + " (first at " + formatPosition(first) + ")");
     };
     if (cleaning.degenerate) add(cleaning.degenerate, "zero-area triangle", "zero-area triangles", cleaning.degenerateAt[0]);
     if (cleaning.duplicates) add(cleaning.duplicates, "duplicate face", "duplicate faces", cleaning.duplicateAt[0]);

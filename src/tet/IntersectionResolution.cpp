@@ -50,12 +50,6 @@ TriangleMesh autorefine(const TriangleMesh& soup) {
     return out;
 }
 
-std::string at(const glm::dvec3& p) {
-    char buf[96];
-    std::snprintf(buf, sizeof buf, "(%g, %g, %g)", p.x, p.y, p.z);
-    return buf;
-}
-
 }  // namespace
 
 SoupCleaning dropDegenerateAndDuplicates(TriangleMesh& soup) {
@@ -103,7 +97,7 @@ TriangleMesh resolveIntersections(const TriangleMesh& soup) {
     if (left.empty()) return current;
     throw InputError(std::to_string(left.size()) + " crossing pairs of triangles remain after splitting them " +
                      std::to_string(kMaxRounds) + " times at float precision, first near " +
-                     at(current.corner(left[0].first, 0)));
+                     formatPosition(current.corner(left[0].first, 0)));
 }
 
 }  // namespace tetglow

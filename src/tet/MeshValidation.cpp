@@ -13,13 +13,14 @@
 #include "tet/WindingNumber.h"
 
 namespace tetglow {
-namespace {
 
-std::string vec(const glm::dvec3& p) {
+std::string formatPosition(const glm::dvec3& p) {
     char buf[96];
     std::snprintf(buf, sizeof buf, "(%g, %g, %g)", p.x, p.y, p.z);
     return buf;
 }
+
+namespace {
 
 std::string face(uint32_t t) { return "triangle " + std::to_string(t); }
 
@@ -29,9 +30,9 @@ void checkFinite(const TriangleMesh& mesh) {
     for (size_t v = 0; v < mesh.positions.size(); ++v) {
         const auto& p = mesh.positions[v];
         if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
-            throw InputError("vertex " + std::to_string(v) + " has a non-finite coordinate " + vec(p));
+            throw InputError("vertex " + std::to_string(v) + " has a non-finite coordinate " + formatPosition(p));
         if (std::abs(p.x) > 1e30 || std::abs(p.y) > 1e30 || std::abs(p.z) > 1e30)
-            throw InputError("vertex " + std::to_string(v) + " is too large for float precision " + vec(p));
+            throw InputError("vertex " + std::to_string(v) + " is too large for float precision " + formatPosition(p));
     }
 }
 
@@ -82,7 +83,7 @@ void checkTriangles(const TriangleMesh& mesh) {
         if (v[0] == v[1] || v[1] == v[2] || v[0] == v[2])
             throw InputError("degenerate " + face(t) + ": a vertex is repeated");
         if (collinear(mesh.positions[v[0]], mesh.positions[v[1]], mesh.positions[v[2]]))
-            throw InputError("degenerate " + face(t) + ": zero area (collinear corners) at " + vec(mesh.positions[v[0]]));
+            throw InputError("degenerate " + face(t) + ": zero area (collinear corners) at " + formatPosition(mesh.positions[v[0]]));
         std::sort(v.begin(), v.end());
         auto [it, inserted] = seen.emplace(v, t);
         if (!inserted)
@@ -108,7 +109,7 @@ void checkManifold(const TriangleMesh& mesh, const std::unordered_map<uint64_t, 
         if (e.second.size() != 2 && (!worst || e.second[0] < worst->second[0])) worst = &e;
     if (!worst) return;
     const uint32_t a = uint32_t(worst->first >> 32), b = uint32_t(worst->first);
-    const std::string edge = "edge (" + std::to_string(a) + ", " + std::to_string(b) + ") at " + vec(mesh.positions[a]);
+    const std::string edge = "edge (" + std::to_string(a) + ", " + std::to_string(b) + ") at " + formatPosition(mesh.positions[a]);
     if (worst->second.size() == 1)
         throw InputError("mesh is not closed: " + edge + " belongs only to " + face(worst->second[0]) + " (a hole)");
     throw InputError("non-manifold " + edge + " is shared by " + std::to_string(worst->second.size()) +

@@ -26,6 +26,9 @@ struct ValidationReport {
 // shell (fixed, not rejected); positive volume.
 ValidationReport validateAndRepair(TriangleMesh& mesh);
 
+// "(x, y, z)", as messages give positions.
+std::string formatPosition(const glm::dvec3& p);
+
 // Its steps, for repairs that go further (see InteriorRepair):
 // InputError unless every coordinate is finite and within float range.
 void checkFinite(const TriangleMesh& mesh);
