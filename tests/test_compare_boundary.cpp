@@ -132,7 +132,9 @@ TEST(CompareBoundary, RepairedTetsAgreeWithTheWindingNumberWhereParityFails) {
         // Close to the cap the tets' flat faces across the hole and the curved surface where the
         // winding number is 1/2 part; elsewhere they agree.
         EXPECT_LT(winding, parity) << row.offset;
-        if (row.offset == 1e-2) EXPECT_LT(winding * 10, parity) << row.offset;
+        if (row.offset == 1e-2) {
+            EXPECT_LT(winding * 10, parity) << row.offset;
+        }
     }
     EXPECT_GT(c.classification[0].methods[1].errors, 200u);  // parity 1 on the whole box
 }
