@@ -19,7 +19,9 @@ TetVolume tetsOf(const TriangleMesh& mesh) {
 
 void expectTetsRefuse(const TriangleMesh& mesh, const std::string& problem) {
     try {
-        tetsOf(mesh);
+        TetOptions o;
+        o.useCache = false, o.strict = true;
+        tetrahedralize(mesh, o);
         ADD_FAILURE() << "the tets accepted a mesh that should fail with: " << problem;
     } catch (const InputError& e) {
         EXPECT_NE(std::string(e.what()).find(problem), std::string::npos) << e.what();

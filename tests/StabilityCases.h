@@ -12,7 +12,8 @@ namespace tetglow::test {
 
 // The tets of `mesh`, tetrahedralized afresh (no cache).
 TetVolume tetsOf(const TriangleMesh& mesh);
-// Expects tetrahedralizing `mesh` to fail with an InputError whose message contains `problem`.
+// Expects tetrahedralizing `mesh` strictly (no repair) to fail with an InputError whose message
+// contains `problem`.
 void expectTetsRefuse(const TriangleMesh& mesh, const std::string& problem);
 
 // A tilted, stretched icosahedron subdivided `subdivisions` times: convex, not aligned with its box.

@@ -247,11 +247,28 @@ TEST(Regions, TouchingAlongPartsOfTrianglesIsRefused) {
     EXPECT_NE(e.find("tank and stone cross"), std::string::npos) << e;
 }
 
-TEST(Regions, OpenInnerMeshIsRefusedByName) {
-    TriangleMesh open = icosphere(1, 0.3);
-    open.triangles.pop_back();
-    const std::string e = errorOf({icosphere(2, 1.0), open}, {"body", "organ"});
-    EXPECT_EQ(e.rfind("organ: mesh is not closed", 0), 0u) << e;
+TEST(Regions, OpenInnerMeshIsRepairedInItsRegion) {
+    const TriangleMesh body = icosphere(2, 1.0), organ = icosphere(1, 0.3);
+    TriangleMesh open = organ;
+    open.triangles.pop_back();  // a planar hole: the tet face across it is the missing triangle
+    const TetMesh mesh = tetrahedralize({body, open}, {"body", "organ"}, test::noCache());
+    TriangleMesh body32 = body, organ32 = organ;  // float-snapped, as the tets see them
+    const double inner = validateAndRepair(organ32).volume, outer = validateAndRepair(body32).volume;
+    EXPECT_NEAR(mesh.regionVolume(1), inner, 1e-12);
+    EXPECT_NEAR(mesh.regionVolume(0), outer - inner, 1e-12);
+    TetOptions strict = test::noCache();
+    strict.strict = true;
+    try {
+        tetrahedralize({body, open}, {"body", "organ"}, strict);
+        ADD_FAILURE() << "strict accepted an open mesh";
+    } catch (const InputError& e) {
+        EXPECT_EQ(std::string(e.what()).rfind("organ: mesh is not closed", 0), 0u) << e.what();
+    }
+}
+
+TEST(Regions, InnerSheetIsRefusedByName) {
+    const std::string e = errorOf({icosphere(2, 1.0), disk(glm::dvec3(0), {0, 0, 1}, 0.3, 16)}, {"body", "organ"});
+    EXPECT_EQ(e.rfind("organ: mesh encloses no volume", 0), 0u) << e;
 }
 
 TEST(Regions, TheSameMeshTwiceIsRefused) {

@@ -131,5 +131,40 @@ TEST(RenderCommand, BrokenScenesGetClearErrors) {
     EXPECT_EQ(runTetglow("render " + kSphere + " --resolution 10by10").exitCode, 2);
 }
 
+TEST(RenderCommand, NoiseGivesTheSameFileOnOneAndTwoThreads) {
+    const std::string dir = tempDir(), common = "render " + kSphere + " --resolution 20x16 --seed 3 --noise 0.02";
+    const auto one = runTetglow(common + " --threads 1 -o " + dir + "/one.exr");
+    ASSERT_EQ(one.exitCode, 0) << one.err;
+    ASSERT_EQ(runTetglow(common + " --threads 2 -o " + dir + "/two.exr").exitCode, 0);
+    EXPECT_EQ(slurp(dir + "/one.exr"), slurp(dir + "/two.exr"));
+    EXPECT_NE(one.err.find("noise"), std::string::npos) << one.err;
+    EXPECT_NE(one.out.find("estimated relative MSE"), std::string::npos) << one.out;
+}
+
+// A CSV beside the image: a header and one row per pass, whose last error is what `diff` says.
+TEST(RenderCommand, ReferenceWritesTheErrorPerPass) {
+    const std::string dir = tempDir(), common = "render " + kSphere + " --resolution 20x16 ";
+    ASSERT_EQ(runTetglow(common + "--spp 64 --seed 1 -o " + dir + "/ref.exr").exitCode, 0);
+    const auto r = runTetglow(common + "--spp 5 --seed 2 --reference " + dir + "/ref.exr -o " + dir + "/test.exr");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    std::istringstream csv(slurp(dir + "/test.csv"));
+    std::string line, last;
+    std::getline(csv, line);
+    EXPECT_EQ(line, "pass,seconds,noise_estimate,rel_mse_vs_reference");
+    int rows = 0;
+    while (std::getline(csv, line)) ++rows, last = line;
+    EXPECT_EQ(rows, 5);
+    EXPECT_EQ(last.rfind("5,", 0), 0u) << last;
+    const auto d = runTetglow("diff " + dir + "/test.exr " + dir + "/ref.exr --json");
+    ASSERT_EQ(d.exitCode, 0) << d.err;
+    const double csvError = std::stod(last.substr(last.rfind(',') + 1));
+    const auto at = d.out.find("\"rel_mse\": ");
+    ASSERT_NE(at, std::string::npos) << d.out;
+    EXPECT_NEAR(std::stod(d.out.substr(at + 11)), csvError, 1e-6 * csvError + 1e-12);
+    // A reference of another size: one line naming it.
+    expectOneLineError(runTetglow("render " + kSphere + " --resolution 8x8 --spp 1 --reference " + dir + "/ref.exr -o " + dir + "/x.exr"), 1,
+                       "ref.exr: the reference is 20x16");
+}
+
 }  // namespace
 }  // namespace tetglow::test

@@ -78,13 +78,19 @@ TEST(SceneRegions, ACavityInNoMediumIsRefused) {
     expectRefused("stray-cavity", scene, "/cavities/0: a cavity must lie inside a medium");
 }
 
-TEST(SceneRegions, AnOpenInnerMeshIsRefusedNamingIt) {
+TEST(SceneRegions, AnOpenInnerMeshIsRepairedOrWhenStrictRefusedNamingIt) {
     // A box without its top face inside the sphere.
     const std::string obj = writeTemp("open-box.obj", "v -0.2 -0.2 -0.2\nv 0.2 -0.2 -0.2\nv 0.2 0.2 -0.2\nv -0.2 0.2 -0.2\n"
                                                        "v -0.2 -0.2 0.2\nv 0.2 -0.2 0.2\nv 0.2 0.2 0.2\nv -0.2 0.2 0.2\n"
                                                        "f 1 3 2\nf 1 4 3\nf 1 2 6\nf 1 6 5\nf 2 3 7\nf 2 7 6\n"
                                                        "f 3 4 8\nf 3 8 7\nf 4 1 5\nf 4 5 8\n");
-    expectRefused("open-inner", sceneWithMedia(kBig, R"({"type": "mesh", "file": ")" + obj + R"("})"), "/media/1 (");
+    const std::string scene = sceneWithMedia(kBig, R"({"type": "mesh", "file": ")" + obj + R"("})");
+    const std::string path = writeTemp("open-inner.json", scene);
+    const auto r = runTetglow("render " + path + " -o " + tempDir() + "/open-inner.exr");
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    std::string strict = scene;
+    strict.replace(strict.rfind("\"sigma_s\": 2"), 12, R"("sigma_s": 2, "tetgen": {"strict": true})");
+    expectRefused("open-inner-strict", strict, "/media/1 (");
 }
 
 TEST(SceneRegions, MediaApartStillRender) {

@@ -9,6 +9,7 @@
 
 namespace tetglow::cli {
 
+void addInitCommand(CLI::App& app);
 void addTetrahedralizeCommand(CLI::App& app);
 void addGenerateCommand(CLI::App& app);
 void addRenderCommand(CLI::App& app);
@@ -24,6 +25,7 @@ void addFarmCommand(CLI::App& app);
 // and the command-line fuzzer).
 inline void addCommands(CLI::App& app) {
     app.require_subcommand(1);
+    addInitCommand(app);
     addTetrahedralizeCommand(app);
     addGenerateCommand(app);
     addRenderCommand(app);

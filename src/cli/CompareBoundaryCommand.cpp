@@ -1,6 +1,6 @@
-// tetglow compare-boundary MESH|SCENE: the tets against the parity baseline and the bounding
+// tetglow compare-boundary MESH|SCENE: the tets against the parity baseline's test and the bounding
 // box on the same points and rays (classification error and time per query, optical-depth error
-// and time per ray), and optionally the baseline's red/green debug picture.
+// and time per ray), and optionally the parity baseline's red/green debug picture.
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -21,13 +21,14 @@ struct Options {
     std::string input, csv, picture;
     ComparisonOptions comparison;
     int pictureWidth = 0;
-    bool json = false;
+    bool json = false, strict = false;
 };
 
 // The media to compare, with what the picture needs: a camera, a step and rays per parity test.
 struct Subject {
     std::unique_ptr<Scene> scene;              // SCENE input
     std::unique_ptr<TetVolume> mesh;           // MESH input
+    std::unique_ptr<TriangleMesh> broken;      // MESH input as read, where it was repaired
     std::vector<const TetVolume*> volumes;
     std::vector<MediumReport> reports;
     CameraDesc camera;
@@ -62,15 +63,23 @@ Subject loadSceneSubject(const std::string& path) {
     return s;
 }
 
-Subject loadMeshSubject(const std::string& path) {
+Subject loadMeshSubject(const std::string& path, bool strict) {
     Subject s;
     std::vector<std::string> warnings;
     TriangleMesh surface = readMesh(path, &warnings);
     for (const auto& w : warnings) std::fprintf(stderr, "tetglow: warning: %s\n", w.c_str());
+    TetOptions options;
+    options.strict = strict;
+    ValidationReport report;
+    const TriangleMesh input = surface;
     try {
-        s.mesh = std::make_unique<TetVolume>(tetrahedralize(std::move(surface)));
+        s.mesh = std::make_unique<TetVolume>(tetrahedralize(std::move(surface), options, nullptr, &report));
     } catch (const InputError& e) {
         throw InputError(path + ": " + e.what());
+    }
+    if (report.repair.applied) {
+        std::fprintf(stderr, "%s: repaired: %s\n", path.c_str(), report.repair.summary().c_str());
+        s.broken = std::make_unique<TriangleMesh>(input);
     }
     s.volumes.push_back(s.mesh.get());
     s.reports.push_back(describe(std::filesystem::path(path).filename().string(), *s.mesh));
@@ -103,8 +112,9 @@ void run(const Options& o) {
         throw InputError(o.picture + ": the picture must be an .exr file");
     for (const auto& path : {o.picture, o.picture.empty() ? "" : previewPath(o.picture), o.csv})
         if (!path.empty()) prepareOutput(path, {o.input});
-    Subject s = std::filesystem::path(o.input).extension() == ".json" ? loadSceneSubject(o.input) : loadMeshSubject(o.input);
-    for (size_t m = 0; m < s.volumes.size(); ++m) s.reports[m].comparison = compareBoundary(*s.volumes[m], o.comparison);
+    Subject s = std::filesystem::path(o.input).extension() == ".json" ? loadSceneSubject(o.input) : loadMeshSubject(o.input, o.strict);
+    for (size_t m = 0; m < s.volumes.size(); ++m)
+        s.reports[m].comparison = compareBoundary(*s.volumes[m], o.comparison, s.broken.get());
     if (!o.picture.empty()) writePicture(o, s);
     if (!o.csv.empty()) {
         writeStream(o.csv, [&](std::ostream& csv) {
@@ -150,6 +160,8 @@ void addCompareBoundaryCommand(CLI::App& app) {
         ->check(kNonEmpty);
     cmd->add_option("--picture-width", o->pictureWidth, "Width of the picture (default: the scene's; 320 for a mesh)")
         ->check(CLI::Range(1, kMaxResolution));
+    cmd->add_flag("--strict", o->strict, "Refuse a broken mesh instead of repairing it (a repaired one is compared "
+                                         "with parity on the mesh as read and with its winding number)");
     cmd->callback([o] { run(*o); });
 }
 

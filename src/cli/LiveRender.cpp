@@ -83,7 +83,7 @@ void LiveRender::renderGeneration(const SceneDesc& desc, uint64_t generation) {
     scene_->setCamera(desc.camera);
     const auto integrator = makeIntegrator(*scene_, desc.integrator);
     options.spp = desc.integrator.spp;  // where `tetglow render` stops too
-    options.passDone = [&](const Film& film, int passes) { publish(film.image(), passes, generation, seconds()); };
+    options.passDone = [&](const PassReport& p) { publish(p.film.image(), p.passes, generation, seconds()); };
     render(*scene_, *integrator, options);
 }
 

@@ -1,35 +1,37 @@
 #include "cli/Progress.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <unistd.h>
 
 namespace tetglow::cli {
 
-Progress::Progress(std::string label)
-    : label_(std::move(label)), terminal_(isatty(STDERR_FILENO)), start_(std::chrono::steady_clock::now()) {}
+Progress::Progress(std::string label, RenderPlan plan) : label_(std::move(label)), plan_(plan), terminal_(isatty(STDERR_FILENO)) {}
 
-void Progress::update(double fraction) {
-    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-    if (terminal_) {
-        const int perMille = int(fraction * 1000);
-        if (perMille == lastShown_) return;
-        lastShown_ = perMille;
-        constexpr int kWidth = 40;
-        const int filled = int(fraction * kWidth);
-        const double left = fraction > 0 ? elapsed * (1 - fraction) / fraction : 0;
-        std::fprintf(stderr, "\r%s [%.*s%*s] %5.1f%%  %.1f s, %.1f s left ", label_.c_str(), filled,
-                     "########################################", kWidth - filled, "", 100 * fraction, elapsed, left);
-    } else {
-        const int tens = int(fraction * 10);
-        if (tens == lastShown_) return;
-        lastShown_ = tens;
-        std::fprintf(stderr, "%s: %d%% after %.1f s\n", label_.c_str(), 10 * tens, elapsed);
-    }
+void Progress::pass(const PassReport& r) {
+    // The part of the way done, by whichever limit is nearest. The noise falls as 1/passes, so
+    // the passes done are target/estimate of the passes needed.
+    double fraction = plan_.passes > 0 ? double(r.passes) / plan_.passes : 0;
+    if (plan_.timeLimit > 0) fraction = std::max(fraction, r.seconds / plan_.timeLimit);
+    if (plan_.noiseTarget > 0 && r.noise && *r.noise > 0) fraction = std::max(fraction, plan_.noiseTarget / *r.noise);
+    fraction = std::clamp(fraction, 1e-9, 1.0);
+    const int tenth = int(fraction * 10);
+    if (!terminal_ && tenth == lastTenth_) return;
+    lastTenth_ = tenth;
+
+    char noise[96] = "noise: from the second pass";
+    if (r.noise)
+        std::snprintf(noise, sizeof noise, "noise %.3g (relative MSE%s)", *r.noise, plan_.biased ? ", variance only: not the photon bias" : "");
+    const bool counted = plan_.passes > 0 && plan_.timeLimit == 0 && plan_.noiseTarget == 0;
+    std::fprintf(stderr, "%s%s: pass %d%s%s, %.1f s, %.1f s left, %s%s", terminal_ ? "\r" : "", label_.c_str(), r.passes,
+                 counted ? " of " : "", counted ? std::to_string(plan_.passes).c_str() : "", r.seconds, r.seconds * (1 - fraction) / fraction,
+                 noise, terminal_ ? "   " : "\n");
     std::fflush(stderr);
+    shown_ = true;
 }
 
 void Progress::finish() {
-    if (terminal_ && lastShown_ >= 0) std::fputc('\n', stderr);
+    if (terminal_ && shown_) std::fputc('\n', stderr);
 }
 
 }  // namespace tetglow::cli

@@ -1,21 +1,31 @@
-// Progress on stderr: a bar redrawn in place on a terminal, plain lines every 10% otherwise.
+// The render's progress on stderr, one line per pass: passes done, elapsed, time left and the
+// noise estimate. Redrawn in place on a terminal; otherwise a line at every tenth of the way.
 #pragma once
-#include <chrono>
 #include <string>
+
+#include "integrators/Renderer.h"
 
 namespace tetglow::cli {
 
+// Where the render stops: the first of these reached (0: no such limit).
+struct RenderPlan {
+    int passes = 0;
+    double timeLimit = 0, noiseTarget = 0;
+    bool biased = false;  // the noise estimate leaves out a bias (photon integrator)
+};
+
 class Progress {
 public:
-    explicit Progress(std::string label);
-    void update(double fraction);  // 0..1; cheap to call often
-    void finish();                 // ends the bar's line
+    Progress(std::string label, RenderPlan plan);
+    void pass(const PassReport& report);
+    void finish();  // ends the line on a terminal
 
 private:
     std::string label_;
+    RenderPlan plan_;
     bool terminal_;
-    int lastShown_ = -1;  // per mille on a terminal, tens of percent otherwise
-    std::chrono::steady_clock::time_point start_;
+    int lastTenth_ = -1;
+    bool shown_ = false;
 };
 
 }  // namespace tetglow::cli

@@ -51,13 +51,13 @@ std::vector<CLI::Option*> addRenderArgs(CLI::App* cmd, RenderArgs& o) {
     cmd->add_option("scene", o.scene, "Scene file: JSON, or pbrt-v3 (.pbrt); see docs/FORMAT.md")->required()->check(CLI::ExistingFile);
     std::vector<CLI::Option*> options;
     auto add = [&](CLI::Option* option) { return options.push_back(option), option; };
-    add(cmd->add_option("--integrator", o.integrator, "volpath (reference), single (the baseline's ray march) or photon")
+    add(cmd->add_option("--integrator", o.integrator, "volpath (reference), single (the parity baseline's ray march) or photon")
             ->check(CLI::IsMember(namesOf(kIntegratorNames))));
     add(cmd->add_option("--spp", o.spp, "Samples per pixel")->check(CLI::Range(1, kMaxSpp)));
     add(cmd->add_option("--threads", o.threads, "Threads (default: all cores)")->check(CLI::Range(1, 1024)));
     add(cmd->add_option("--seed", o.seed, "Random seed: the same seed gives the same image at any thread count")->check(inRange(kNonNegative)));
     add(cmd->add_option("--resolution", o.resolution, "Image size WxH")->check(kNonEmpty));
-    add(cmd->add_option("--boundary", o.boundary, "single: where the medium is: tet (exact), parity (the parity test) or bbox")
+    add(cmd->add_option("--boundary", o.boundary, "single: where the medium is: tet (exact), parity (the parity baseline's ray-parity test) or bbox")
             ->check(CLI::IsMember(namesOf(kBoundaryNames))));
     add(cmd->add_option("--step", o.step, "single: ray-march step in world units")->check(inRange(kPositive)));
     add(cmd->add_option("--max-depth", o.maxDepth, "Events per path")->check(CLI::Range(1, kMaxDepth)));
@@ -67,7 +67,7 @@ std::vector<CLI::Option*> addRenderArgs(CLI::App* cmd, RenderArgs& o) {
     add(cmd->add_option("--radius", o.radius, "photon: a fixed radius (world units) instead of --k")
             ->check(inRange(kPositive))
             ->excludes(k));
-    add(cmd->add_option("--estimate", o.estimate, "photon: knn-march (the baseline's march with a k-NN lookup per step) or beam")
+    add(cmd->add_option("--estimate", o.estimate, "photon: knn-march (the parity baseline's march with a k-NN lookup per step) or beam")
             ->check(CLI::IsMember(namesOf(kEstimateNames))));
     add(cmd->add_option("--boundary-correction", o.boundaryCorrection, "photon: divide each kernel by the part of its ball inside the medium (on|off)")
             ->check(CLI::IsMember({"on", "off"})));

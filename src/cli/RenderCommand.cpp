@@ -4,12 +4,14 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <optional>
 #include <tuple>
 
 #include "base/OutputFile.h"
 #include "cli/Commands.h"
 #include "cli/Interrupt.h"
 #include "cli/Progress.h"
+#include "cli/ReferenceLog.h"
 #include "cli/RenderArgs.h"
 #include "integrators/Renderer.h"
 #include "integrators/photon/PhotonIntegrator.h"
@@ -24,8 +26,9 @@ namespace {
 
 struct Options {
     RenderArgs args;
-    std::string output, passRange;
+    std::string output, passRange, reference;
     int frame = -1;
+    double noise = 0;
     bool tetsOnly = false;
 };
 
@@ -37,6 +40,7 @@ std::string outputPath(const Options& o, const SceneDesc& scene) {
 
 void run(const Options& o) {
     SceneDesc desc = loadSceneWith(o.args);
+    if (o.noise > 0 && !o.args.spp && !(o.args.time > 0)) desc.integrator.spp = kMaxSpp;  // the noise decides when to stop
     PartInfo part;
     if (!o.passRange.empty()) {
         std::tie(part.firstPass, part.endPass) = parseRange("--pass-range", o.passRange, desc.integrator.spp, "passes");
@@ -55,6 +59,11 @@ void run(const Options& o) {
         prepareOutput(output, desc.inputs);
         if (o.passRange.empty()) prepareOutput(previewPath(output), desc.inputs);
     }
+    std::optional<ReferenceLog> reference;
+    if (!o.reference.empty() && !o.tetsOnly) {
+        prepareOutput(errorLogPath(output), desc.inputs);
+        reference.emplace(o.reference, errorLogPath(output), desc.camera.width, desc.camera.height);
+    }
 
     const Scene scene(desc);
     for (const auto& m : scene.volumes())
@@ -71,9 +80,14 @@ void run(const Options& o) {
     options.timeLimit = desc.integrator.timeLimit;
     options.seed = desc.integrator.seed;
     options.threads = o.args.threads;
+    options.noiseTarget = o.noise;
     options.cancel = &interrupted();
-    Progress progress("render");
-    options.progress = [&](double f) { progress.update(f); };
+    Progress progress("render", {(part.endPass > 0 ? part.endPass : options.spp) - part.firstPass, options.timeLimit, options.noiseTarget,
+                                 desc.integrator.type == IntegratorType::Photon});
+    options.passDone = [&](const PassReport& r) {
+        progress.pass(r);
+        if (reference) reference->pass(r);
+    };
     // From the first pass until the files are renamed into place: a signal in the middle of the
     // write lets the write finish.
     InterruptGuard guard;
@@ -96,7 +110,8 @@ void run(const Options& o) {
                      result.cancelled ? " (and the tiles of the next)" : "");
     if (result.droppedSamples) std::fprintf(stderr, "warning: %llu samples were NaN or Inf and were dropped\n", (unsigned long long)result.droppedSamples);
     if (o.passRange.empty())
-        std::printf("%s and %s: %dx%d, %d spp\n", output.c_str(), previewPath(output).c_str(), desc.camera.width, desc.camera.height, result.passes);
+        std::printf("%s and %s: %dx%d, %d spp%s\n", output.c_str(), previewPath(output).c_str(), desc.camera.width, desc.camera.height,
+                    result.passes, result.noise ? (", noise " + std::to_string(*result.noise) + " (estimated relative MSE)").c_str() : "");
     else
         std::printf("%s: part of %s frame %d: passes %s of %d, %dx%d\n", output.c_str(), o.args.scene.c_str(), part.frame, o.passRange.c_str(),
                     part.totalPasses, desc.camera.width, desc.camera.height);
@@ -127,6 +142,13 @@ void addRenderCommand(CLI::App& app) {
                     "Render passes A..B-1 of the scene's (A:B), each with its own seed and radius, into a part for `tetglow merge`")
         ->excludes(time);
     cmd->add_option("--frame", o->frame, "The frame of the scene's turntable to render (from 0)")->check(CLI::NonNegativeNumber);
+    cmd->add_option("--noise", o->noise,
+                    "Stop when the estimated relative MSE falls to this (from the fourth pass on; --spp and --time cap it)")
+        ->check(CLI::PositiveNumber)
+        ->excludes("--pass-range");
+    cmd->add_option("--reference", o->reference, "After each pass, print the relative MSE against this EXR and add it to a CSV beside the image")
+        ->check(CLI::ExistingFile)
+        ->excludes("--pass-range");
     cmd->add_flag("--tetrahedralize-only", o->tetsOnly, "Only fill the tet cache with the scene's media, render nothing");
     cmd->callback([o] { run(*o); });
 }

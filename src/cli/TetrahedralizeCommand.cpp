@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <set>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -22,17 +23,67 @@ struct Options {
     TetOptions tet;
 };
 
-void writeVtk(const TetMesh& m, std::ostream& out) {
+// The tets as cells of type 10, then the faces a repair spanned across holes as triangles
+// (type 5, region -1, spanned 1), so that ParaView shows the repairs.
+void writeVtk(const TetMesh& m, const std::vector<uint32_t>& spanned, std::ostream& out) {
     out.precision(9);
     out << "# vtk DataFile Version 3.0\ntetglow tetrahedral mesh\nASCII\nDATASET UNSTRUCTURED_GRID\n";
     out << "POINTS " << m.vertices.size() << " double\n";
     for (const auto& v : m.vertices) out << v.x << ' ' << v.y << ' ' << v.z << '\n';
-    out << "CELLS " << m.tets.size() << ' ' << 5 * m.tets.size() << '\n';
+    const size_t cells = m.tets.size() + spanned.size();
+    out << "CELLS " << cells << ' ' << 5 * m.tets.size() + 4 * spanned.size() << '\n';
     for (const auto& t : m.tets) out << "4 " << t[0] << ' ' << t[1] << ' ' << t[2] << ' ' << t[3] << '\n';
-    out << "CELL_TYPES " << m.tets.size() << '\n';
+    for (uint32_t s : spanned) out << "3 " << m.surface[s][0] << ' ' << m.surface[s][1] << ' ' << m.surface[s][2] << '\n';
+    out << "CELL_TYPES " << cells << '\n';
     for (size_t i = 0; i < m.tets.size(); ++i) out << "10\n";
-    out << "CELL_DATA " << m.tets.size() << "\nSCALARS region int 1\nLOOKUP_TABLE default\n";
+    for (size_t i = 0; i < spanned.size(); ++i) out << "5\n";
+    out << "CELL_DATA " << cells << "\nSCALARS region int 1\nLOOKUP_TABLE default\n";
     for (uint32_t t = 0; t < m.tets.size(); ++t) out << m.region(t) << '\n';
+    for (size_t i = 0; i < spanned.size(); ++i) out << "-1\n";
+    if (spanned.empty()) return;
+    out << "SCALARS spanned int 1\nLOOKUP_TABLE default\n";
+    for (size_t i = 0; i < cells; ++i) out << (i >= m.tets.size()) << '\n';
+}
+
+// The boundary triangles (of the tet mesh) that repairs spanned across holes.
+std::vector<uint32_t> spannedFaces(const TetMesh& mesh, const std::vector<ValidationReport>& reports) {
+    std::set<std::array<uint32_t, 2>> spanned;
+    for (uint32_t i = 0; i < reports.size(); ++i)
+        for (uint32_t t : reports[i].repair.spannedTriangles) spanned.insert({i, t});
+    std::vector<uint32_t> faces;
+    for (uint32_t s = 0; s < mesh.surfaceSource.size(); ++s)
+        if (spanned.count(mesh.surfaceSource[s])) faces.push_back(s);
+    return faces;
+}
+
+nlohmann::json positions(const std::vector<glm::dvec3>& list) {
+    nlohmann::json j = nlohmann::json::array();
+    for (const auto& p : list) j.push_back({p.x, p.y, p.z});
+    return j;
+}
+
+// What a repair did, with positions (null where the mesh took the exact path).
+nlohmann::json repairJson(const RepairReport& r) {
+    if (!r.applied) return nullptr;
+    nlohmann::json holes = nlohmann::json::array();
+    for (const auto& h : r.holes) holes.push_back({{"centre", {h.centre.x, h.centre.y, h.centre.z}}, {"area", h.area}, {"faces", h.faces}});
+    return {{"reason", r.reason},
+            {"summary", r.summary()},
+            {"holes", holes},
+            {"spanned_area", r.spannedArea},
+            {"boundary_area", r.boundaryArea},
+            {"hole_edges", r.holeEdges},
+            {"non_manifold_edges", r.nonManifoldEdges},
+            {"crossing_pairs", r.crossingPairs},
+            {"crossings_at", positions(r.crossingAt)},
+            {"parts_unioned", r.partsUnioned},
+            {"flipped_faces", r.flippedTriangles},
+            {"flipped_at", positions(r.flippedAt)},
+            {"duplicate_faces_dropped", r.duplicatesDropped},
+            {"duplicates_at", positions(r.duplicateAt)},
+            {"zero_area_dropped", r.degenerateDropped},
+            {"zero_area_at", positions(r.degenerateAt)},
+            {"winding_number_range", {r.minWinding, r.maxWinding}}};
 }
 
 // Per region: its tets, their volume against the volume its surfaces enclose (its mesh's
@@ -69,9 +120,7 @@ void run(const Options& o) {
     tetOptions.useCache = !o.noCache;
     TetStats stats;
     std::vector<ValidationReport> reports;
-    // One mesh keeps its messages unprefixed; several name the file.
-    const std::vector<std::string> names = o.meshes.size() == 1 ? std::vector<std::string>{""} : o.meshes;
-    const TetMesh mesh = tetrahedralize(std::move(surfaces), names, tetOptions, &stats, &reports);
+    const TetMesh mesh = tetrahedralize(std::move(surfaces), o.meshes, tetOptions, &stats, &reports);
     double meshVolume = 0;
     size_t components = 0;
     std::vector<std::string> notes;
@@ -86,7 +135,7 @@ void run(const Options& o) {
     if (!o.output.empty()) {
         const std::string ext = std::filesystem::path(o.output).extension().string();
         if (ext == ".vtk")
-            writeStream(o.output, [&](std::ostream& out) { writeVtk(mesh, out); });
+            writeStream(o.output, [&](std::ostream& out) { writeVtk(mesh, spannedFaces(mesh, reports), out); });
         else
             writeAtomically(o.output, [&](const std::string& temporary) { writeTetMesh(mesh, 0, temporary); });
     }
@@ -100,7 +149,8 @@ void run(const Options& o) {
                                   {"tet_volume", regions[r].tetVolume},
                                   {"enclosed_volume", regions[r].enclosedVolume},
                                   {"volume_relative_error", regions[r].relError},
-                                  {"boundary_faces", regions[r].boundaryFaces}});
+                                  {"boundary_faces", regions[r].boundaryFaces},
+                                  {"repair", repairJson(reports[r].repair)}});
         nlohmann::json j = {{"mesh", o.meshes.size() == 1 ? nlohmann::json(o.meshes[0]) : nlohmann::json(o.meshes)},
                             {"switches", tetOptions.switches()},
                             {"tets", mesh.tets.size()},
@@ -124,8 +174,13 @@ void run(const Options& o) {
     for (const auto& n : notes) std::printf("repaired         %s\n", n.c_str());
     std::printf("tetrahedra       %zu (%zu bytes each + vertices)\n", mesh.tets.size(), mesh.bytesPerTet());
     std::printf("vertices         %zu (%zu Steiner points)\n", mesh.vertices.size(), steiner);
-    std::printf("boundary faces   %zu (one per input triangle%s)\n", mesh.surface.size(),
-                o.meshes.size() > 1 ? "; shared triangles once" : "");
+    const size_t spanned = spannedFaces(mesh, reports).size();
+    if (spanned)
+        std::printf("boundary faces   %zu (%zu input triangles or their pieces, %zu tet faces across holes)\n",
+                    mesh.surface.size(), mesh.surface.size() - spanned, spanned);
+    else
+        std::printf("boundary faces   %zu (one per input triangle or piece%s)\n", mesh.surface.size(),
+                    o.meshes.size() > 1 ? "; shared triangles once" : "");
     std::printf("volume           mesh %.12g, tets %.12g, relative difference %.2e\n", meshVolume, tetVolume, relError);
     if (o.meshes.size() > 1) {
         std::printf("regions          (volume enclosed: the mesh's minus the meshes nested in it)\n");
@@ -154,6 +209,8 @@ void addTetrahedralizeCommand(CLI::App& app) {
     cmd->add_option("--max-volume", o->tet.maxVolume, "Largest tet volume (TetGen -a); adds Steiner points")
         ->check(inRange(kPositive));
     cmd->add_flag("--no-cache", o->noCache, "Always run TetGen, do not read or write the cache");
+    cmd->add_flag("--strict", o->tet.strict, "Refuse a mesh that is not closed, manifold and free of self-intersections "
+                                             "instead of repairing it; the error counts and locates every problem");
     cmd->callback([o] { run(*o); });
 }
 

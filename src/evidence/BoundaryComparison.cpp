@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <memory>
 
 #include "integrators/MarchStep.h"
 #include "sampling/Rng.h"
 #include "sampling/Sampling.h"
+#include "tet/WindingNumber.h"
 
 namespace tetglow {
 
@@ -151,18 +153,23 @@ ChordTable compareChords(const std::vector<Line>& lines, const std::vector<Chord
     return table;
 }
 
-BoundaryComparison compareBoundary(const TetVolume& volume, const ComparisonOptions& options) {
+BoundaryComparison compareBoundary(const TetVolume& volume, const ComparisonOptions& options, const TriangleMesh* input) {
     const TriangleMesh surface = volume.mesh().surfaceMesh();
     const Bounds3& box = volume.bounds();
+    // A repaired mesh: parity on the input as it was, beside its winding number.
+    std::unique_ptr<SurfaceBVH> inputBvh = input ? std::make_unique<SurfaceBVH>(input->positions, input->triangles) : nullptr;
+    const SurfaceBVH& bvh = inputBvh ? *inputBvh : volume.bvh();
+    auto tests = insideTests(&volume, bvh, box);
+    std::unique_ptr<WindingNumber> winding = input ? std::make_unique<WindingNumber>(*input) : nullptr;
+    if (winding) tests.push_back({"winding number", [&winding](const glm::dvec3& p) { return winding->classify(p) > 0.5; }});
     BoundaryComparison result;
-    result.classification = compareClassification(samplePoints(surface, options.shells, options.points, options.seed),
-                                                  insideTests(&volume, volume.bvh(), box),
+    result.classification = compareClassification(samplePoints(surface, options.shells, options.points, options.seed), tests,
                                                   [&](const glm::dvec3& p) { return std::optional(volume.locate(p) >= 0); });
     std::vector<double> steps = options.steps;
     if (steps.empty())
         for (double fraction : {1.0 / 20, 1.0 / 100, 1.0 / 500}) steps.push_back(fraction * box.diagonal());
     for (double h : steps) checkMarchStep("--steps", h, box.diagonal(), resolutionOf(box, box.lo));  // lines within the box
-    result.chords = compareChords(sampleLines(box, options.rays, options.seed), chordTests(&volume, volume.bvh(), steps),
+    result.chords = compareChords(sampleLines(box, options.rays, options.seed), chordTests(&volume, bvh, steps),
                                   [&](const Line& line) { return tetChord(volume, line); });
     return result;
 }

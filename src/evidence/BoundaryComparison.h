@@ -1,4 +1,4 @@
-// Where is the medium? The exact tets against the parity baseline and the bounding box, on
+// Where is the medium? The exact tets against the parity baseline's test and the bounding box, on
 // the same points and the same rays: error against a ground truth and time per query. The
 // truth is the tets by default; the tests give an analytic shape instead.
 #pragma once
@@ -61,7 +61,7 @@ struct ChordTest {
     std::function<double(const Line&)> length;
 };
 
-// tets (the walk's segments, exact), the baseline's march (1 parity ray per step, each step's
+// tets (the walk's segments, exact), the parity baseline's march (1 parity ray per step, each step's
 // sample standing for the whole step) at each step, and `box` (the whole box is medium).
 std::vector<ChordTest> chordTests(const TetVolume* tets, const SurfaceBVH& bvh, const std::vector<double>& steps);
 double tetChord(const TetVolume& tets, const Line& line);
@@ -94,7 +94,8 @@ struct BoundaryComparison {
     ChordTable chords;
 };
 
-// Every method against the tets.
-BoundaryComparison compareBoundary(const TetVolume& volume, const ComparisonOptions& options);
+// Every method against the tets. With `input` (a broken mesh the tets repaired), the parity
+// tests use the input as it was, and the input's winding number (> 1/2) joins them.
+BoundaryComparison compareBoundary(const TetVolume& volume, const ComparisonOptions& options, const TriangleMesh* input = nullptr);
 
 }  // namespace tetglow

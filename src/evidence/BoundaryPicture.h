@@ -1,4 +1,4 @@
-// The parity baseline's debug picture: every camera ray is marched through each
+// The parity baseline's debug picture of its inside test: every camera ray is marched through each
 // medium's bounding box, and each sample is classified by the tets and by the parity test.
 // Green: inside by both; dim red: in the box but outside by both (what --boundary bbox would
 // fill); magenta: the two disagree, so a single wrong sample shows.

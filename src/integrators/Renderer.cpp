@@ -1,28 +1,25 @@
 #include "integrators/Renderer.h"
 
 #include <chrono>
-#include <mutex>
 
 #include <tbb/blocked_range2d.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
 #include "base/Memory.h"
+#include "render/NoiseEstimate.h"
 
 namespace tetglow {
 
 RenderResult render(const Scene& scene, Integrator& integrator, const RenderOptions& options) {
     const auto start = std::chrono::steady_clock::now();
     const Camera& camera = scene.camera();
-    // The film, the image made from it and the PNG preview's bytes.
-    checkMemory(double(camera.width()) * camera.height() * (sizeof(FixedSum) + 3 * sizeof(uint32_t) + sizeof(glm::vec3) + 3),
+    // The film and its first half-image, the image made from it and the PNG preview's bytes.
+    checkMemory(double(camera.width()) * camera.height() * 2 * (sizeof(FixedSum) + 3 * sizeof(uint32_t) + sizeof(glm::vec3) + 3),
                 "an image of " + std::to_string(camera.width()) + "x" + std::to_string(camera.height()) + " pixels");
-    Film film(camera.width(), camera.height());
+    Film film(camera.width(), camera.height()), half(camera.width(), camera.height());
     RenderResult result;
-    std::mutex progressMutex;
-    std::atomic<uint64_t> pixelsDone{0};
     const int endPass = options.endPass > 0 ? options.endPass : options.spp;
-    const double totalPixels = double(endPass - options.firstPass) * camera.height() * camera.width();
     auto cancelled = [&] { return options.cancel && options.cancel->load(std::memory_order_relaxed); };
 
     tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
@@ -38,17 +35,17 @@ RenderResult render(const Scene& scene, Integrator& integrator, const RenderOpti
                         // The pass is the sample's index in the pixel's sequence: passes stratify.
                         Rng rng = Rng::pixelSample(options.seed, uint64_t(y) * camera.width() + x, uint32_t(pass));
                         const double jx = rng.uniform(), jy = rng.uniform();
-                        film.add(x, y, integrator.radiance(camera.generateRay(x + jx, y + jy), rng));
+                        const RGB L = integrator.radiance(camera.generateRay(x + jx, y + jy), rng);
+                        film.add(x, y, L);
+                        if (inFirstHalf(pass)) half.add(x, y, L);
                     }
-                if (!options.progress) return;
-                const uint64_t done = pixelsDone += uint64_t(tile.rows().size()) * tile.cols().size();
-                std::unique_lock lock(progressMutex, std::try_to_lock);
-                if (lock) options.progress(options.timeLimit > 0 ? std::min(1.0, elapsed() / options.timeLimit) : double(done) / totalPixels);
             });
         });
         if (cancelled()) break;
         result.passes = pass + 1 - options.firstPass;
-        if (options.passDone) options.passDone(film, result.passes);
+        result.noise = estimateRelMse(film, half);
+        if (options.passDone) options.passDone({film, result.passes, elapsed(), result.noise});
+        if (options.noiseTarget > 0 && result.passes >= 4 && result.noise && *result.noise <= options.noiseTarget) break;
     }
     result.cancelled = cancelled();
     result.image = film.image();

@@ -2,11 +2,20 @@
 #pragma once
 #include <atomic>
 #include <functional>
+#include <optional>
 
 #include "integrators/Integrator.h"
 #include "render/Film.h"
 
 namespace tetglow {
+
+// What the renderer knows after each complete pass.
+struct PassReport {
+    const Film& film;
+    int passes = 0;                // complete passes so far
+    double seconds = 0;
+    std::optional<double> noise;   // estimateRelMse (render/NoiseEstimate.h), from the second pass on
+};
 
 struct RenderOptions {
     int spp = 16;
@@ -16,10 +25,13 @@ struct RenderOptions {
     uint64_t seed = 0;
     int threads = 0;  // 0: all cores
     double timeLimit = 0;  // > 0: no pass starts after this many seconds (at least one runs)
-    const std::atomic<bool>* cancel = nullptr;    // checked between tiles
-    std::function<void(double fraction)> progress;  // called from one thread at a time
-    // After each complete pass, with the film so far (live previews), on the thread that called render().
-    std::function<void(const Film& film, int passes)> passDone;
+    // > 0: stop after the first complete pass (from the fourth on) whose noise estimate is at
+    // most this. Decided between passes from exact sums, so the same seed stops at the same pass
+    // at any thread count.
+    double noiseTarget = 0;
+    const std::atomic<bool>* cancel = nullptr;  // checked between tiles
+    // After each complete pass (progress, live previews), on the thread that called render().
+    std::function<void(const PassReport&)> passDone;
 };
 
 struct RenderResult {
@@ -29,6 +41,7 @@ struct RenderResult {
     bool cancelled = false;
     uint64_t droppedSamples = 0;  // NaN or Inf radiance, discarded
     double seconds = 0;
+    std::optional<double> noise;  // the last complete pass's estimate
 };
 
 // Pixel (x, y) in pass s uses Rng::pixelSample(seed, pixel index, s) only, so the image is the

@@ -6,7 +6,7 @@
 #include "integrators/DirectLighting.h"
 #include "integrators/PathStep.h"
 #include "render/Material.h"
-#include "tet/MeshValidation.h"
+#include "tet/InteriorRepair.h"
 
 namespace tetglow {
 
@@ -29,7 +29,7 @@ SingleScatterIntegrator::SingleScatterIntegrator(const Scene& scene, const Integ
     if (mode_ == BoundaryMode::Tet) return;
     for (const MediumDesc& m : scene.desc().media) {
         TriangleMesh own = m.boundary;
-        validateAndRepair(own);  // the mesh as its tets have it
+        prepareSurface(own, m.tetOptions.strict);  // the mesh as its tets have it (repaired where broken)
         mediumBoxes_.push_back(bounds(own));
         parity_.push_back(mode_ == BoundaryMode::Parity ? std::make_unique<SurfaceBVH>(own.positions, own.triangles) : nullptr);
     }
@@ -47,7 +47,7 @@ int SingleScatterIntegrator::pick(size_t v, const glm::dvec3& p) const {
 RGB SingleScatterIntegrator::visibility(const Ray& ray, double tMax, Rng& rng) const {
     if (mode_ == BoundaryMode::Tet) return transmittance(scene_, ray, tMax, scene_.mediumAt(ray.o));
     if (!scene_.unoccluded(ray, tMax)) return RGB(0);
-    // The baseline's shadow ray: march through each volume's box, asking the boundary test per step.
+    // The parity baseline's shadow ray: march through each volume's box, asking the boundary test per step.
     RGB tau(0);
     for (size_t v = 0; v < boxes_.size(); ++v) {
         double t0 = 0, t1 = tMax;
@@ -72,7 +72,7 @@ RGB SingleScatterIntegrator::visibility(const Ray& ray, double tMax, Rng& rng) c
 }
 
 RGB SingleScatterIntegrator::inScattered(size_t v, const RegionOptics& optics, const glm::dvec3& p, const glm::dvec3& d, int64_t tet, Rng& rng) const {
-    // Exact transmittance: the baseline's march is the baseline, compared mode against mode.
+    // Exact transmittance: the parity baseline's march is the baseline, compared mode against mode.
     if (mode_ == BoundaryMode::Tet) return directInMedium(scene_, int(v), p, d, uint32_t(tet), rng, false);
     return sampleDirect(scene_, p, rng, false, phaseScattering(optics.phase, d),
                         [&](const Ray& r, double t) { return visibility(r, t, rng); });

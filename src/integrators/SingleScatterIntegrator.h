@@ -3,7 +3,7 @@
 // region by region (shadow rays get the exact transmittance), `parity` asks the parity test at
 // every step (shadow rays march too), `bbox` fills the mesh's bounding box with the medium.
 // Where media nest, parity and bbox pick the innermost medium whose own mesh (or box) holds the
-// point, as the parity test would. Surfaces: specular chains are followed, diffuse surfaces get
+// point, as the parity baseline's test would. Surfaces: specular chains are followed, diffuse surfaces get
 // direct light only.
 #pragma once
 #include <memory>

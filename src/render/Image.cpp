@@ -47,7 +47,7 @@ ImageDiff compare(const Image& test, const Image& reference) {
                 // In double: float differences of large values would overflow when squared.
                 const double b = reference.at(x, y)[c], e = a[c] - b;
                 sumSq += e * e;
-                sumRel += e * e / (b * b + 0.01);
+                sumRel += e * e / (b * b + kRelMseFloor);
                 sumAbs += std::abs(e);
                 pixelError = std::max(pixelError, std::abs(e));
             }

@@ -21,6 +21,9 @@ private:
     size_t index(int x, int y) const { return static_cast<size_t>(y) * width + x; }
 };
 
+// Added to b^2 in relative errors, so that black pixels do not dominate.
+inline constexpr double kRelMseFloor = 0.01;
+
 // Errors of a test image against a reference, over all pixels and channels whose test pixel is finite.
 struct ImageDiff {
     double rmse = 0;         // sqrt(mean of (a-b)^2)

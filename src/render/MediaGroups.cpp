@@ -1,5 +1,6 @@
 #include "render/MediaGroups.h"
 
+#include <algorithm>
 #include <numeric>
 
 #include "tet/RegionComplex.h"
@@ -19,7 +20,8 @@ std::vector<std::vector<int>> groupMedia(const std::vector<MediumDesc>& media) {
         std::vector<TriangleMesh> surfaces;
         std::vector<std::string> names;
         for (const MediumDesc& m : media) surfaces.push_back(m.boundary), names.push_back(m.name);
-        const RegionComplex complex = validatedComplex(std::move(surfaces), names);
+        const bool strict = std::any_of(media.begin(), media.end(), [](const MediumDesc& m) { return m.tetOptions.strict; });
+        const RegionComplex complex = validatedComplex(std::move(surfaces), names, strict);
         parent = complex.parent;
         for (int i = 0; i < n; ++i)
             if (parent[i] >= 0) root[find(i)] = find(parent[i]);
@@ -46,6 +48,7 @@ TetOptions groupTetOptions(const std::vector<MediumDesc>& media, const std::vect
     for (int i : group) {
         finest(options.maxVolume, media[i].tetOptions.maxVolume);
         finest(options.radiusEdgeRatio, media[i].tetOptions.radiusEdgeRatio);
+        options.strict = options.strict || media[i].tetOptions.strict;
     }
     return options;
 }

@@ -110,7 +110,7 @@ public:
     // The volume and tet that hold point p (the camera), for starting paths.
     VolumeState mediumAt(const glm::dvec3& p) const;
     // The closest hit that is not an index-matched boundary (those pass light unchanged), as
-    // the seed found it: Embree's float hits on every surface, media boundaries and interfaces
+    // the parity baseline found it: Embree's float hits on every surface, media boundaries and interfaces
     // included, whatever medium the ray is in (for the single-scattering baseline).
     std::optional<Intersection> intersectOpaque(const Ray& ray, double tMax = INFINITY) const;
     // No surface but index-matched boundaries between ray.o and ray.at(tMax) (media ignored).

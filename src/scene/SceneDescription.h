@@ -99,7 +99,7 @@ struct MediumDesc {
 
 enum class IntegratorType { VolPath, Single, Photon };
 enum class BoundaryMode { Tet, Parity, Bbox };
-// The photon integrator's volume estimate along eye rays: the baseline's ray march with a k-NN
+// The photon integrator's volume estimate along eye rays: the parity baseline's ray march with a k-NN
 // lookup per step, or the beam radiance estimate (Jarosz, Zwicker, Jensen 2008).
 enum class PhotonEstimate { KnnMarch, Beam };
 

@@ -177,6 +177,7 @@ TetOptions readTetOptions(JsonObject& o) {
         if (t.radiusEdgeRatio > 0 && t.radiusEdgeRatio <= 1) f.fail("0 (off) or a radius-edge ratio > 1");
     }
     if (auto f = o["max_volume"]) t.maxVolume = f.number(kNonNegative);
+    if (auto f = o["strict"]) t.strict = f.boolean();
     return t;
 }
 

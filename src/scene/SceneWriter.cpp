@@ -121,9 +121,11 @@ private:
 
     // What a medium and a cavity both have.
     Json region(const MediumDesc& m, size_t index) {
+        Json tetgen = {{"quality", m.tetOptions.radiusEdgeRatio}, {"max_volume", m.tetOptions.maxVolume}};
+        if (m.tetOptions.strict) tetgen["strict"] = true;
         return {{"shape", mesh(m.boundary, m.cavity ? "cavity" : "medium", index)},
                 {"boundary", material(m.boundaryMaterial)},
-                {"tetgen", {{"quality", m.tetOptions.radiusEdgeRatio}, {"max_volume", m.tetOptions.maxVolume}}}};
+                {"tetgen", tetgen}};
     }
 
     Json medium(const MediumDesc& m, size_t index) {

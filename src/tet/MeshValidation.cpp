@@ -10,30 +10,34 @@
 
 #include "tet/Predicates.h"
 #include "tet/SelfIntersection.h"
+#include "tet/WindingNumber.h"
 
 namespace tetglow {
-namespace {
 
-std::string vec(const glm::dvec3& p) {
+std::string formatPosition(const glm::dvec3& p) {
     char buf[96];
     std::snprintf(buf, sizeof buf, "(%g, %g, %g)", p.x, p.y, p.z);
     return buf;
 }
 
+namespace {
+
 std::string face(uint32_t t) { return "triangle " + std::to_string(t); }
+
+}  // namespace
 
 void checkFinite(const TriangleMesh& mesh) {
     for (size_t v = 0; v < mesh.positions.size(); ++v) {
         const auto& p = mesh.positions[v];
         if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
-            throw InputError("vertex " + std::to_string(v) + " has a non-finite coordinate " + vec(p));
+            throw InputError("vertex " + std::to_string(v) + " has a non-finite coordinate " + formatPosition(p));
         if (std::abs(p.x) > 1e30 || std::abs(p.y) > 1e30 || std::abs(p.z) > 1e30)
-            throw InputError("vertex " + std::to_string(v) + " is too large for float precision " + vec(p));
+            throw InputError("vertex " + std::to_string(v) + " is too large for float precision " + formatPosition(p));
     }
 }
 
-// Snaps to float, merges identical positions and drops unreferenced vertices; indices are remapped.
-void weldAndCompact(TriangleMesh& mesh, ValidationReport& report) {
+WeldCounts weldVertices(TriangleMesh& mesh) {
+    WeldCounts report;
     for (auto& p : mesh.positions) p = {roundToFloat(p.x), roundToFloat(p.y), roundToFloat(p.z)};
     std::vector<uint32_t> order(mesh.positions.size());
     std::iota(order.begin(), order.end(), 0u);
@@ -46,7 +50,7 @@ void weldAndCompact(TriangleMesh& mesh, ValidationReport& report) {
     for (size_t i = 0; i < order.size(); ++i) {
         const bool same = i > 0 && mesh.positions[order[i]] == mesh.positions[order[i - 1]];
         canonical[order[i]] = same ? canonical[order[i - 1]] : order[i];
-        report.weldedVertices += same;
+        report.welded += same;
     }
     std::vector<uint32_t> remap(mesh.positions.size(), UINT32_MAX);
     std::vector<glm::dvec3> kept;
@@ -59,8 +63,9 @@ void weldAndCompact(TriangleMesh& mesh, ValidationReport& report) {
             }
             v = remap[c];
         }
-    report.unusedVertices = mesh.positions.size() - report.weldedVertices - kept.size();
+    report.unused = mesh.positions.size() - report.welded - kept.size();
     mesh.positions = std::move(kept);
+    return report;
 }
 
 bool collinear(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
@@ -69,6 +74,8 @@ bool collinear(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
            orient2d({a.z, a.x}, {b.z, b.x}, {c.z, c.x}) == 0;
 }
 
+namespace {
+
 void checkTriangles(const TriangleMesh& mesh) {
     std::map<std::array<uint32_t, 3>, uint32_t> seen;
     for (uint32_t t = 0; t < mesh.triangles.size(); ++t) {
@@ -76,7 +83,7 @@ void checkTriangles(const TriangleMesh& mesh) {
         if (v[0] == v[1] || v[1] == v[2] || v[0] == v[2])
             throw InputError("degenerate " + face(t) + ": a vertex is repeated");
         if (collinear(mesh.positions[v[0]], mesh.positions[v[1]], mesh.positions[v[2]]))
-            throw InputError("degenerate " + face(t) + ": zero area (collinear corners) at " + vec(mesh.positions[v[0]]));
+            throw InputError("degenerate " + face(t) + ": zero area (collinear corners) at " + formatPosition(mesh.positions[v[0]]));
         std::sort(v.begin(), v.end());
         auto [it, inserted] = seen.emplace(v, t);
         if (!inserted)
@@ -102,7 +109,7 @@ void checkManifold(const TriangleMesh& mesh, const std::unordered_map<uint64_t, 
         if (e.second.size() != 2 && (!worst || e.second[0] < worst->second[0])) worst = &e;
     if (!worst) return;
     const uint32_t a = uint32_t(worst->first >> 32), b = uint32_t(worst->first);
-    const std::string edge = "edge (" + std::to_string(a) + ", " + std::to_string(b) + ") at " + vec(mesh.positions[a]);
+    const std::string edge = "edge (" + std::to_string(a) + ", " + std::to_string(b) + ") at " + formatPosition(mesh.positions[a]);
     if (worst->second.size() == 1)
         throw InputError("mesh is not closed: " + edge + " belongs only to " + face(worst->second[0]) + " (a hole)");
     throw InputError("non-manifold " + edge + " is shared by " + std::to_string(worst->second.size()) +
@@ -155,16 +162,11 @@ std::vector<uint32_t> orientShells(TriangleMesh& mesh, const std::unordered_map<
     return shell;
 }
 
-// Generalized winding number of the given triangles around p (Van Oosterom-Strackee solid
-// angles): +-1 inside a closed shell, 0 outside, robust for p off the surface.
+// Generalized winding number of the given triangles around p: +-1 inside a closed shell, 0
+// outside, robust for p off the surface.
 double windingNumber(const TriangleMesh& mesh, const std::vector<uint32_t>& tris, const glm::dvec3& p) {
     double omega = 0;
-    for (uint32_t t : tris) {
-        const glm::dvec3 a = mesh.corner(t, 0) - p, b = mesh.corner(t, 1) - p, c = mesh.corner(t, 2) - p;
-        const double la = glm::length(a), lb = glm::length(b), lc = glm::length(c);
-        omega += 2 * std::atan2(glm::dot(a, glm::cross(b, c)),
-                                la * lb * lc + glm::dot(a, b) * lc + glm::dot(b, c) * la + glm::dot(c, a) * lb);
-    }
+    for (uint32_t t : tris) omega += solidAngle(mesh.corner(t, 0), mesh.corner(t, 1), mesh.corner(t, 2), p);
     return omega / (4 * M_PI);
 }
 
@@ -197,7 +199,8 @@ ValidationReport validateAndRepair(TriangleMesh& mesh) {
     ValidationReport report;
     if (mesh.triangles.empty()) throw InputError("mesh has no triangles");
     checkFinite(mesh);
-    weldAndCompact(mesh, report);
+    const WeldCounts weld = weldVertices(mesh);
+    report.weldedVertices = weld.welded, report.unusedVertices = weld.unused;
     checkTriangles(mesh);
     const auto edges = edgeFaces(mesh);
     checkManifold(mesh, edges);

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "tet/RepairReport.h"
 #include "tet/TriangleMesh.h"
 
 namespace tetglow {
@@ -15,6 +16,7 @@ struct ValidationReport {
     size_t components = 0;           // closed shells
     double volume = 0;               // enclosed volume after repair
     std::vector<std::string> notes;  // what was repaired, one line each
+    RepairReport repair;             // a broken mesh's repair (see InteriorRepair.h)
 };
 
 // In order: finite coordinates; positions snapped to float (Embree's precision, so Embree and
@@ -23,5 +25,19 @@ struct ValidationReport {
 // shared by exactly two triangles; no self-intersections; consistent, outward winding per
 // shell (fixed, not rejected); positive volume.
 ValidationReport validateAndRepair(TriangleMesh& mesh);
+
+// "(x, y, z)", as messages give positions.
+std::string formatPosition(const glm::dvec3& p);
+
+// Its steps, for repairs that go further (see InteriorRepair):
+// InputError unless every coordinate is finite and within float range.
+void checkFinite(const TriangleMesh& mesh);
+struct WeldCounts {
+    size_t welded = 0, unused = 0;
+};
+// Snaps positions to float, merges identical positions and drops unreferenced vertices.
+WeldCounts weldVertices(TriangleMesh& mesh);
+// Exactly collinear corners (a zero-area triangle).
+bool collinear(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c);
 
 }  // namespace tetglow

@@ -9,7 +9,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "tet/MeshValidation.h"
+#include "tet/InteriorRepair.h"
 #include "tet/Nesting.h"
 #include "tet/SelfIntersection.h"
 
@@ -178,7 +178,8 @@ RegionComplex buildRegionComplex(const std::vector<TriangleMesh>& surfaces, cons
                     throw InputError(names[a.surface] + " and " + names[b.surface] + " cross: triangle " +
                                      std::to_string(a.triangle) + " of " + names[a.surface] + " meets triangle " +
                                      std::to_string(b.triangle) + " of " + names[b.surface] +
-                                     " (media may nest or share whole triangles, not overlap)");
+                                     " (media may nest or share whole triangles, not overlap; an open vessel is one closed, "
+                                     "cup-shaped mesh, not a solid with a cavity reaching its rim: docs/FORMAT.md, cavities)");
         throw std::logic_error("buildRegionComplex: a surface intersects itself after validation");
     }
     c.parent = findNesting(surfaces, vertexIds, names);
@@ -190,10 +191,10 @@ RegionComplex buildRegionComplex(const std::vector<TriangleMesh>& surfaces, cons
     return c;
 }
 
-RegionComplex validatedComplex(std::vector<TriangleMesh> surfaces, const std::vector<std::string>& names) {
+RegionComplex validatedComplex(std::vector<TriangleMesh> surfaces, const std::vector<std::string>& names, bool strict) {
     for (size_t i = 0; i < surfaces.size(); ++i) {
         try {
-            validateAndRepair(surfaces[i]);
+            prepareSurface(surfaces[i], strict);
         } catch (const InputError& e) {
             throw InputError(names[i] + ": " + e.what());
         }

@@ -33,9 +33,9 @@ RegionComplex singleRegion(const TriangleMesh& surface);
 // both and one pair of triangles) or have the same inside.
 RegionComplex buildRegionComplex(const std::vector<TriangleMesh>& surfaces, const std::vector<std::string>& names);
 
-// Validates and repairs each surface (validateAndRepair; errors prefixed with its name), then
+// Validates and repairs each surface (prepareSurface; errors prefixed with its name), then
 // builds their complex as above.
-RegionComplex validatedComplex(std::vector<TriangleMesh> surfaces, const std::vector<std::string>& names);
+RegionComplex validatedComplex(std::vector<TriangleMesh> surfaces, const std::vector<std::string>& names, bool strict = false);
 
 // Fills complex.seeds; the surfaces and names are the ones it was built from. Throws InputError
 // naming a region that its children leave no room.

@@ -203,32 +203,63 @@ Grid buildGrid(const std::vector<Box>& boxes) {
     return grid;
 }
 
+// The triangles' boxes and the grid over them.
+struct BroadPhase {
+    std::vector<Box> boxes;
+    Grid grid;
+
+    explicit BroadPhase(const TriangleMesh& mesh) : boxes(mesh.triangles.size()) {
+        for (uint32_t t = 0; t < boxes.size(); ++t) {
+            const glm::dvec3 a = mesh.corner(t, 0), b = mesh.corner(t, 1), c = mesh.corner(t, 2);
+            boxes[t] = {glm::min(a, glm::min(b, c)), glm::max(a, glm::max(b, c))};
+        }
+        grid = buildGrid(boxes);
+    }
+    // Calls f(j) for every j > i whose box touches triangle i's, once each.
+    template <class F>
+    void forCandidates(uint32_t i, F&& f) const {
+        forCells(grid, boxes[i], [&](size_t c) {
+            for (uint32_t k = grid.start[c]; k < grid.start[c + 1]; ++k) {
+                const uint32_t j = grid.items[k];
+                // Each pair is visited once, in the cell that holds the low corner of its overlap.
+                if (j > i && boxes[i].overlaps(boxes[j]) && grid.index(grid.cellOf(glm::max(boxes[i].lo, boxes[j].lo))) == c) f(j);
+            }
+        });
+    }
+};
+
 }  // namespace
 
 bool segmentMeetsTriangle(const glm::dvec3& p, const glm::dvec3& q, const Tri& triangle) {
     return segmentHitsTriangle(p, q, side(triangle, p), side(triangle, q), triangle);
 }
 
+std::vector<std::pair<uint32_t, uint32_t>> findSelfIntersections(const TriangleMesh& mesh) {
+    if (mesh.triangles.empty()) return {};
+    const BroadPhase broad(mesh);
+    std::vector<std::vector<uint32_t>> partners(mesh.triangles.size());
+    tbb::parallel_for(tbb::blocked_range<uint32_t>(0, static_cast<uint32_t>(partners.size())), [&](const auto& rows) {
+        for (uint32_t i = rows.begin(); i != rows.end(); ++i)
+            broad.forCandidates(i, [&](uint32_t j) {
+                if (intersectBeyondShared(mesh, i, j)) partners[i].push_back(j);
+            });
+    });
+    std::vector<std::pair<uint32_t, uint32_t>> pairs;
+    for (uint32_t i = 0; i < partners.size(); ++i) {
+        std::sort(partners[i].begin(), partners[i].end());
+        for (uint32_t j : partners[i]) pairs.push_back({i, j});
+    }
+    return pairs;
+}
+
 std::optional<std::pair<uint32_t, uint32_t>> findSelfIntersection(const TriangleMesh& mesh) {
     if (mesh.triangles.empty()) return std::nullopt;
-    std::vector<Box> boxes(mesh.triangles.size());
-    for (uint32_t t = 0; t < boxes.size(); ++t) {
-        const glm::dvec3 a = mesh.corner(t, 0), b = mesh.corner(t, 1), c = mesh.corner(t, 2);
-        boxes[t] = {glm::min(a, glm::min(b, c)), glm::max(a, glm::max(b, c))};
-    }
-    const Grid grid = buildGrid(boxes);
+    const BroadPhase broad(mesh);
     // The lowest j > i whose triangle meets triangle i.
     const auto firstPartner = [&](uint32_t i) {
         std::optional<uint32_t> first;
-        forCells(grid, boxes[i], [&](size_t c) {
-            for (uint32_t k = grid.start[c]; k < grid.start[c + 1]; ++k) {
-                const uint32_t j = grid.items[k];
-                // Each pair is tested once, in the cell that holds the low corner of its overlap.
-                if (j <= i || (first && j >= *first) || !boxes[i].overlaps(boxes[j]) ||
-                    grid.index(grid.cellOf(glm::max(boxes[i].lo, boxes[j].lo))) != c)
-                    continue;
-                if (intersectBeyondShared(mesh, i, j)) first = j;
-            }
+        broad.forCandidates(i, [&](uint32_t j) {
+            if ((!first || j < *first) && intersectBeyondShared(mesh, i, j)) first = j;
         });
         return first;
     };
@@ -236,7 +267,7 @@ std::optional<std::pair<uint32_t, uint32_t>> findSelfIntersection(const Triangle
     // every row before the final one is searched, so the answer does not depend on scheduling.
     constexpr uint64_t none = ~uint64_t{0};
     std::atomic<uint64_t> best{none};
-    tbb::parallel_for(tbb::blocked_range<uint32_t>(0, static_cast<uint32_t>(boxes.size())), [&](const auto& rows) {
+    tbb::parallel_for(tbb::blocked_range<uint32_t>(0, static_cast<uint32_t>(mesh.triangles.size())), [&](const auto& rows) {
         for (uint32_t i = rows.begin(); i != rows.end() && i < best.load() >> 32; ++i)
             if (const auto j = firstPartner(i)) {
                 const uint64_t key = uint64_t{i} << 32 | *j;

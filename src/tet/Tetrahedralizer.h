@@ -14,6 +14,8 @@ struct TetOptions {
     double maxVolume = 0;        // TetGen -a
     std::string cacheDir;        // "" = $TETGLOW_CACHE_DIR, else $XDG_CACHE_HOME/tetglow, else ~/.cache/tetglow
     bool useCache = true;
+    // Refuse a mesh that fails validation (today's checks) instead of repairing it (InteriorRepair.h).
+    bool strict = false;
 
     std::string switches() const;  // the TetGen command line these options give
 };
@@ -30,7 +32,7 @@ struct TetStats {
 inline constexpr double kMaxTets = 1e7;
 void checkTetCount(double volume, double maxVolume);
 
-// Validates and repairs `surface` (see validateAndRepair), then tetrahedralizes its interior.
+// Validates and repairs `surface` (see prepareSurface), then tetrahedralizes its interior.
 // TetGen runs in a child process, so its crashes and thrown ints become InputErrors here.
 TetMesh tetrahedralize(TriangleMesh surface, const TetOptions& options = {}, TetStats* stats = nullptr,
                        ValidationReport* report = nullptr);

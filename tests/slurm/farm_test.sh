@@ -95,14 +95,14 @@ fi
 cat "$dir/bad.err"
 grep -q "task 2 wrote no part: .*part-0000-002.exr'*: the output must name a file, not a folder" "$dir/bad.err" || fail "the error does not name task 2's failure"
 [ ! -e "$dir/bad/sphere.exr" ] || fail "an image was written without task 2's part"
-echo "== a medium TetGen cannot fill: the cache job fails, the array never runs"
-printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\n' > "$dir/open.obj"  # a tetrahedron without a face
+echo "== a medium with no inside: the cache job fails, the array never runs"
+printf 'v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 1 3 4\n' > "$dir/open.obj"  # a flat square: a sheet
 sed 's|{"type": "sphere", "center": \[0, 0, 0\], "radius": 1, "subdivisions": 4}|{"type": "mesh", "file": "open.obj"}|' "$scene" > "$dir/open.json"
 grep -q open.obj "$dir/open.json" || fail "the open scene was not made"
 if "$tetglow" farm "$dir/open.json" --parts 2 --spp 2 -o "$dir/open/o.exr" --wait 2> "$dir/open.err"; then
     fail "farm succeeded although the cache job failed"
 fi
 cat "$dir/open.err"
-grep -q "task 0 wrote no part: it did not run: the tet cache job failed: .*mesh is not closed" "$dir/open.err" || fail "the error does not give the cache job's failure"
+grep -q "task 0 wrote no part: it did not run: the tet cache job failed: .*mesh encloses no volume" "$dir/open.err" || fail "the error does not give the cache job's failure"
 [ ! -e "$dir/open/o.exr" ] || fail "an image was written without parts"
 echo "PASS"

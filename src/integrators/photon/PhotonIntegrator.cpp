@@ -196,7 +196,7 @@ RGB PhotonIntegrator::marchKnn(int v, const Ray& ray, const ColumnProfile& colum
     const double u = rng.uniform();
     RGB L(0);
     // Each exact piece is split into equal steps no longer than the step size, one jittered
-    // sample per step: the baseline's march, without its boundary error.
+    // sample per step: the parity baseline's march, without its boundary error.
     for (const ColumnProfile::Piece& piece : column.pieces()) {
         const RGB sigmaS = medium.at(piece.tet).params.sigmaS;
         if (isBlack(sigmaS)) continue;

@@ -8,7 +8,7 @@
 //   - emission, integrated in closed form;
 //   - single scattering by next-event estimation;
 //   - multiple scattering (and light that reached the medium through glass) from the volume
-//     photons, by the baseline's ray march with a k-NN lookup per step (`knn-march`, optionally
+//     photons, by the parity baseline's ray march with a k-NN lookup per step (`knn-march`, optionally
 //     dividing by the part of the ball inside the medium) or by the beam radiance estimate
 //     (`beam`: every photon ball the ray crosses, integrated exactly along the ray, no step).
 // Photons are kept per medium (region), pooled over regions of one same medium that meet

@@ -1,0 +1,370 @@
+#include "tet/InteriorRepair.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numeric>
+#include <set>
+#include <unordered_map>
+#include <unordered_set>
+
+#include <glm/geometric.hpp>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "tet/IntersectionResolution.h"
+#include "tet/Predicates.h"
+#include "tet/RegionComplex.h"
+#include "tet/SelfIntersection.h"
+#include "tet/TetGenProcess.h"
+#include "tet/WindingNumber.h"
+
+namespace tetglow {
+namespace {
+
+void keep(std::vector<glm::dvec3>& list, const glm::dvec3& p) {
+    if (list.size() < RepairReport::kMaxPositions) list.push_back(p);
+}
+
+uint64_t edgeKey(uint32_t a, uint32_t b) { return (uint64_t(std::min(a, b)) << 32) | std::max(a, b); }
+
+using EdgeMap = std::unordered_map<uint64_t, std::vector<uint32_t>>;
+
+EdgeMap edgeTriangles(const std::vector<std::array<uint32_t, 3>>& triangles) {
+    EdgeMap edges;
+    edges.reserve(triangles.size() * 2);
+    for (uint32_t t = 0; t < triangles.size(); ++t)
+        for (int k = 0; k < 3; ++k) edges[edgeKey(triangles[t][k], triangles[t][(k + 1) % 3])].push_back(t);
+    return edges;
+}
+
+struct UnionFind {
+    std::vector<uint32_t> root;
+    explicit UnionFind(size_t n) : root(n) { std::iota(root.begin(), root.end(), 0u); }
+    uint32_t find(uint32_t i) {
+        while (root[i] != i) i = root[i] = root[root[i]];
+        return i;
+    }
+    void unite(uint32_t a, uint32_t b) { root[find(a)] = find(b); }
+};
+
+double area(const TriangleMesh& m, uint32_t t) {
+    return 0.5 * glm::length(glm::cross(m.corner(t, 1) - m.corner(t, 0), m.corner(t, 2) - m.corner(t, 0)));
+}
+
+glm::dvec3 centroid(const TriangleMesh& m, uint32_t t) { return (m.corner(t, 0) + m.corner(t, 1) + m.corner(t, 2)) / 3.0; }
+
+bool traverses(const std::array<uint32_t, 3>& f, uint32_t a, uint32_t b) {
+    for (int k = 0; k < 3; ++k)
+        if (f[k] == a && f[(k + 1) % 3] == b) return true;
+    return false;
+}
+
+// Consistent winding across every edge that two triangles share (a patch), keeping the winding
+// of the larger area of each patch; then the whole mesh outward (positive volume). Patches that
+// meet only at non-manifold edges or cross keep their own winding, so a cavity wound inward stays one.
+void orientPatches(TriangleMesh& soup, const EdgeMap& edges, RepairReport& report) {
+    const size_t n = soup.triangles.size();
+    std::vector<char> flipped(n, 0), visited(n, 0);
+    std::vector<uint32_t> stack, patch;
+    for (uint32_t seed = 0; seed < n; ++seed) {
+        if (visited[seed]) continue;
+        visited[seed] = 1;
+        stack = {seed};
+        patch.clear();
+        double flippedArea = 0, keptArea = 0;
+        while (!stack.empty()) {
+            const uint32_t t = stack.back();
+            stack.pop_back();
+            patch.push_back(t);
+            (flipped[t] ? flippedArea : keptArea) += area(soup, t);
+            const auto& f = soup.triangles[t];
+            for (int k = 0; k < 3; ++k) {
+                const auto& users = edges.at(edgeKey(f[k], f[(k + 1) % 3]));
+                if (users.size() != 2) continue;
+                const uint32_t other = users[0] == t ? users[1] : users[0];
+                if (visited[other]) continue;
+                visited[other] = 1;
+                // Consistent neighbours traverse the shared edge in opposite directions.
+                if (traverses(soup.triangles[other], f[k], f[(k + 1) % 3])) {
+                    std::swap(soup.triangles[other][1], soup.triangles[other][2]);
+                    flipped[other] = 1;
+                }
+                stack.push_back(other);
+            }
+        }
+        if (flippedArea > keptArea)
+            for (uint32_t t : patch) std::swap(soup.triangles[t][1], soup.triangles[t][2]), flipped[t] ^= 1;
+    }
+    if (signedVolume(soup) < 0)
+        for (uint32_t t = 0; t < n; ++t) std::swap(soup.triangles[t][1], soup.triangles[t][2]), flipped[t] ^= 1;
+    for (uint32_t t = 0; t < n; ++t)
+        if (flipped[t]) ++report.flippedTriangles, keep(report.flippedAt, centroid(soup, t));
+}
+
+// Parts: triangles connected through shared edges. Those that cross another part are unioned.
+size_t crossingParts(const TriangleMesh& soup, const EdgeMap& edges, const std::vector<std::pair<uint32_t, uint32_t>>& pairs) {
+    UnionFind parts(soup.triangles.size());
+    for (const auto& [key, users] : edges)
+        for (size_t i = 1; i < users.size(); ++i) parts.unite(users[0], users[i]);
+    std::set<uint32_t> crossing;
+    for (const auto& [i, j] : pairs)
+        if (parts.find(i) != parts.find(j)) crossing.insert(parts.find(i)), crossing.insert(parts.find(j));
+    return crossing.size();
+}
+
+// The box TetGen fills: the triangles' bounds, a tenth of their diagonal larger on every side,
+// with float corners. Its 12 triangles are appended to `plc`.
+void addPaddedBox(TriangleMesh& plc) {
+    const Bounds3 b = bounds(plc);
+    const double pad = 0.1 * b.diagonal() + 1e-30;
+    const glm::dvec3 lo = b.lo - pad, hi = b.hi + pad;
+    const auto f = [](double x, bool up) {
+        const float r = float(x);
+        return double(up ? (double(r) < x ? std::nextafter(r, INFINITY) : r) : (double(r) > x ? std::nextafter(r, -INFINITY) : r));
+    };
+    const uint32_t base = uint32_t(plc.positions.size());
+    for (int i = 0; i < 8; ++i)
+        plc.positions.push_back({i & 1 ? f(hi.x, true) : f(lo.x, false), i & 2 ? f(hi.y, true) : f(lo.y, false),
+                                 i & 4 ? f(hi.z, true) : f(lo.z, false)});
+    static constexpr uint32_t kQuads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+    for (const auto& q : kQuads) {
+        plc.triangles.push_back({base + q[0], base + q[1], base + q[2]});
+        plc.triangles.push_back({base + q[0], base + q[2], base + q[3]});
+    }
+}
+
+struct Tets {
+    std::vector<glm::dvec3> points;
+    std::vector<std::array<uint32_t, 4>> tets;
+    std::vector<std::array<int, 4>> neighbours;  // across the face opposite each vertex; -1 on the box
+};
+
+Tets unpack(const RawTets& raw) {
+    Tets t;
+    for (size_t i = 0; i + 2 < raw.points.size(); i += 3) t.points.push_back({raw.points[i], raw.points[i + 1], raw.points[i + 2]});
+    const size_t n = raw.tets.size() / 4;
+    if (raw.neighbours.size() != 4 * n) throw InputError("TetGen returned no neighbours");
+    t.tets.resize(n), t.neighbours.resize(n);
+    for (size_t i = 0; i < n; ++i)
+        for (int j = 0; j < 4; ++j) {
+            t.tets[i][j] = uint32_t(raw.tets[4 * i + j]);
+            t.neighbours[i][j] = raw.neighbours[4 * i + j];
+            if (t.tets[i][j] >= t.points.size() || t.neighbours[i][j] >= int(n)) throw InputError("TetGen returned an index out of range");
+        }
+    return t;
+}
+
+std::array<uint32_t, 3> faceOf(const std::array<uint32_t, 4>& tet, int j) {
+    std::array<uint32_t, 3> f;
+    for (int k = 0, m = 0; k < 4; ++k)
+        if (k != j) f[m++] = tet[k];
+    return f;
+}
+
+bool isBoundary(const Tets& t, const std::vector<char>& inside, size_t i, int j) {
+    const int n = t.neighbours[i][j];
+    return inside[i] && (n < 0 || !inside[size_t(n)]);
+}
+
+// An edge of the inside's boundary with more than two boundary faces (two inside tets meeting
+// only along it) is no surface TetGen can take; the outside tets around such edges join the
+// inside until none is left.
+void closePinches(const Tets& t, std::vector<char>& inside) {
+    static constexpr int kEdges[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
+    for (int pass = 0; pass < 16; ++pass) {
+        std::unordered_map<uint64_t, int> count;
+        for (size_t i = 0; i < t.tets.size(); ++i)
+            for (int j = 0; j < 4; ++j)
+                if (isBoundary(t, inside, i, j)) {
+                    const auto f = faceOf(t.tets[i], j);
+                    for (int k = 0; k < 3; ++k) ++count[edgeKey(f[k], f[(k + 1) % 3])];
+                }
+        std::unordered_set<uint64_t> pinched;
+        for (const auto& [e, c] : count)
+            if (c > 2) pinched.insert(e);
+        if (pinched.empty()) return;
+        for (size_t i = 0; i < t.tets.size(); ++i)
+            for (const auto& e : kEdges)
+                if (pinched.count(edgeKey(t.tets[i][e[0]], t.tets[i][e[1]]))) inside[i] = 1;
+    }
+    throw InputError("the repaired boundary stays non-manifold where inside parts touch along an edge");
+}
+
+// The inside's boundary faces, wound outward, as a mesh of their own vertices; `spanned` marks
+// those that are not constraint triangles (the box's count as not).
+TriangleMesh boundaryOf(const Tets& t, const std::vector<char>& inside, const std::set<std::array<uint32_t, 3>>& constraints,
+                        std::vector<uint32_t>& spanned) {
+    TriangleMesh out;
+    std::vector<uint32_t> remap(t.points.size(), UINT32_MAX);
+    for (size_t i = 0; i < t.tets.size(); ++i)
+        for (int j = 0; j < 4; ++j) {
+            if (!isBoundary(t, inside, i, j)) continue;
+            auto f = faceOf(t.tets[i], j);
+            // Outward: the tet's fourth vertex behind the face (Shewchuk's orient3d > 0).
+            if (orient3d(t.points[f[0]], t.points[f[1]], t.points[f[2]], t.points[t.tets[i][j]]) < 0) std::swap(f[1], f[2]);
+            auto key = f;
+            std::sort(key.begin(), key.end());
+            if (!constraints.count(key)) spanned.push_back(uint32_t(out.triangles.size()));
+            for (auto& v : f) {
+                if (remap[v] == UINT32_MAX) remap[v] = uint32_t(out.positions.size()), out.positions.push_back(t.points[v]);
+                v = remap[v];
+            }
+            out.triangles.push_back(f);
+        }
+    return out;
+}
+
+// Holes: spanned faces connected through shared edges.
+void describeHoles(const TriangleMesh& surface, const std::vector<uint32_t>& spanned, RepairReport& report) {
+    std::vector<std::array<uint32_t, 3>> tris;
+    for (uint32_t s : spanned) tris.push_back(surface.triangles[s]);
+    const EdgeMap edges = edgeTriangles(tris);
+    UnionFind holes(tris.size());
+    for (const auto& [key, users] : edges)
+        for (size_t i = 1; i < users.size(); ++i) holes.unite(users[0], users[i]);
+    std::unordered_map<uint32_t, size_t> index;
+    for (uint32_t i = 0; i < tris.size(); ++i) {
+        auto [it, added] = index.emplace(holes.find(i), report.holes.size());
+        if (added) report.holes.emplace_back();
+        RepairReport::Hole& h = report.holes[it->second];
+        const double a = area(surface, spanned[i]);
+        h.centre += a * centroid(surface, spanned[i]), h.area += a, ++h.faces;
+        report.spannedArea += a;
+    }
+    for (auto& h : report.holes)
+        if (h.area > 0) h.centre /= h.area;
+    for (uint32_t t = 0; t < surface.triangles.size(); ++t) report.boundaryArea += area(surface, t);
+}
+
+std::string plural(size_t n, const std::string& one, const std::string& many) {
+    return std::to_string(n) + " " + (n == 1 ? one : many);
+}
+
+}  // namespace
+
+std::string RepairReport::summary() const {
+    char share[64];
+    std::snprintf(share, sizeof share, "%.3g%%", boundaryArea > 0 ? 100 * spannedArea / boundaryArea : 0.0);
+    std::string s = plural(holes.size(), "hole", "holes") +
+                    " spanned (" + share + " of the surface), " + plural(crossingPairs, "crossing pair", "crossing pairs") +
+                    " resolved, " + plural(partsUnioned, "part", "parts") + " unioned, " +
+                    plural(flippedTriangles, "face", "faces") + " flipped, " +
+                    plural(duplicatesDropped, "duplicate face", "duplicate faces") + " and " +
+                    plural(degenerateDropped, "zero-area triangle", "zero-area triangles") + " dropped";
+    if (nonManifoldEdges) s += ", " + plural(nonManifoldEdges, "non-manifold edge", "non-manifold edges") + " kept as constraints";
+    return s + " (inside: winding number above 1/2)";
+}
+
+RepairReport repairInterior(TriangleMesh& mesh) {
+    RepairReport report;
+    report.applied = true;
+    TriangleMesh soup = mesh;
+    weldVertices(soup);
+    const SoupCleaning cleaning = dropDegenerateAndDuplicates(soup);
+    report.degenerateDropped = cleaning.degenerate, report.duplicatesDropped = cleaning.duplicates;
+    for (const auto& p : cleaning.degenerateAt) keep(report.degenerateAt, p);
+    for (const auto& p : cleaning.duplicateAt) keep(report.duplicateAt, p);
+    if (soup.triangles.empty()) throw InputError("mesh encloses no volume: every triangle has zero area");
+
+    const EdgeMap edges = edgeTriangles(soup.triangles);
+    for (const auto& [key, users] : edges) report.holeEdges += users.size() == 1, report.nonManifoldEdges += users.size() > 2;
+    orientPatches(soup, edges, report);
+    const auto pairs = findSelfIntersections(soup);
+    report.crossingPairs = pairs.size();
+    for (const auto& [i, j] : pairs) keep(report.crossingAt, centroid(soup, i));
+    report.partsUnioned = crossingParts(soup, edges, pairs);
+
+    // The constraints: the input's triangles with their crossings split, in a box. Their
+    // vertices come first in TetGen's output, then the box's, then Steiner points.
+    RegionComplex plc;
+    plc.surface = resolveIntersections(soup);
+    std::set<std::array<uint32_t, 3>> constraints;
+    for (auto f : plc.surface.triangles) std::sort(f.begin(), f.end()), constraints.insert(f);
+    addPaddedBox(plc.surface);
+    const Tets tets = unpack(runIsolated(plc, "pYq1.5nQz"));
+    if (tets.tets.empty()) throw InputError("TetGen produced no tetrahedra");
+
+    // Labels from the cleaned and oriented input, not from its split pieces: the same field,
+    // without the rounding of the split points.
+    const WindingNumber winding(soup);
+    std::vector<double> w(tets.tets.size());
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, w.size()), [&](const auto& range) {
+        for (size_t i = range.begin(); i != range.end(); ++i) {
+            const auto& v = tets.tets[i];
+            w[i] = winding.classify((tets.points[v[0]] + tets.points[v[1]] + tets.points[v[2]] + tets.points[v[3]]) * 0.25);
+        }
+    });
+    report.minWinding = *std::min_element(w.begin(), w.end());
+    report.maxWinding = *std::max_element(w.begin(), w.end());
+    if (report.maxWinding < kInsideWinding) {
+        char text[200];
+        std::snprintf(text, sizeof text,
+                      "mesh encloses no volume: its winding number stays below %.2f everywhere (at most %.3f), so it is "
+                      "an open sheet or shell, not a closed surface with holes",
+                      kInsideWinding, report.maxWinding);
+        throw InputError(text);
+    }
+    std::vector<char> inside(w.size());
+    for (size_t i = 0; i < w.size(); ++i) inside[i] = w[i] > 0.5;
+    closePinches(tets, inside);
+    mesh = boundaryOf(tets, inside, constraints, report.spannedTriangles);
+    describeHoles(mesh, report.spannedTriangles, report);
+    return report;
+}
+
+std::string surveyProblems(const TriangleMesh& input) {
+    TriangleMesh mesh = input;
+    weldVertices(mesh);
+    const SoupCleaning cleaning = dropDegenerateAndDuplicates(mesh);
+    std::vector<std::string> found;
+    const auto add = [&](size_t n, const std::string& one, const std::string& many, const glm::dvec3& first) {
+        if (n) found.push_back(plural(n, one, many) + " (first at " + formatPosition(first) + ")");
+    };
+    if (cleaning.degenerate) add(cleaning.degenerate, "zero-area triangle", "zero-area triangles", cleaning.degenerateAt[0]);
+    if (cleaning.duplicates) add(cleaning.duplicates, "duplicate face", "duplicate faces", cleaning.duplicateAt[0]);
+    const EdgeMap edges = edgeTriangles(mesh.triangles);
+    size_t holes = 0, nonManifold = 0;
+    glm::dvec3 firstHole{0}, firstNonManifold{0};
+    uint64_t holeKey = UINT64_MAX, nonManifoldKey = UINT64_MAX;  // the lowest edge, not the first hashed
+    for (const auto& [key, users] : edges) {
+        const glm::dvec3 p = mesh.positions[uint32_t(key >> 32)];
+        if (users.size() == 1 && ++holes && key < holeKey) holeKey = key, firstHole = p;
+        if (users.size() > 2 && ++nonManifold && key < nonManifoldKey) nonManifoldKey = key, firstNonManifold = p;
+    }
+    add(holes, "hole edge", "hole edges", firstHole);
+    add(nonManifold, "non-manifold edge", "non-manifold edges", firstNonManifold);
+    const auto pairs = findSelfIntersections(mesh);
+    if (!pairs.empty()) add(pairs.size(), "crossing pair", "crossing pairs", centroid(mesh, pairs[0].first));
+    std::string s;
+    for (const auto& f : found) s += (s.empty() ? "" : ", ") + f;
+    return s;
+}
+
+ValidationReport prepareSurface(TriangleMesh& mesh, bool strict) {
+    if (mesh.triangles.empty()) throw InputError("mesh has no triangles");
+    checkFinite(mesh);
+    TriangleMesh original = mesh;
+    try {
+        return validateAndRepair(mesh);
+    } catch (const InputError& refusal) {
+        if (strict) {
+            const std::string all = surveyProblems(original);
+            throw InputError(std::string(refusal.what()) + (all.empty() ? "" : "; in all: " + all));
+        }
+        mesh = std::move(original);
+        RepairReport repair = repairInterior(mesh);
+        repair.reason = refusal.what();
+        ValidationReport report;
+        try {
+            report = validateAndRepair(mesh);
+        } catch (const InputError& e) {
+            throw InputError(std::string("the repaired mesh is still invalid (") + e.what() + "); the input: " + refusal.what());
+        }
+        report.repair = std::move(repair);
+        report.notes = {report.repair.summary()};
+        return report;
+    }
+}
+
+}  // namespace tetglow

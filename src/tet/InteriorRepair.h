@@ -1,0 +1,30 @@
+// The interior of a mesh that does not separate inside from outside (holes, crossing parts,
+// flipped or duplicated faces, non-manifold edges): Jacobson, Kavan and Sorkine-Hornung 2013.
+// The input's triangles, their crossings split exactly, constrain a Delaunay tetrahedralization
+// of a box around them; every tet is inside where the generalized winding number of the input
+// at its centroid exceeds 1/2. The medium's boundary is then the input's triangles (or their
+// pieces) wherever the input has a surface, and tet faces across its holes.
+#pragma once
+#include "tet/MeshValidation.h"
+
+namespace tetglow {
+
+// Replaces `mesh` by the closed, outward boundary of its inside tets (float vertices, no
+// crossings: it then passes validateAndRepair). Throws InputError when the mesh encloses no
+// volume (a sheet, an open shell: no tet's winding number reaches kInsideWinding).
+RepairReport repairInterior(TriangleMesh& mesh);
+
+// A tet is inside where the winding number exceeds 1/2; a mesh encloses volume where some tet's
+// reaches this (a closed part gives 1; a sheet stays below 1/2 on both sides).
+inline constexpr double kInsideWinding = 0.75;
+
+// validateAndRepair; where that refuses the mesh (other than for non-finite coordinates or no
+// triangles), repairInterior and then validateAndRepair, unless `strict`: then the refusal,
+// with every problem found counted and located.
+ValidationReport prepareSurface(TriangleMesh& mesh, bool strict);
+
+// Every problem validation refuses, counted, each kind with the position of its first case
+// ("" for a valid mesh). Positions must be finite.
+std::string surveyProblems(const TriangleMesh& mesh);
+
+}  // namespace tetglow

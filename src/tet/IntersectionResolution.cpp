@@ -1,0 +1,103 @@
+#include "tet/IntersectionResolution.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <map>
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/corefinement.h>
+#include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
+#include <CGAL/Polygon_mesh_processing/polygon_mesh_to_polygon_soup.h>
+#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/Surface_mesh.h>
+
+#include "tet/MeshValidation.h"
+#include "tet/SelfIntersection.h"
+
+namespace tetglow {
+namespace {
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Point = Kernel::Point_3;
+using SurfaceMesh = CGAL::Surface_mesh<Point>;
+namespace PMP = CGAL::Polygon_mesh_processing;
+
+constexpr int kMaxRounds = 4;
+
+// One autorefinement of the whole soup. CGAL's corefinement wants a halfedge mesh: orienting
+// the soup first duplicates the vertices where it is not a manifold (an edge of three
+// triangles), which welding undoes afterwards. Orientation is irrelevant here: the pieces
+// only constrain the tets.
+TriangleMesh autorefine(const TriangleMesh& soup) {
+    std::vector<Point> points;
+    points.reserve(soup.positions.size());
+    for (const auto& p : soup.positions) points.emplace_back(p.x, p.y, p.z);
+    std::vector<std::vector<std::size_t>> polygons;
+    polygons.reserve(soup.triangles.size());
+    for (const auto& t : soup.triangles) polygons.push_back({t[0], t[1], t[2]});
+    PMP::orient_polygon_soup(points, polygons);
+    SurfaceMesh mesh;
+    PMP::polygon_soup_to_polygon_mesh(points, polygons, mesh);
+    PMP::experimental::autorefine(mesh);
+    points.clear(), polygons.clear();
+    PMP::polygon_mesh_to_polygon_soup(mesh, points, polygons);
+    TriangleMesh out;
+    for (const Point& p : points) out.positions.push_back({CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())});
+    for (const auto& f : polygons) {
+        if (f.size() != 3) throw std::logic_error("autorefinement returned a face that is not a triangle");
+        out.triangles.push_back({uint32_t(f[0]), uint32_t(f[1]), uint32_t(f[2])});
+    }
+    return out;
+}
+
+}  // namespace
+
+SoupCleaning dropDegenerateAndDuplicates(TriangleMesh& soup) {
+    SoupCleaning c;
+    std::map<std::array<uint32_t, 3>, uint32_t> seen;
+    std::vector<std::array<uint32_t, 3>> kept;
+    kept.reserve(soup.triangles.size());
+    for (const auto& t : soup.triangles) {
+        const glm::dvec3& a = soup.positions[t[0]];
+        if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2] || collinear(a, soup.positions[t[1]], soup.positions[t[2]])) {
+            ++c.degenerate;
+            c.degenerateAt.push_back(a);
+            continue;
+        }
+        auto key = t;
+        std::sort(key.begin(), key.end());
+        if (!seen.emplace(key, uint32_t(kept.size())).second) {
+            ++c.duplicates;
+            c.duplicateAt.push_back(a);
+            continue;
+        }
+        kept.push_back(t);
+    }
+    soup.triangles = std::move(kept);
+    // A vertex only a dropped triangle used could lie on another's edge: TetGen must not see it.
+    weldVertices(soup);
+    return c;
+}
+
+TriangleMesh resolveIntersections(const TriangleMesh& soup) {
+    TriangleMesh current = soup;
+    for (int round = 0; round < kMaxRounds; ++round) {
+        if (findSelfIntersections(current).empty()) return current;
+        try {
+            current = autorefine(current);
+        } catch (const InputError&) {
+            throw;
+        } catch (const std::exception& e) {
+            throw InputError(std::string("cannot split the crossing triangles (CGAL: ") + oneLine(e.what()) + ")");
+        }
+        weldVertices(current);  // rounds the constructed points to float
+        dropDegenerateAndDuplicates(current);
+    }
+    const auto left = findSelfIntersections(current);
+    if (left.empty()) return current;
+    throw InputError(std::to_string(left.size()) + " crossing pairs of triangles remain after splitting them " +
+                     std::to_string(kMaxRounds) + " times at float precision, first near " +
+                     formatPosition(current.corner(left[0].first, 0)));
+}
+
+}  // namespace tetglow

@@ -1,0 +1,20 @@
+// TetGen in a child process: its crashes, aborts and thrown ints become InputErrors in the caller.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "tet/RegionComplex.h"
+
+namespace tetglow {
+
+// What TetGen hands back from the child process.
+struct RawTets {
+    std::vector<double> points;
+    std::vector<int> tets, neighbours;
+    std::vector<double> attributes;  // per tet, with -A: the seeded region + 1, or TetGen's own number
+};
+
+// TetGen on complex.surface (and its seeds, with -A) under `switches`, in a forked child.
+RawTets runIsolated(const RegionComplex& complex, const std::string& switches);
+
+}  // namespace tetglow

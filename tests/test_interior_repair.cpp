@@ -1,0 +1,240 @@
+// Broken meshes become media: holes spanned, crossing parts unioned, flipped and duplicated
+// faces and fins made harmless, by the winding number of the input over a tetrahedralization
+// constrained by its triangles. Each checks the volume against a closed form or the unbroken
+// original, and that the input's triangles stay the boundary.
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <glm/geometric.hpp>
+
+#include "TestMeshes.h"
+#include "scene/MeshFile.h"
+#include "tet/InteriorRepair.h"
+#include "tet/Tetrahedralizer.h"
+#include "tet/WindingNumber.h"
+
+namespace tetglow {
+namespace {
+
+// The mesh without the triangles whose centroid lies within `radius` of `centre`.
+TriangleMesh punch(const TriangleMesh& m, const glm::dvec3& centre, double radius) {
+    TriangleMesh out = m;
+    out.triangles.clear();
+    for (uint32_t t = 0; t < m.triangles.size(); ++t)
+        if (glm::length((m.corner(t, 0) + m.corner(t, 1) + m.corner(t, 2)) / 3.0 - centre) > radius)
+            out.triangles.push_back(m.triangles[t]);
+    return out;
+}
+
+TetMesh tets(const TriangleMesh& m, ValidationReport* report = nullptr, bool strict = false) {
+    TetOptions o = test::noCache();
+    o.strict = strict;
+    return tetrahedralize(m, o, nullptr, report);
+}
+
+// Every triangle of `input` is a boundary face of the medium (counted by corner positions).
+size_t inputTrianglesOnBoundary(const TriangleMesh& input, const TetMesh& mesh) {
+    std::set<std::array<std::array<double, 3>, 3>> boundary;
+    const auto key = [](glm::dvec3 a, glm::dvec3 b, glm::dvec3 c) {
+        std::array<std::array<double, 3>, 3> k{{{a.x, a.y, a.z}, {b.x, b.y, b.z}, {c.x, c.y, c.z}}};
+        std::sort(k.begin(), k.end());
+        return k;
+    };
+    for (const auto& s : mesh.surface) boundary.insert(key(mesh.vertices[s[0]], mesh.vertices[s[1]], mesh.vertices[s[2]]));
+    const auto corner = [&](uint32_t t, int k) {  // as the tets have it: float
+        const glm::dvec3 p = input.corner(t, k);
+        return glm::dvec3(roundToFloat(p.x), roundToFloat(p.y), roundToFloat(p.z));
+    };
+    size_t n = 0;
+    for (uint32_t t = 0; t < input.triangles.size(); ++t) n += boundary.count(key(corner(t, 0), corner(t, 1), corner(t, 2)));
+    return n;
+}
+
+TEST(WindingNumber, ExactVersusTree) {
+    const TriangleMesh sphere = icosphere(4);
+    const TriangleMesh open = punch(sphere, {0, 0, 1}, 0.5);
+    const WindingNumber closed(sphere), holed(open);
+    for (const glm::dvec3 p : {glm::dvec3(0), glm::dvec3(0.3, -0.2, 0.5), glm::dvec3(0, 0, 0.95), glm::dvec3(1.5, 0.2, 0),
+                               glm::dvec3(0.1, 0.1, 1.05), glm::dvec3(-0.7, 0.6, 0.1)}) {
+        EXPECT_NEAR(closed.approximate(p), closed.exact(p), 2.5e-2) << p.x << " " << p.y << " " << p.z;
+        EXPECT_NEAR(holed.approximate(p), holed.exact(p), 2.5e-2) << p.x << " " << p.y << " " << p.z;
+    }
+    EXPECT_NEAR(closed.exact(glm::dvec3(0)), 1.0, 1e-12);
+    EXPECT_NEAR(closed.exact(glm::dvec3(3, 0, 0)), 0.0, 1e-12);
+}
+
+TEST(InteriorRepair, CleanMeshesTakeTheExactPath) {
+    for (const TriangleMesh& m : {box(), icosphere(3), merge(box(), box(glm::dvec3(0.25), glm::dvec3(0.75)))}) {
+        ValidationReport report;
+        const TetMesh repaired = tets(m, &report), strict = tets(m, nullptr, true);
+        EXPECT_FALSE(report.repair.applied);
+        EXPECT_EQ(repaired.vertices, strict.vertices);
+        EXPECT_EQ(repaired.tets, strict.tets);
+        EXPECT_EQ(repaired.adjacency, strict.adjacency);
+    }
+}
+
+TEST(InteriorRepair, PunchedHolesLoseAtMostTheirCap) {
+    const TriangleMesh sphere = icosphere(4);
+    const double closed = signedVolume(sphere);
+    for (double angle : {0.05, 0.2, 0.5, 0.9}) {  // radians from +z
+        const double radius = 2 * std::sin(angle / 2);  // chord from the pole to the hole's rim
+        const TriangleMesh holed = punch(sphere, {0, 0, 1}, radius);
+        ASSERT_LT(holed.triangles.size(), sphere.triangles.size()) << angle;
+        ValidationReport report;
+        const TetMesh mesh = tets(holed, &report);
+        ASSERT_TRUE(report.repair.applied);
+        EXPECT_EQ(report.repair.holes.size(), 1u) << angle;
+        EXPECT_GT(report.repair.spannedArea, 0) << angle;
+        // The cap beyond the plane of the rim, of height h: the most a spanning surface can cut off.
+        const double h = 1 - std::cos(angle + 0.1), cap = M_PI * h * h * (3 - h) / 3;
+        EXPECT_LE(mesh.volume(), closed * (1 + 1e-12)) << angle;
+        EXPECT_GE(mesh.volume(), closed - cap) << angle;
+        EXPECT_NEAR(mesh.volume(), mesh.surfaceVolume(), 1e-9 * closed);
+        EXPECT_EQ(inputTrianglesOnBoundary(holed, mesh), holed.triangles.size()) << angle;
+        EXPECT_EQ(mesh.surface.size(), holed.triangles.size() + report.repair.spannedTriangles.size()) << angle;
+    }
+}
+
+TEST(InteriorRepair, SharedMeshesWithHoles) {
+    for (const char* name : {"spot", "bob", "blub"}) {
+        const std::string path = test::sharedMesh(name);
+        if (path.empty()) GTEST_SKIP() << "../shared/meshes is absent";
+        TriangleMesh closed = readMesh(path);
+        const double volume = tets(closed).volume();
+        const Bounds3 box = bounds(closed);
+        // Holes around three vertices, each within a ball of a hundredth of the diagonal.
+        TriangleMesh holed = closed;
+        const double radius = 0.01 * box.diagonal();
+        for (size_t k = 1; k <= 3; ++k) holed = punch(holed, closed.positions[k * closed.positions.size() / 4], radius);
+        ASSERT_LT(holed.triangles.size(), closed.triangles.size()) << name;
+        ValidationReport report;
+        const TetMesh mesh = tets(holed, &report);
+        std::printf("%s, %zu of %zu triangles: volume closed %.9g, repaired %.9g (bound %.3g); %s\n", name, holed.triangles.size(),
+                    closed.triangles.size(), volume, mesh.volume(), 3 * 4.0 / 3 * M_PI * radius * radius * radius,
+                    report.repair.summary().c_str());
+        EXPECT_GE(report.repair.holes.size(), 3u) << name;
+        EXPECT_NEAR(mesh.volume(), volume, 3 * 4.0 / 3 * M_PI * radius * radius * radius) << name;
+        // All but the odd triangle that a punch leaves hanging by one edge (a fin: it encloses nothing).
+        const size_t kept = inputTrianglesOnBoundary(holed, mesh);
+        EXPECT_LE(kept, holed.triangles.size()) << name;
+        EXPECT_GE(kept, holed.triangles.size() - 3) << name;
+    }
+}
+
+TEST(InteriorRepair, CrossingBoxesBecomeTheirUnion) {
+    const TriangleMesh both = merge(box(), box(glm::dvec3(0.5), glm::dvec3(1.5)));
+    ValidationReport report;
+    const TetMesh mesh = tets(both, &report);
+    EXPECT_GT(report.repair.crossingPairs, 0u);
+    EXPECT_EQ(report.repair.partsUnioned, 2u);
+    EXPECT_TRUE(report.repair.holes.empty());
+    EXPECT_NEAR(mesh.volume(), 2 - 0.125, 1e-12);
+    EXPECT_NEAR(mesh.surfaceVolume(), 2 - 0.125, 1e-12);
+}
+
+TEST(InteriorRepair, CrossingSpheresBecomeTheirUnion) {
+    // Crossing points in general position: split exactly, rounded to float, checked again.
+    const double d = 0.8;
+    const TriangleMesh a = icosphere(4), b = icosphere(4, 1, {d * 0.6, d * 0.8, 0});
+    ValidationReport report;
+    const TetMesh mesh = tets(merge(a, b), &report);
+    EXPECT_GT(report.repair.crossingPairs, 50u);
+    EXPECT_EQ(report.repair.partsUnioned, 2u);
+    // The union of the two polyhedra: each loses the same lens as a sphere would, to within the
+    // polyhedra's own shortfall from the sphere.
+    const double polyhedron = signedVolume(a), sphere = 4 * M_PI / 3;
+    const double lens = M_PI * (4 + d) * (2 - d) * (2 - d) / 12;
+    EXPECT_NEAR(mesh.volume(), 2 * polyhedron - lens * polyhedron / sphere, 2e-3 * polyhedron);
+    EXPECT_NEAR(mesh.volume(), mesh.surfaceVolume(), 1e-9);
+}
+
+TEST(InteriorRepair, FlippedAndDuplicatedFaces) {
+    TriangleMesh m = box();
+    std::swap(m.triangles[0][1], m.triangles[0][2]);
+    std::swap(m.triangles[5][1], m.triangles[5][2]);
+    m.triangles.push_back(m.triangles[7]);                                              // the same face again
+    m.triangles.push_back({m.triangles[3][0], m.triangles[3][2], m.triangles[3][1]});  // and reversed
+    ValidationReport report;
+    const TetMesh mesh = tets(m, &report);
+    ASSERT_TRUE(report.repair.applied);
+    EXPECT_EQ(report.repair.duplicatesDropped, 2u);
+    EXPECT_EQ(report.repair.flippedTriangles, 2u);
+    EXPECT_DOUBLE_EQ(mesh.volume(), 1);
+    EXPECT_EQ(mesh.surface.size(), 12u);
+}
+
+TEST(InteriorRepair, NonManifoldFinEnclosesNothing) {
+    TriangleMesh m = box();
+    m.positions.push_back({0.5, -0.5, -0.5});
+    m.triangles.push_back({0, 1, uint32_t(m.positions.size() - 1)});  // on the box's edge from vertex 0 to 1
+    ValidationReport report;
+    const TetMesh mesh = tets(m, &report);
+    EXPECT_EQ(report.repair.nonManifoldEdges, 1u);
+    EXPECT_DOUBLE_EQ(mesh.volume(), 1);
+    EXPECT_EQ(inputTrianglesOnBoundary(box(), mesh), 12u);
+    EXPECT_EQ(mesh.surface.size(), 12u);
+}
+
+TEST(InteriorRepair, SheetsEncloseNoVolume) {
+    const TriangleMesh sphere = icosphere(3);
+    TriangleMesh dome = sphere;  // the cap within 45 degrees of the pole, open
+    dome.triangles.clear();
+    for (uint32_t t = 0; t < sphere.triangles.size(); ++t)
+        if (sphere.corner(t, 0).z + sphere.corner(t, 1).z + sphere.corner(t, 2).z > 3 * std::cos(M_PI / 4)) dome.triangles.push_back(sphere.triangles[t]);
+    for (const TriangleMesh& m : {disk(glm::dvec3(0), {0, 0, 1}, 1, 32), quad({0, 0, 0}, {1, 0, 0}, {0, 1, 0}), dome}) {
+        try {
+            tets(m);
+            ADD_FAILURE() << "accepted a sheet";
+        } catch (const InputError& e) {
+            EXPECT_NE(std::string(e.what()).find("encloses no volume"), std::string::npos) << e.what();
+        }
+    }
+}
+
+TEST(InteriorRepair, StrictRefusesCountingEveryProblem) {
+    TriangleMesh m = merge(box(), box(glm::dvec3(0.5), glm::dvec3(1.5)));
+    m.triangles.erase(m.triangles.begin() + 20);
+    m.triangles.erase(m.triangles.begin() + 2);
+    try {
+        tets(m, nullptr, true);
+        ADD_FAILURE() << "strict accepted a broken mesh";
+    } catch (const InputError& e) {
+        const std::string s = e.what();
+        EXPECT_NE(s.find("not closed"), std::string::npos) << s;
+        EXPECT_NE(s.find("in all: 6 hole edges (first at ("), std::string::npos) << s;
+        EXPECT_NE(s.find(" crossing pairs (first at ("), std::string::npos) << s;
+    }
+}
+
+// What a user sees: the summary line, the repairs with positions in --json, the spanned faces
+// as triangle cells in the VTK file.
+TEST(InteriorRepair, CommandReportsAndMarksTheRepairs) {
+    TriangleMesh m = merge(box(), box(glm::dvec3(0.5), glm::dvec3(1.5)));
+    m.triangles.erase(m.triangles.begin());  // a hole in the first box's floor (area 1/2), outside the second
+    const std::string obj = test::tempDir() + "/broken.obj", vtk = test::tempDir() + "/broken.vtk";
+    writeObj(m, obj);
+    const auto text = test::runTetglow("tetrahedralize " + obj + " --no-cache");
+    ASSERT_EQ(text.exitCode, 0) << text.err;
+    EXPECT_NE(text.out.find("repaired         1 hole spanned ("), std::string::npos) << text.out;
+    EXPECT_NE(text.out.find(" crossing pairs resolved, 2 parts unioned"), std::string::npos) << text.out;
+    const auto json = test::runTetglow("tetrahedralize " + obj + " --no-cache --json -o " + vtk);
+    ASSERT_EQ(json.exitCode, 0) << json.err;
+    const auto repair = nlohmann::json::parse(json.out)["regions"][0]["repair"];
+    ASSERT_EQ(repair["holes"].size(), 1u) << repair.dump();
+    // Spanned by tet faces through the missing triangle's rim: in or near the floor, no smaller.
+    EXPECT_LT(std::abs(repair["holes"][0]["centre"][2].get<double>()), 0.2);
+    EXPECT_GE(repair["holes"][0]["area"].get<double>(), 0.5 - 1e-12);
+    EXPECT_LT(repair["holes"][0]["area"].get<double>(), 0.75);
+    EXPECT_EQ(repair["crossings_at"].size(), repair["crossing_pairs"].get<size_t>());
+    EXPECT_EQ(repair["parts_unioned"], 2);
+    const std::string cells = test::readFile(vtk);
+    EXPECT_NE(cells.find("SCALARS spanned int 1"), std::string::npos);
+    EXPECT_NE(cells.find("\n5\n"), std::string::npos);  // a triangle cell
+}
+
+}  // namespace
+}  // namespace tetglow
