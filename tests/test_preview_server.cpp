@@ -201,6 +201,29 @@ TEST_F(PreviewServer, AValueThatOverflowsTheFilmIsNamedAndUndone) {
     EXPECT_EQ(state()["render_error"], "");
 }
 
+// A change that has no pass yet when the next one overflows (a user typing two values in
+// quick succession on a slow machine) is kept: only the value that failed is undone.
+TEST_F(PreviewServer, AValueThatOverflowsUndoesOnlyItself) {
+    const auto change = [&](const std::string& patch) {
+        return rawHttp(port(), httpRequest("POST", "/settings", port(), {{"Content-Type", "application/json"}}, patch));
+    };
+    const auto waitFor = [&](const auto& condition) {
+        for (int i = 0; i < 600 * timeScale() && !condition(state()); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+        return condition(state());
+    };
+    ASSERT_TRUE(waitFor([](const Json& s) { return !s["image"].is_null() && s["image"]["passes"] == 4; }));
+    const Json good = state()["settings"];
+    ASSERT_EQ(change(R"({"media": [{"g": 0.5}]})").status, 200);
+    ASSERT_EQ(change(R"({"media": [{"emission": 1e30}]})").status, 200);
+    ASSERT_TRUE(waitFor([](const Json& s) { return s["render_error"] != ""; }));
+    const Json failed = state();
+    EXPECT_EQ(failed["render_error"].get<std::string>().rfind("/media/0 emission 1e+30: pixel (", 0), 0u) << failed["render_error"];
+    EXPECT_EQ(failed["settings"]["media"][0]["g"], 0.5) << "the change before the one that failed was undone too";
+    EXPECT_EQ(failed["settings"]["media"][0]["emission"], good["media"][0]["emission"]);
+    ASSERT_TRUE(waitFor([](const Json& s) { return s["image"]["generation"] == s["generation"] && s["image"]["passes"] == 4; }));
+    EXPECT_EQ(state()["settings"]["media"][0]["g"], 0.5);
+}
+
 TEST_F(PreviewServer, ASavedSceneChangesOnlyWhatWasChanged) {
     std::ifstream in(dir_ / "sphere.json");
     const nlohmann::ordered_json original = nlohmann::ordered_json::parse(in);

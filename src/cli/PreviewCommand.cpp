@@ -98,7 +98,8 @@ public:
           original_(jsonScene(scenePath)),
           saves_(fs::absolute(scenePath).parent_path(), fs::path(scenePath).stem().string(), kMaxSaves),
           settings_(desc),
-          good_(desc) {
+          good_(desc),
+          before_(desc) {
         routes();
     }
 
@@ -219,9 +220,10 @@ private:
         return j;
     }
 
-    // Settings whose first full-size pass rendered are good; settings whose render failed (a
-    // value that overflows the film, say) give way to the last good ones, and the error names
-    // the values that were changed. (settingsMutex_ held.)
+    // Settings whose first full-size pass rendered are good. Settings whose render failed (a
+    // value that overflows the film, say) give way to those before the change that failed, so
+    // an earlier change that had no pass yet is kept; they are rendered in turn, and if they
+    // fail too, the last good ones follow. The error names the values undone. (settingsMutex_ held.)
     void followRender(const LiveImage* live) {
         if (live && live->generation == generation_ && live->passes > 0 && !atGood_) {
             good_ = settings_;
@@ -229,9 +231,11 @@ private:
         }
         const std::string error = live_->error();
         if (error.empty() || atGood_) return;
-        renderError_ = settings_.changesFrom(good_) + ": " + error + " (back to the last values that rendered)";
-        settings_ = good_;
-        atGood_ = true;
+        renderError_ = settings_.changesFrom(before_) + ": " + error + " (back to the values before)";
+        settings_ = before_;
+        atGood_ = beforeGood_;
+        before_ = good_;
+        beforeGood_ = true;
         generation_ = live_->restart(settings_.scene());
     }
 
@@ -250,7 +254,11 @@ private:
 
     void change(const std::string& body, httplib::Response& res) {
         std::lock_guard lock(settingsMutex_);
-        settings_.apply(body);  // InputError: 400 with the message, settings unchanged
+        PreviewSettings changed = settings_;
+        changed.apply(body);  // InputError: 400 with the message, settings unchanged
+        before_ = std::move(settings_);
+        beforeGood_ = atGood_;
+        settings_ = std::move(changed);
         generation_ = live_->restart(settings_.scene());
         atGood_ = false;
         renderError_.clear();
@@ -291,8 +299,10 @@ private:
     int port_ = 0;
     std::mutex settingsMutex_, saveMutex_;
     PreviewSettings settings_, good_;  // good_: the last that rendered
+    PreviewSettings before_;           // settings_ before the last change
     bool atGood_ = true;               // settings_ are good_ (the loaded scene counts as good)
-    std::string renderError_;          // why the settings went back to good_, until the next change
+    bool beforeGood_ = true;           // before_ are good_
+    std::string renderError_;          // why the settings went back, until the next change
     uint64_t generation_ = 0;
     std::unique_ptr<LiveRender> live_;  // from serve() on, before any request is read
     httplib::Server server_;
