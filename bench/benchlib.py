@@ -1,6 +1,7 @@
 """What the bench scripts share: running tetglow and timing it, the machine's description,
 log-log charts drawn by gnuplot (PNG and SVG, in docs/figures/), and rewriting their sections of
 docs/RESULTS.md (from Python, or from a shell script through `benchlib.py section`)."""
+import argparse
 import json
 import os
 import platform
@@ -16,6 +17,13 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 def fail(message):
     sys.exit(f"{os.path.basename(sys.argv[0])}: error: {message}")
+
+
+def executable(path):
+    """path, when it is an executable tetglow, else the script fails naming it."""
+    if not os.access(path, os.X_OK):
+        fail(f"{path}: not an executable tetglow")
+    return path
 
 
 def tetglow(binary, *args):
@@ -180,6 +188,24 @@ def replace_section(name, text, path=RESULTS):
     head, rest = doc.split(begin)
     with open(path, "w") as f:
         f.write(f"{head}{begin}\n{text}\n{end}{rest.split(end, 1)[1]}")
+
+
+def table_parser(doc):
+    """Arguments of a script that writes a table into docs/RESULTS.md: --build, --resolution and
+    --no-results; the script adds its own."""
+    parser = argparse.ArgumentParser(description=doc.split("\n\n")[0])
+    parser.add_argument("--build", default=os.path.join(ROOT, "build"), help="folder with this build's tetglow")
+    parser.add_argument("--resolution", default="100x100")
+    parser.add_argument("--no-results", action="store_true", help="print the table only, leave docs/RESULTS.md")
+    return parser
+
+
+def publish(section, lines, no_results):
+    """Prints `lines` and, unless no_results, writes them into `section` of docs/RESULTS.md."""
+    text = "\n".join(lines)
+    if not no_results:
+        replace_section(section, text)
+    print(text)
 
 
 def section_from_stdin(argv):

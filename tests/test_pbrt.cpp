@@ -336,6 +336,9 @@ TEST(Pbrt, NestedShapesWithMediumInterfacesBecomeRegions) {
     EXPECT_TRUE(s.media[2].cavity);
     EXPECT_EQ(s.media[2].sigmaS, RGB(0));
     EXPECT_EQ(s.media[2].boundaryMaterial.type, MaterialType::Dielectric);
+    // The nesting the reader checked goes with the scene: it is not found twice.
+    ASSERT_TRUE(s.nesting);
+    EXPECT_EQ(s.nesting->parent, (std::vector<int32_t>{-1, 0, 1}));
     // Converted, the cavity is a cavity of the JSON scene.
     const std::string json = test::tempDir() + "/nested-converted.json";
     writeScene(s, json);

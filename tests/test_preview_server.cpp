@@ -51,6 +51,15 @@ protected:
     Json state() const { return Json::parse(rawHttp(port(), httpRequest("GET", "/state", port())).body); }
     size_t files() const { return size_t(std::distance(fs::directory_iterator(dir_), fs::directory_iterator())); }
     std::string own() const { return "http://127.0.0.1:" + std::to_string(port()); }
+    HttpReply change(const std::string& patch) const {
+        return rawHttp(port(), httpRequest("POST", "/settings", port(), {{"Content-Type", "application/json"}}, patch));
+    }
+    // Polls the state until `condition` holds (true) or a bound for a stuck server passes (false).
+    template <class Condition>
+    bool waitFor(const Condition& condition) const {
+        for (int i = 0; i < 600 * timeScale() && !condition(state()); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+        return condition(state());
+    }
 
     fs::path dir_;
     std::unique_ptr<PreviewProcess> server_;
@@ -177,13 +186,6 @@ TEST_F(PreviewServer, SlowClientsLeaveThreadsForOthers) {
 }
 
 TEST_F(PreviewServer, AValueThatOverflowsTheFilmIsNamedAndUndone) {
-    const auto change = [&](const std::string& patch) {
-        return rawHttp(port(), httpRequest("POST", "/settings", port(), {{"Content-Type", "application/json"}}, patch));
-    };
-    const auto waitFor = [&](const auto& condition) {
-        for (int i = 0; i < 600 * timeScale() && !condition(state()); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(50));
-        return condition(state());
-    };
     ASSERT_TRUE(waitFor([](const Json& s) { return !s["image"].is_null() && s["image"]["passes"] == 4; }));
     const Json good = state()["settings"];
     ASSERT_EQ(change(R"({"media": [{"emission": 1e30}]})").status, 200);
@@ -204,13 +206,6 @@ TEST_F(PreviewServer, AValueThatOverflowsTheFilmIsNamedAndUndone) {
 // A change that has no pass yet when the next one overflows (a user typing two values in
 // quick succession on a slow machine) is kept: only the value that failed is undone.
 TEST_F(PreviewServer, AValueThatOverflowsUndoesOnlyItself) {
-    const auto change = [&](const std::string& patch) {
-        return rawHttp(port(), httpRequest("POST", "/settings", port(), {{"Content-Type", "application/json"}}, patch));
-    };
-    const auto waitFor = [&](const auto& condition) {
-        for (int i = 0; i < 600 * timeScale() && !condition(state()); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(50));
-        return condition(state());
-    };
     ASSERT_TRUE(waitFor([](const Json& s) { return !s["image"].is_null() && s["image"]["passes"] == 4; }));
     const Json good = state()["settings"];
     ASSERT_EQ(change(R"({"media": [{"g": 0.5}]})").status, 200);

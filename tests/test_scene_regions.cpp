@@ -6,6 +6,9 @@
 #include <gtest/gtest.h>
 
 #include "TestMeshes.h"
+#include "render/MediaGroups.h"
+#include "scene/MediaNesting.h"
+#include "tet/Shapes.h"
 
 namespace tetglow::test {
 namespace {
@@ -91,6 +94,21 @@ TEST(SceneRegions, AnOpenInnerMeshIsRepairedOrWhenStrictRefusedNamingIt) {
     std::string strict = scene;
     strict.replace(strict.rfind("\"sigma_s\": 2"), 12, R"("sigma_s": 2, "tetgen": {"strict": true})");
     expectRefused("open-inner-strict", strict, "/media/1 (");
+}
+
+// A reader that found the nesting for its own checks (pbrt's MediumInterface) hands it on, and
+// the scene groups its media by that nesting instead of finding it again.
+TEST(SceneRegions, MediaAreGroupedByTheNestingAReaderFound) {
+    std::vector<MediumDesc> media(2);
+    media[0].boundary = icosphere(2, 1.0);
+    media[1].boundary = icosphere(1, 0.4);
+    media[0].name = "/media/0";
+    media[1].name = "/media/1";
+    const MediaNesting nesting = nestMedia(media);
+    EXPECT_EQ(nesting.parent, (std::vector<int32_t>{-1, 0}));
+    EXPECT_EQ(groupMedia(media), (std::vector<std::vector<int>>{{0, 1}}));
+    const MediaNesting apart{{-1, -1}, {}};
+    EXPECT_EQ(groupMedia(media, &apart), (std::vector<std::vector<int>>{{0}, {1}}));
 }
 
 TEST(SceneRegions, MediaApartStillRender) {

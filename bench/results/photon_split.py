@@ -9,7 +9,6 @@ converged volpath reference. Writes the table into docs/RESULTS.md (section "pho
 The reference must be scenes/fish.json at the same resolution (e.g. `tetglow render
 scenes/fish.json --integrator volpath --spp 8192 --resolution 100x100`).
 """
-import argparse
 import os
 import re
 import subprocess
@@ -17,22 +16,17 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))  # bench/, for benchlib
-from benchlib import ROOT, diff, fail, machine, replace_section  # noqa: E402
+from benchlib import ROOT, diff, executable, fail, machine, publish, table_parser  # noqa: E402
 
 PER_PIXEL = [0.08, 0.31, 1.25, 5.0]  # the committed fish: 50000 paths over 400x400 pixels is 0.31
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--build", default=os.path.join(ROOT, "build"), help="folder with tetglow")
+    parser = table_parser(__doc__)
     parser.add_argument("--reference", required=True, help="converged volpath render of scenes/fish.json at --resolution")
-    parser.add_argument("--resolution", default="100x100")
     parser.add_argument("--time", default="10,30", help="seconds of rendering per run, comma-separated budgets")
-    parser.add_argument("--no-results", action="store_true", help="print the table only, leave docs/RESULTS.md")
     args = parser.parse_args()
-    binary = os.path.join(args.build, "tetglow")
-    if not os.access(binary, os.X_OK):
-        fail(f"{binary}: not an executable tetglow")
+    binary = executable(os.path.join(args.build, "tetglow"))
     width, height = (int(v) for v in args.resolution.split("x"))
     rows = []
     budgets = [float(t) for t in args.time.split(",")]
@@ -53,16 +47,13 @@ def main():
             share = trace / (trace + eye)
             rows.append(f"| {budget:g} | {per_pixel:g} | {photons} | {passes.group(1)} | {share:.0%} | {d['rmse']:.4g} | {d['rel_mse']:.4g} |")
             print(rows[-1], flush=True)
-    text = "\n".join([
+    publish("photon-split", [
         f"Measured by `bench/results/photon_split.py --reference REF.exr --resolution {args.resolution} --time {args.time}` on {machine()}.",
         "",
         "| budget (s) | photon paths per pixel and pass | photons per pass | passes in the budget | photon tracing share of the time | RMSE | relative MSE |",
         "|---:|---:|---:|---:|---:|---:|---:|",
         *rows,
-    ])
-    if not args.no_results:
-        replace_section("photon-split", text)
-    print(text)
+    ], args.no_results)
 
 
 if __name__ == "__main__":

@@ -25,7 +25,7 @@ ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 sys.path.insert(0, os.path.join(ROOT, "tests"))
 sys.path.insert(0, os.path.join(ROOT, "bench"))
 from preview_browser import Server  # noqa: E402  (the test's way of starting the server)
-from benchlib import machine, replace_section  # noqa: E402
+from benchlib import fish_variant, machine, replace_section  # noqa: E402
 
 
 def relative_mse(tetglow, image, reference):
@@ -45,14 +45,7 @@ def main():
     a = parser.parse_args()
     tetglow = os.path.join(a.build, "tetglow")
     work = tempfile.mkdtemp(prefix="tetglow-preview-bench-")
-    with open(os.path.join(ROOT, "scenes", "fish.json")) as f:
-        scene = json.load(f)
-    for medium in scene["media"]:  # the meshes' paths, from the folder the copy is written to
-        medium["shape"]["file"] = os.path.join(ROOT, "scenes", medium["shape"]["file"])
-    del scene["output"]
-    path = os.path.join(work, "fish.json")
-    with open(path, "w") as f:
-        json.dump(scene, f)
+    path = fish_variant(work, "fish", lambda s: s.pop("output", None))
 
     server = Server(tetglow, path)
     state = server.state

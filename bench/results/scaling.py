@@ -16,7 +16,7 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))  # bench/, for benchlib
-from benchlib import FIGURES, ROOT, fail, fish_variant, loglog_chart, machine, render, replace_section, tetglow  # noqa: E402
+from benchlib import FIGURES, ROOT, executable, fish_variant, loglog_chart, machine, render, replace_section, tetglow  # noqa: E402
 
 RESOLUTION, SPP = "160x160", 16
 REPEATS = 3  # the fastest of three: other work on the machine only ever adds time
@@ -104,9 +104,7 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--build", default=os.path.join(ROOT, "build"), help="build folder holding tetglow")
     a = parser.parse_args()
-    binary = os.path.join(a.build, "tetglow")
-    if not os.access(binary, os.X_OK):
-        fail(f"{binary}: not found; build first or give --build")
+    binary = executable(os.path.join(a.build, "tetglow"))
     machine_line = machine()
     with tempfile.TemporaryDirectory() as work:
         by_triangles = []

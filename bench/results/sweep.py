@@ -20,7 +20,7 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))  # bench/, for benchlib
-from benchlib import FIGURES, ROOT, diff, fail, fish_variant, loglog_chart, machine, render, replace_section  # noqa: E402
+from benchlib import FIGURES, ROOT, diff, executable, fail, fish_variant, loglog_chart, machine, render, replace_section  # noqa: E402
 
 SCENE = os.path.join(ROOT, "scenes", "fish.json")
 
@@ -135,9 +135,7 @@ def main():
                         help="full mode: the volpath reference, rendered there when missing (default %(default)s)")
     a = parser.parse_args()
     mode = "quick" if a.quick else "full"
-    binary = os.path.join(a.build, "tetglow")
-    if not os.access(binary, os.X_OK):
-        fail(f"{binary}: not found; build first or give --build")
+    binary = executable(os.path.join(a.build, "tetglow"))
     out = FIGURES if a.full else (a.out or os.path.join(a.build, "sweep-quick"))
     os.makedirs(out, exist_ok=True)
     machine_line = machine()

@@ -12,13 +12,12 @@ cancels). Writes the table into docs/RESULTS.md (section "sampler").
 
     bench/studies/sampler_gain.py --build build --baseline /path/to/old/tetglow
 """
-import argparse
 import os
 import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))  # bench/, for benchlib
-from benchlib import ROOT, diff, fail, machine, render, replace_section  # noqa: E402
+from benchlib import ROOT, diff, executable, machine, publish, render, table_parser  # noqa: E402
 
 SCENES = ["fish", "blub"]
 INTEGRATORS = ["volpath", "photon"]
@@ -38,28 +37,22 @@ def spread(binary, tag, scene, integrator, spp, resolution, work):
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--build", default=os.path.join(ROOT, "build"), help="folder with this build's tetglow")
+    parser = table_parser(__doc__)
     parser.add_argument("--baseline", required=True, help="a tetglow built before the Sobol sampler")
-    parser.add_argument("--resolution", default="100x100")
     parser.add_argument("--spp", default="4,16,64", help="samples per pixel (photon: passes), comma-separated")
-    parser.add_argument("--no-results", action="store_true", help="print the table only, leave docs/RESULTS.md")
     args = parser.parse_args()
-    binary = os.path.join(args.build, "tetglow")
-    for b in (binary, args.baseline):
-        if not os.access(b, os.X_OK):
-            fail(f"{b}: not an executable tetglow")
+    binary, baseline = executable(os.path.join(args.build, "tetglow")), executable(args.baseline)
     spps = [int(s) for s in args.spp.split(",")]
     rows = []
     with tempfile.TemporaryDirectory() as work:
         for scene in SCENES:
             for integrator in INTEGRATORS:
                 for spp in spps:
-                    old, oldMae = spread(args.baseline, "old", scene, integrator, spp, args.resolution, work)
+                    old, oldMae = spread(baseline, "old", scene, integrator, spp, args.resolution, work)
                     new, newMae = spread(binary, "new", scene, integrator, spp, args.resolution, work)
                     rows.append(f"| {scene} | {integrator} | {spp} | {old:.3g} | {new:.3g} | {old / new:.2f} | {oldMae / newMae:.2f} |")
                     print(rows[-1], flush=True)
-    text = "\n".join([
+    publish("sampler", [
         f"Measured by `bench/studies/sampler_gain.py --baseline OLD/tetglow` at {args.resolution} on {machine()}.",
         "Variance per pixel and channel of one render (half the mean squared difference of two seeds), and the ratio",
         "of the mean absolute differences (independent over Sobol).",
@@ -67,10 +60,7 @@ def main():
         "| scene | integrator | spp | variance, independent (PCG) | variance, Sobol | ratio | MAE ratio |",
         "|---|---|---:|---:|---:|---:|---:|",
         *rows,
-    ])
-    if not args.no_results:
-        replace_section("sampler", text)
-    print(text)
+    ], args.no_results)
 
 
 if __name__ == "__main__":

@@ -2,12 +2,13 @@
 
 #include <algorithm>
 #include <numeric>
+#include <stdexcept>
 
-#include "tet/RegionComplex.h"
+#include "scene/MediaNesting.h"
 
 namespace tetglow {
 
-std::vector<std::vector<int>> groupMedia(const std::vector<MediumDesc>& media) {
+std::vector<std::vector<int>> groupMedia(const std::vector<MediumDesc>& media, const MediaNesting* found) {
     const int n = int(media.size());
     std::vector<int> root(n);
     std::iota(root.begin(), root.end(), 0);
@@ -17,16 +18,12 @@ std::vector<std::vector<int>> groupMedia(const std::vector<MediumDesc>& media) {
     };
     std::vector<int32_t> parent(n, -1);
     if (n > 1 || (n == 1 && media[0].cavity)) {
-        std::vector<TriangleMesh> surfaces;
-        std::vector<std::string> names;
-        for (const MediumDesc& m : media) surfaces.push_back(m.boundary), names.push_back(m.name);
-        const bool strict = std::any_of(media.begin(), media.end(), [](const MediumDesc& m) { return m.tetOptions.strict; });
-        const RegionComplex complex = validatedComplex(std::move(surfaces), names, strict);
-        parent = complex.parent;
+        if (found && found->parent.size() != media.size()) throw std::logic_error("groupMedia: a nesting of other media");
+        const MediaNesting nesting = found ? *found : nestMedia(media);
+        parent = nesting.parent;
         for (int i = 0; i < n; ++i)
             if (parent[i] >= 0) root[find(i)] = find(parent[i]);
-        for (const auto& [behind, front] : complex.sides)
-            if (behind >= 0 && front >= 0) root[find(behind)] = find(front);
+        for (const auto& [a, b] : nesting.touching) root[find(a)] = find(b);
     }
     for (int i = 0; i < n; ++i)
         if (media[i].cavity && parent[i] < 0) throw InputError(media[i].name + ": a cavity must lie inside a medium");

@@ -10,9 +10,10 @@
 namespace tetglow {
 
 // The groups, each in description order (its region r is medium group[r]), ordered by their
-// first medium. Throws InputError for media that cross (naming both and a triangle pair), an
-// open or invalid mesh (naming it), and a cavity that lies in no medium.
-std::vector<std::vector<int>> groupMedia(const std::vector<MediumDesc>& media);
+// first medium. `nesting`: as a reader found it (SceneDesc::nesting), else null to find it here.
+// Throws InputError for media that cross (naming both and a triangle pair), an open or invalid
+// mesh (naming it), and a cavity that lies in no medium.
+std::vector<std::vector<int>> groupMedia(const std::vector<MediumDesc>& media, const MediaNesting* nesting = nullptr);
 
 // The finest of the group's TetGen options: the smallest maximum volume and radius-edge ratio
 // any of them asks for.

@@ -52,7 +52,7 @@ void Scene::setCoefficients(SceneVolume& volume) const {
 void Scene::buildVolumes() {
     const std::vector<MediumDesc>& media = desc_.media;
     media_.resize(media.size());
-    for (const std::vector<int>& group : groupMedia(media)) {
+    for (const std::vector<int>& group : groupMedia(media, desc_.nesting.get())) {
         SceneVolume v;
         std::vector<TriangleMesh> surfaces;
         std::vector<std::string> names;
@@ -138,7 +138,6 @@ Scene::Scene(const SceneDesc& desc) : desc_(desc), camera_(desc.camera) {
         if (table.size() <= id) table.resize(id + 1);
         table[id] = g;
     };
-    // Every normal list first, so that the geometries' pointers into normals_ stay valid.
     std::vector<std::pair<HitKind, uint32_t>> shapes;
     std::vector<TriangleMesh> meshes;
     for (uint32_t i = 0; i < desc.surfaces.size(); ++i) {
@@ -151,13 +150,13 @@ Scene::Scene(const SceneDesc& desc) : desc_(desc), camera_(desc.camera) {
     for (const TriangleMesh& m : meshes) normals_.push_back(unitNormals(m.positions, m.triangles));
     classifyVolumes(meshes, shapes);
     for (size_t k = 0; k < meshes.size(); ++k) {
-        const Geometry g{shapes[k].first, shapes[k].second, &normals_[k]};
+        const Geometry g{shapes[k].first, shapes[k].second, uint32_t(k)};
         attach(surfaces_, surfaceGeometries_, g, meshes[k].positions, meshes[k].triangles);
         attach(all_, allGeometries_, g, meshes[k].positions, meshes[k].triangles);
     }
     // The boundary exactly as the tets have it: surface triangle ids are Embree primitive ids.
     for (uint32_t i = 0; i < volumes_.size(); ++i)
-        attach(all_, allGeometries_, {HitKind::MediumBoundary, i, &volumes_[i].normals}, volumes_[i].medium->mesh().vertices,
+        attach(all_, allGeometries_, {HitKind::MediumBoundary, i, 0}, volumes_[i].medium->mesh().vertices,
                volumes_[i].medium->mesh().surface);
     rtcCommitScene(surfaces_);
     rtcCommitScene(all_);
@@ -206,7 +205,7 @@ std::optional<Intersection> Scene::intersect(RTCScene scene, const std::vector<G
     hit.triangle = rh.hit.primID;
     hit.kind = g.kind;
     hit.index = g.index;
-    hit.n = (*g.normals)[rh.hit.primID];
+    hit.n = normals(g)[rh.hit.primID];
     return hit;
 }
 

@@ -120,9 +120,12 @@ private:
     struct Geometry {
         HitKind kind;
         uint32_t index;
-        const std::vector<glm::dvec3>* normals;
+        uint32_t shape;  // a surface's or area light's place in normals_ (unused for a medium boundary)
     };
     std::vector<std::vector<glm::dvec3>> normals_;  // per surface and area light: unit, per triangle
+    const std::vector<glm::dvec3>& normals(const Geometry& g) const {
+        return g.kind == HitKind::MediumBoundary ? volumes_[g.index].normals : normals_[g.shape];
+    }
     std::optional<Intersection> intersect(RTCScene scene, const std::vector<Geometry>& geometries, const Ray& ray, double tMax) const;
     void buildVolumes();
     // surfacesWithin_ and sealed_, from the surfaces' and area lights' meshes (by kind) and the lights.

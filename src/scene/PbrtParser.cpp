@@ -149,7 +149,7 @@ SceneDesc Parser::run() {
     s.path = path_;
     s.lights = std::move(world_.lights);
     s.surfaces = std::move(world_.surfaces);
-    world_.checkNesting();
+    s.nesting = world_.checkNesting();
     s.media = std::move(world_.media);
     applyPbrtOptions(options_, s, warnings_);
     if (!emitsLight(s)) pbrtError(last_, "nothing emits light (pbrt-v3 would render a black image)");

@@ -7,9 +7,9 @@
 
 #include <glm/geometric.hpp>
 
+#include "scene/MediaNesting.h"
 #include "scene/PbrtShapes.h"
 #include "scene/PbrtTransform.h"
-#include "tet/RegionComplex.h"
 
 namespace tetglow {
 namespace {
@@ -243,17 +243,14 @@ void PbrtWorld::shape(PbrtCall& c, const glm::dmat4& objectToWorld, const PbrtAt
     }  // else: no material, no light, no medium: pbrt-v3 does not see it either
 }
 
-void PbrtWorld::checkNesting() const {
+std::shared_ptr<const MediaNesting> PbrtWorld::checkNesting() const {
     const bool nestingMatters = media.size() > 1 || std::any_of(interfaces_.begin(), interfaces_.end(), [](const Interface& i) {
         return !i.outside.empty();
     });
-    if (!nestingMatters) return;
-    std::vector<TriangleMesh> meshes;
-    std::vector<std::string> names;
-    for (const MediumDesc& m : media) meshes.push_back(m.boundary), names.push_back(m.name);
-    const RegionComplex complex = validatedComplex(std::move(meshes), names);
+    if (!nestingMatters) return nullptr;
+    auto nesting = std::make_shared<const MediaNesting>(nestMedia(media));
     for (size_t i = 0; i < media.size(); ++i) {
-        const int32_t p = complex.parent[i];
+        const int32_t p = nesting->parent[i];
         const std::string found = p < 0 ? "" : interfaces_[size_t(p)].inside;
         if (found == interfaces_[i].outside) continue;
         pbrtError(interfaces_[i].where, "Shape: MediumInterface \"" + interfaces_[i].inside + "\" \"" + interfaces_[i].outside +
@@ -261,6 +258,7 @@ void PbrtWorld::checkNesting() const {
                                             ", but it lies " + (p < 0 ? "in no medium" : "inside " + media[size_t(p)].name + (found.empty() ? ", a cavity" : ", medium \"" + found + "\"")) +
                                             " (the nesting is found from the meshes)");
     }
+    return nesting;
 }
 
 }  // namespace tetglow

@@ -3,6 +3,7 @@
 #pragma once
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -46,8 +47,8 @@ public:
     void namedMedium(PbrtCall& call);           // MakeNamedMedium: call.type is the name
     void shape(PbrtCall& call, const glm::dmat4& objectToWorld, const PbrtAttributes& attributes);
     // Once the world is read: every medium's (and cavity's) stated outside medium is the one the
-    // meshes put around it, else an error naming the shape.
-    void checkNesting() const;
+    // meshes put around it, else an error naming the shape. The nesting, when there is one to check.
+    std::shared_ptr<const MediaNesting> checkNesting() const;
 
     std::vector<LightDesc> lights;
     std::vector<SurfaceDesc> surfaces;

@@ -3,6 +3,7 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -165,6 +166,12 @@ struct TurntableDesc {
     double degrees = 360;
 };
 
+// How the media lie in one another, found exactly from their meshes (never stated).
+struct MediaNesting {
+    std::vector<int32_t> parent;                       // per medium: the medium around it, -1 none
+    std::vector<std::pair<int32_t, int32_t>> touching;  // media that share boundary triangles
+};
+
 struct SceneDesc {
     std::string path;  // the scene file
     CameraDesc camera;
@@ -175,6 +182,9 @@ struct SceneDesc {
     IntegratorDesc integrator;
     std::string output;  // default image path from the file ("" when not given)
     std::vector<std::string> inputs;  // every file read to build it: the scene, Includes, meshes
+    // Found by a reader that needed it for its own checks (pbrt's MediumInterface), so that the
+    // scene is not nested twice; null: found when the scene is built. Media's meshes fixed.
+    std::shared_ptr<const MediaNesting> nesting;
 };
 
 }  // namespace tetglow
