@@ -6,7 +6,7 @@
 #include <regex>
 #include <sstream>
 
-#include "base/Error.h", shorten
+#include "base/Error.h"
 
 namespace tetglow::cli {
 namespace {
