@@ -18,7 +18,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     std::string arg;
     for (size_t i = 0; i <= size; ++i) {
         if (i == size || data[i] == '\0') {
-            args.push_back(arg), arg.clear();
+            args.push_back(arg);
+            arg.clear();
         } else {
             arg += char(data[i]);
         }

@@ -85,7 +85,10 @@ HttpReply rawHttp(int port, const std::string& request, double timeoutSeconds) {
     HttpReply reply;
     const int s = connectTo(port);
     if (s < 0) return reply;
-    if (send(s, request.data(), request.size(), MSG_NOSIGNAL) != ssize_t(request.size())) return close(s), reply;
+    if (send(s, request.data(), request.size(), MSG_NOSIGNAL) != ssize_t(request.size())) {
+        close(s);
+        return reply;
+    }
     std::string text;
     char buffer[65536];
     pollfd p{s, POLLIN, 0};

@@ -20,7 +20,8 @@ TetVolume tetsOf(const TriangleMesh& mesh) {
 void expectTetsRefuse(const TriangleMesh& mesh, const std::string& problem) {
     try {
         TetOptions o;
-        o.useCache = false, o.strict = true;
+        o.useCache = false;
+        o.strict = true;
         tetrahedralize(mesh, o);
         ADD_FAILURE() << "the tets accepted a mesh that should fail with: " << problem;
     } catch (const InputError& e) {
@@ -49,7 +50,8 @@ std::vector<uint32_t> slivers(const TetMesh& mesh, double quality) {
         for (int i = 0; i < 4; ++i)
             for (int j = i + 1; j < 4; ++j) {
                 const double l = glm::distance(mesh.vertices[mesh.tets[t][i]], mesh.vertices[mesh.tets[t][j]]);
-                longest = std::max(longest, l), shortest = std::min(shortest, l);
+                longest = std::max(longest, l);
+                shortest = std::min(shortest, l);
             }
         // A regular tet has volume / longest^3 = 1 / (6 sqrt 2).
         if (mesh.tetVolume(t) / std::pow(longest, 3) * 6 * std::sqrt(2.0) < quality && shortest > longest / 3) found.push_back(t);

@@ -9,7 +9,9 @@ MediumDesc sphereMedium(const RGB& sigmaA, const RGB& sigmaS, double g, int subd
     m.name = "sphere";
     m.boundary = icosphere(subdivisions, 1.0);
     for (auto& p : m.boundary.positions) p = {roundToFloat(p.x), roundToFloat(p.y), roundToFloat(p.z)};
-    m.sigmaA = sigmaA, m.sigmaS = sigmaS, m.g = g;
+    m.sigmaA = sigmaA;
+    m.sigmaS = sigmaS;
+    m.g = g;
     return m;
 }
 
@@ -37,7 +39,10 @@ SceneDesc glowingSphereUnderQuad(int resolution) {
     desc.lights.push_back(environment(0.3));
     LightDesc quad;
     quad.type = LightType::Quad;
-    quad.corner = {-1, 3, -1}, quad.edge0 = {0, 0, 2}, quad.edge1 = {2, 0, 0}, quad.radiance = RGB(5);
+    quad.corner = {-1, 3, -1};
+    quad.edge0 = {0, 0, 2};
+    quad.edge1 = {2, 0, 0};
+    quad.radiance = RGB(5);
     desc.lights.push_back(quad);
     return desc;
 }

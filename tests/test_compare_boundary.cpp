@@ -117,7 +117,10 @@ TEST(CompareBoundary, RepairedTetsAgreeWithTheWindingNumberWhereParityFails) {
     EXPECT_LE(tets.mesh().volume(), signedVolume(closed) * (1 + 1e-12));
     EXPECT_GT(tets.mesh().volume(), 0.97 * signedVolume(closed));
     ComparisonOptions options;
-    options.points = 20000, options.rays = 500, options.shells = {1e-2, 1e-4}, options.seed = 5;
+    options.points = 20000;
+    options.rays = 500;
+    options.shells = {1e-2, 1e-4};
+    options.seed = 5;
     const BoundaryComparison c = compareBoundary(tets, options, &holed);
     for (const auto& row : c.classification) {
         std::printf("repaired capless icosphere(3), offset %.0e:", row.offset);
@@ -142,7 +145,8 @@ TEST(CompareBoundary, RepairedTetsAgreeWithTheWindingNumberWhereParityFails) {
 TEST(CompareBoundary, PictureShowsTheMediumAndAgreement) {
     const TetVolume tets = tetsOf(icosphere(3, 1.0));
     CameraDesc desc;
-    desc.position = {0, 0, 4}, desc.width = desc.height = 48;
+    desc.position = {0, 0, 4};
+    desc.width = desc.height = 48;
     const BoundaryPicture picture = renderBoundaryPicture(Camera(desc), {&tets}, 0.02, 3);
     const glm::vec3 centre = picture.image.at(24, 24), boxOnly = picture.image.at(39, 9), corner = picture.image.at(0, 0);
     EXPECT_GT(centre.y, 0.9f);  // a full chord of medium: green

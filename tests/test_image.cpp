@@ -51,11 +51,14 @@ struct Pair {
 };
 Pair handPair() {
     Pair p;
-    p.test.at(0, 0) = {0.5f, 0.5f, 0.5f}, p.reference.at(0, 0) = {0, 0, 1};  // errors .5 .5 .5
+    p.test.at(0, 0) = {0.5f, 0.5f, 0.5f};
+    p.reference.at(0, 0) = {0, 0, 1};  // errors .5 .5 .5
     p.test.at(1, 0) = {kNaN, 0, 0};                                        // non-finite
     p.test.at(2, 0) = {0, kInf, 0};                                        // non-finite
-    p.test.at(0, 1) = {1, 1, 1}, p.reference.at(0, 1) = {1, 1, 1};          // errors 0 0 0
-    p.test.at(1, 1) = {1, 2, 3}, p.reference.at(1, 1) = {1, 1, 1};          // errors 0 1 2: the largest
+    p.test.at(0, 1) = {1, 1, 1};
+    p.reference.at(0, 1) = {1, 1, 1};  // errors 0 0 0
+    p.test.at(1, 1) = {1, 2, 3};
+    p.reference.at(1, 1) = {1, 1, 1};  // errors 0 1 2: the largest
     p.test.at(2, 1) = {0, 0, 0};                                           // errors 0 0 0
     return p;
 }

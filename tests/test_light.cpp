@@ -20,32 +20,44 @@ struct Case {
 std::vector<Case> lights() {
     std::vector<Case> cases;
     LightDesc point;
-    point.type = LightType::Point, point.position = {0.2, 2, 0.1}, point.intensity = {1, 2, 3};
+    point.type = LightType::Point;
+    point.position = {0.2, 2, 0.1};
+    point.intensity = {1, 2, 3};
     cases.push_back({"point", point});
     LightDesc spot = point;
-    spot.type = LightType::Spot, spot.lookAt = {0, 0, 0}, spot.coneAngle = 20, spot.coneDelta = 15;
+    spot.type = LightType::Spot;
+    spot.lookAt = {0, 0, 0};
+    spot.coneAngle = 20;
+    spot.coneDelta = 15;
     cases.push_back({"spot", spot});
     LightDesc diskSpot = spot;
     diskSpot.radius = 0.3;
     cases.push_back({"spot with a radius", diskSpot});
     LightDesc quad;
-    quad.type = LightType::Quad, quad.corner = {-0.5, 1.5, -0.5}, quad.edge0 = {1, 0, 0}, quad.edge1 = {0, 0.2, 1};
+    quad.type = LightType::Quad;
+    quad.corner = {-0.5, 1.5, -0.5};
+    quad.edge0 = {1, 0, 0};
+    quad.edge1 = {0, 0.2, 1};
     quad.radiance = {2, 1, 0.5};
     cases.push_back({"quad (front side down)", quad});
     quad.twoSided = true;
     cases.push_back({"two-sided quad", quad});
     LightDesc distant;
-    distant.type = LightType::Distant, distant.direction = {0.3, -1, 0.2}, distant.irradiance = {1, 0.5, 2};
+    distant.type = LightType::Distant;
+    distant.direction = {0.3, -1, 0.2};
+    distant.irradiance = {1, 0.5, 2};
     cases.push_back({"distant", distant});
     LightDesc environment;
-    environment.type = LightType::Environment, environment.radiance = {0.5, 1, 0.25};
+    environment.type = LightType::Environment;
+    environment.radiance = {0.5, 1, 0.25};
     cases.push_back({"environment", environment});
     return cases;
 }
 
 TEST(Light, PhotonsDepositTheIrradianceThatSampleGives) {
     Bounds3 scene;
-    scene.extend(glm::dvec3(-1)), scene.extend(glm::dvec3(1));
+    scene.extend(glm::dvec3(-1));
+    scene.extend(glm::dvec3(1));
     // A small disk at the origin facing up: photons crossing it, against sample() from its centre.
     const glm::dvec3 centre(0), normal(0, 1, 0);
     const double rho = 0.1;
@@ -67,7 +79,8 @@ TEST(Light, PhotonsDepositTheIrradianceThatSampleGives) {
         for (int i = 0; i < photons; ++i) {
             const double a = rng.uniform(), b = rng.uniform(), u = rng.uniform(), v = rng.uniform();
             const PhotonEmission e = light->emitPhoton({a, b}, {u, v});
-            emitted += e.flux, emitted2 += e.flux * e.flux;
+            emitted += e.flux;
+            emitted2 += e.flux * e.flux;
             const double cosine = -glm::dot(e.ray.d, normal);
             if (cosine <= 0) continue;
             const double t = glm::dot(centre - e.ray.o, normal) / glm::dot(e.ray.d, normal);

@@ -78,10 +78,14 @@ TEST(SphericalRectangle, SamplesAreUniformInSolidAngle) {
 // area (far away, where the solid angle is a sliver); pdf() agrees with sample().
 TEST(SphericalRectangle, RectangleLightIrradianceMatchesClosedForm) {
     LightDesc desc;
-    desc.type = LightType::Quad, desc.corner = {-0.5, 1, -0.3}, desc.edge0 = {1, 0, 0}, desc.edge1 = {0, 0, 0.6};
+    desc.type = LightType::Quad;
+    desc.corner = {-0.5, 1, -0.3};
+    desc.edge0 = {1, 0, 0};
+    desc.edge1 = {0, 0, 0.6};
     desc.radiance = {2, 1, 0.5};
     Bounds3 bounds;
-    bounds.extend(glm::dvec3(-1)), bounds.extend(glm::dvec3(1));
+    bounds.extend(glm::dvec3(-1));
+    bounds.extend(glm::dvec3(1));
     const auto light = makeLight(desc, bounds);
     for (const glm::dvec3& r : kReceivers) {
         const glm::dvec3 p(r.x, 1 - r.z, r.y), up(0, 1, 0);
@@ -95,7 +99,8 @@ TEST(SphericalRectangle, RectangleLightIrradianceMatchesClosedForm) {
             const glm::dvec3 q = p + s.wi * s.distance;
             EXPECT_NEAR(light->pdf(p, s.wi, q, 0), s.pdf, 1e-9 * s.pdf);
             const double e = s.L.x * glm::dot(s.wi, up) / s.pdf;
-            sum += e, sum2 += e * e;
+            sum += e;
+            sum2 += e * e;
         }
         const double mean = sum / samples, se = std::sqrt(std::max(0.0, sum2 / samples - mean * mean) / samples);
         const double exact = desc.radiance.x * kPi * overRectangle(cornerFormFactor, -0.3 - r.y, 0.3 - r.y, -0.5 - r.x, 0.5 - r.x, r.z);
@@ -107,16 +112,27 @@ TEST(SphericalRectangle, RectangleLightIrradianceMatchesClosedForm) {
 // and with MIS never the constant environment (phase/BSDF rays find it).
 TEST(LightSelection, ChoicesFollowTheirPmf) {
     Bounds3 bounds;
-    bounds.extend(glm::dvec3(-1)), bounds.extend(glm::dvec3(1));
+    bounds.extend(glm::dvec3(-1));
+    bounds.extend(glm::dvec3(1));
     std::vector<std::unique_ptr<Light>> lights;
     LightDesc d;
-    d.type = LightType::Point, d.position = {0, 2, 0}, d.intensity = RGB(1);
+    d.type = LightType::Point;
+    d.position = {0, 2, 0};
+    d.intensity = RGB(1);
     lights.push_back(makeLight(d, bounds));
-    d.type = LightType::Spot, d.lookAt = {0, 5, 0}, d.coneAngle = 20, d.coneDelta = 5;  // points away
+    d.type = LightType::Spot;
+    d.lookAt = {0, 5, 0};
+    d.coneAngle = 20;
+    d.coneDelta = 5;  // points away
     lights.push_back(makeLight(d, bounds));
-    d.type = LightType::Quad, d.corner = {-0.5, 1, -0.3}, d.edge0 = {1, 0, 0}, d.edge1 = {0, 0, 0.6}, d.radiance = RGB(0.3);
+    d.type = LightType::Quad;
+    d.corner = {-0.5, 1, -0.3};
+    d.edge0 = {1, 0, 0};
+    d.edge1 = {0, 0, 0.6};
+    d.radiance = RGB(0.3);
     lights.push_back(makeLight(d, bounds));
-    d.type = LightType::Environment, d.radiance = RGB(0.02);
+    d.type = LightType::Environment;
+    d.radiance = RGB(0.02);
     lights.push_back(makeLight(d, bounds));
     const glm::dvec3 p(0.2, 0, 0.1);
     for (bool mis : {false, true}) {
@@ -151,12 +167,17 @@ TEST(LightSelection, ChoicesFollowTheirPmf) {
 // light sampling, BSDF sampling and their MIS weights (light choice and solid-angle pdfs) agree.
 TEST(LightSelection, VolpathDirectLightOnAFloorMatchesClosedForm) {
     SceneDesc desc;
-    desc.camera.position = {0, 3, 3}, desc.camera.lookAt = {0, 0, 0};
+    desc.camera.position = {0, 3, 3};
+    desc.camera.lookAt = {0, 0, 0};
     LightDesc quadLight;
-    quadLight.type = LightType::Quad, quadLight.corner = {-0.5, 1, -0.3}, quadLight.edge0 = {1, 0, 0}, quadLight.edge1 = {0, 0, 0.6};
+    quadLight.type = LightType::Quad;
+    quadLight.corner = {-0.5, 1, -0.3};
+    quadLight.edge0 = {1, 0, 0};
+    quadLight.edge1 = {0, 0, 0.6};
     quadLight.radiance = {3, 2, 1};
     LightDesc sky;
-    sky.type = LightType::Environment, sky.radiance = {0.2, 0.3, 0.4};
+    sky.type = LightType::Environment;
+    sky.radiance = {0.2, 0.3, 0.4};
     desc.lights = {quadLight, sky};
     SurfaceDesc floor;
     floor.name = "floor";
@@ -175,7 +196,8 @@ TEST(LightSelection, VolpathDirectLightOnAFloorMatchesClosedForm) {
         for (int i = 0; i < samples; ++i) {
             Rng rng(6, 1, uint64_t(i));
             const RGB L = integrator->radiance(ray, rng);
-            sum += L, sum2 += L * L;
+            sum += L;
+            sum2 += L * L;
         }
         const double F = overRectangle(cornerFormFactor, -0.5 - p.x, 0.5 - p.x, -0.3 - p.z, 0.3 - p.z, 1.0);
         for (int c = 0; c < 3; ++c) {

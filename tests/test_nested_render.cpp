@@ -30,7 +30,8 @@ MediumDesc absorber(const std::string& name, TriangleMesh mesh, double sigmaA) {
     m.name = name;
     for (auto& p : mesh.positions) p = {roundToFloat(p.x), roundToFloat(p.y), roundToFloat(p.z)};
     m.boundary = std::move(mesh);
-    m.sigmaA = RGB(sigmaA), m.sigmaS = RGB(0);
+    m.sigmaA = RGB(sigmaA);
+    m.sigmaS = RGB(0);
     m.tetOptions.useCache = false;
     return m;
 }
@@ -74,9 +75,9 @@ TEST(NestedRender, TransmittanceThroughNestedSpheresAndACavityIsTheClosedForm) {
     const SceneDesc desc = nestedSpheres();
     const Scene scene(desc);
     ASSERT_EQ(scene.volumes().size(), 1u);
-    ASSERT_EQ(scene.volumes()[0].media.size(), 4u);
+    ASSERT_EQ(scene.volumes()[0].regionMedium.size(), 4u);
     const std::vector<int> parent{-1, 0, 1, 2};
-    for (int r = 0; r < 4; ++r) EXPECT_EQ(scene.volumes()[0].medium->mesh().regionParent[r], parent[r]);
+    for (int r = 0; r < 4; ++r) EXPECT_EQ(scene.volumes()[0].media->mesh().regionParent[r], parent[r]);
     std::mt19937_64 rng(14);
     constexpr int kLines = 100000;
     double worst = 0;
@@ -122,7 +123,7 @@ TEST(NestedRender, EachRegionHasItsOwnDensity) {
     desc.media[1].density.type = DensityDesc::Type::Linear;
     desc.media[1].density.gradient = {0, 0, 2};
     const Scene scene(desc);
-    ASSERT_FALSE(scene.volumes()[0].medium->homogeneous());
+    ASSERT_FALSE(scene.volumes()[0].media->homogeneous());
     std::mt19937_64 gen(12);
     std::uniform_real_distribution<double> u(-0.4, 0.4), angle(0, 2 * kPi);
     double worst = 0;
@@ -185,7 +186,7 @@ TEST(NestedRender, ACoreInADielectricSkinIsTheMultilayer) {
     desc.lights.push_back(environment(1));
     const Scene scene(desc);
     const SceneVolume& v = scene.volumes()[0];
-    const TetMesh& mesh = v.medium->mesh();
+    const TetMesh& mesh = v.media->mesh();
     for (size_t s = 0; s < mesh.surface.size(); ++s) {
         const MaterialDesc& m = v.materials[v.triangleMaterial[s]];
         const auto [behind, front] = mesh.surfaceRegions[s];
@@ -217,7 +218,8 @@ TEST(NestedRender, ACoreInADielectricSkinIsTheMultilayer) {
         double sum = 0, squares = 0;
         for (int i = 0; i < kSamples; ++i) {
             const double L = integrator->radiance(ray, rng).x;
-            sum += L, squares += L * L;
+            sum += L;
+            squares += L * L;
         }
         const double mean = sum / kSamples, error = std::sqrt((squares / kSamples - mean * mean) / kSamples);
         std::printf("skin and cores, %s: %.5f +- %.5f, multilayer %.5f\n", std::string(nameOf(kIntegratorNames, type)).c_str(), mean,
@@ -230,9 +232,11 @@ TEST(NestedRender, ACoreInADielectricSkinIsTheMultilayer) {
 // A scattering body with a glowing, scattering organ and an empty eye inside, in a dim sky.
 SceneDesc nestedScattering() {
     MediumDesc body = absorber("body", icosphere(3, 1.0), 0.2);
-    body.sigmaS = RGB(1.5, 2.0, 2.5), body.g = 0.3;
+    body.sigmaS = RGB(1.5, 2.0, 2.5);
+    body.g = 0.3;
     MediumDesc organ = absorber("organ", icosphere(2, 0.45, {0.2, -0.1, 0.1}), 0.3);
-    organ.sigmaS = RGB(3), organ.emission = RGB(0.5, 1.0, 2.0);
+    organ.sigmaS = RGB(3);
+    organ.emission = RGB(0.5, 1.0, 2.0);
     SceneDesc s = sceneWith(body, 6);
     s.media.push_back(organ);
     s.media.push_back(cavity("eye", icosphere(2, 0.2, {-0.4, 0.3, 0.5})));
@@ -299,7 +303,8 @@ TEST(NestedRender, RegionsOfOneMediumWithoutAnInterfaceShareAPhotonDomain) {
 // bright).
 TEST(NestedRender, PhotonMappingOverAThinShellOfTheSameMediumAgreesWithVolpath) {
     MediumDesc outer = absorber("outer", icosphere(3, 1.0), 0.1);
-    outer.sigmaS = RGB(2), outer.g = 0.3;
+    outer.sigmaS = RGB(2);
+    outer.g = 0.3;
     MediumDesc inner = outer;
     inner.name = "inner";
     inner.boundary = icosphere(3, 0.98);
@@ -307,11 +312,13 @@ TEST(NestedRender, PhotonMappingOverAThinShellOfTheSameMediumAgreesWithVolpath) 
     SceneDesc desc = sceneWith(outer, 6);
     desc.media.push_back(inner);
     LightDesc point;  // no sky: the image is the medium's light alone
-    point.type = LightType::Point, point.position = {2, 3, 2}, point.intensity = RGB(20);
+    point.type = LightType::Point;
+    point.position = {2, 3, 2};
+    point.intensity = RGB(20);
     desc.lights.push_back(point);
     const Scene scene(desc);
     ASSERT_EQ(scene.volumes().size(), 1u);
-    ASSERT_EQ(scene.volumes()[0].media.size(), 2u);
+    ASSERT_EQ(scene.volumes()[0].regionMedium.size(), 2u);
     const RGB reference = meanImage(scene, VolPathIntegrator(scene, 256), 1024);
     IntegratorDesc photon = desc.integrator;
     photon.type = IntegratorType::Photon;
@@ -376,7 +383,9 @@ TEST(NestedRender, OnlyVolumesNoShadowRayLeavesAreSealed) {
             desc.media[1].boundaryMaterial = material(*c.outerBox);
         }
         LightDesc point;
-        point.type = LightType::Point, point.position = c.light, point.intensity = RGB(5);
+        point.type = LightType::Point;
+        point.position = c.light;
+        point.intensity = RGB(5);
         desc.lights = {point, environment(0.5)};
         const Scene scene(desc);
         ASSERT_EQ(scene.sealed(0), c.sealed) << c.name;
@@ -389,7 +398,7 @@ TEST(NestedRender, OnlyVolumesNoShadowRayLeavesAreSealed) {
             ASSERT_TRUE(at.inside());
             Rng rng(9, uint64_t(i));
             // A light sample as directInMedium takes it, without its skip for sealed volumes.
-            const HenyeyGreenstein& phase = scene.volumes()[at.volume].medium->at(at.start.index).phase;
+            const HenyeyGreenstein& phase = scene.volumes()[at.volume].media->at(at.start.index).phase;
             lit += !isBlack(sampleDirect(scene, p, rng, false, phaseScattering(phase, {0, 0, 1}),
                                          [&](const Ray& r, double t) { return transmittance(scene, r, t, at); }));
         }

@@ -36,7 +36,8 @@ TEST(PartialRender, MergedFilmsAreTheSingleRenderBitForBit) {
     SceneDesc desc = sceneWith(sphereMedium(RGB(0.3), RGB(1.5, 2, 2.5), 0.4), 12);
     desc.lights.push_back(environment(0.5));
     LightDesc point;
-    point.position = {2, 3, 2}, point.intensity = RGB(20);
+    point.position = {2, 3, 2};
+    point.intensity = RGB(20);
     desc.lights.push_back(point);
     const Scene scene(desc);
     for (IntegratorType type : {IntegratorType::VolPath, IntegratorType::Photon}) {
@@ -53,7 +54,8 @@ TEST(PartialRender, MergedFilmsAreTheSingleRenderBitForBit) {
             // Merged last part first: the order must not matter either.
             for (auto range = split.rbegin(); range != split.rend(); ++range) {
                 auto partIntegrator = makeIntegrator(scene, desc.integrator);  // a fresh process's
-                options.firstPass = range->first, options.endPass = range->second;
+                options.firstPass = range->first;
+                options.endPass = range->second;
                 const RenderResult part = render(scene, *partIntegrator, options);
                 EXPECT_EQ(part.passes, range->second - range->first);
                 if (split.size() > 1) {

@@ -43,13 +43,17 @@ M4 inverse(const M4& a) {  // not a convention: any inverse will do
 
 M4 Translate(double x, double y, double z) {
     M4 r;
-    r.m[0][3] = x, r.m[1][3] = y, r.m[2][3] = z;
+    r.m[0][3] = x;
+    r.m[1][3] = y;
+    r.m[2][3] = z;
     return r;
 }
 
 M4 Scale(double x, double y, double z) {
     M4 r;
-    r.m[0][0] = x, r.m[1][1] = y, r.m[2][2] = z;
+    r.m[0][0] = x;
+    r.m[1][1] = y;
+    r.m[2][2] = z;
     return r;
 }
 
@@ -135,7 +139,11 @@ struct PbrtSpot {
         glm::dvec3 du, dv;
         CoordinateSystem(dir, du, dv);
         M4 dirToZ;
-        for (int j = 0; j < 3; ++j) dirToZ.m[0][j] = du[j], dirToZ.m[1][j] = dv[j], dirToZ.m[2][j] = dir[j];
+        for (int j = 0; j < 3; ++j) {
+            dirToZ.m[0][j] = du[j];
+            dirToZ.m[1][j] = dv[j];
+            dirToZ.m[2][j] = dir[j];
+        }
         lightToWorld = l2w * Translate(from.x, from.y, from.z) * inverse(dirToZ);
         cosTotal = std::cos(coneangle * std::numbers::pi / 180);
         cosStart = std::cos((coneangle - conedelta) * std::numbers::pi / 180);
@@ -306,7 +314,8 @@ TEST(PbrtLights, SpotFalloffIsPbrts) {
             const RGB expected = RGB(2, 4, 6) * f / 9.0;
             const RGB L = light->sample(q, {0.5, 0.5}).L;
             for (int k = 0; k < 3; ++k) EXPECT_NEAR(L[k], expected[k], 1e-9) << c.coneangle << "/" << c.conedelta << " at " << degrees;
-            lit += f > 0, partial += f > 0 && f < 1;
+            lit += f > 0;
+            partial += f > 0 && f < 1;
         }
         EXPECT_GT(lit, 0);
         if (c.conedelta == 10) {

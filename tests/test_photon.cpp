@@ -24,10 +24,15 @@ SceneDesc closedWorld() {
     SceneDesc s = sceneWith(m, 16);
     s.surfaces.push_back({"floor", quad({-3, -1.2, -3}, {0, 0, 6}, {6, 0, 0}), {MaterialType::Diffuse, RGB(0.6, 0.5, 0.4)}});
     LightDesc point;
-    point.type = LightType::Point, point.position = {1.5, 2, 1}, point.intensity = RGB(4, 3, 2);
+    point.type = LightType::Point;
+    point.position = {1.5, 2, 1};
+    point.intensity = RGB(4, 3, 2);
     s.lights.push_back(point);
     LightDesc spot = point;
-    spot.type = LightType::Spot, spot.position = {-0.5, 3, 0}, spot.lookAt = {0, 0, 0}, spot.radius = 0.2;
+    spot.type = LightType::Spot;
+    spot.position = {-0.5, 3, 0};
+    spot.lookAt = {0, 0, 0};
+    spot.radius = 0.2;
     s.lights.push_back(spot);
     s.lights.push_back(environment(0.1));
     return s;
@@ -118,7 +123,10 @@ Measured measure(const Scene& scene, const Image& image) {
             m.mean += v;
             const Ray ray = scene.camera().generateRay(x + 0.5, y + 0.5);
             const double miss = glm::length(ray.o - glm::dot(ray.o, ray.d) * ray.d);
-            if (miss > 0.85 && miss < 0.97) m.rim += v, ++rim;
+            if (miss > 0.85 && miss < 0.97) {
+                m.rim += v;
+                ++rim;
+            }
         }
     m.mean /= double(image.width) * image.height;
     m.rim /= rim;
@@ -177,7 +185,9 @@ TEST(Photon, CausticPhotonsCameFromALightBySpecularEventsOnly) {
                           Case{"index-matched", MaterialType::Interface, RGB(1.5), RGB(0.3)},
                           Case{"glowing, in glass", MaterialType::Dielectric, RGB(1.5), RGB(0.3)}}) {
         SceneDesc desc = closedWorld();
-        desc.media[0].sigmaA = RGB(0), desc.media[0].sigmaS = c.sigmaS, desc.media[0].emission = c.emission;
+        desc.media[0].sigmaA = RGB(0);
+        desc.media[0].sigmaS = c.sigmaS;
+        desc.media[0].emission = c.emission;
         desc.media[0].boundaryMaterial = {c.boundary, RGB(0), c.boundary == MaterialType::Dielectric ? 1.4 : 1.0};
         // A black floor: light it reflects (and the glass sends back) would not be a caustic.
         if (isBlack(c.sigmaS)) desc.surfaces[0].material.reflectance = RGB(0);
@@ -202,10 +212,17 @@ TEST(Photon, FinalGatherTakesAFloorsIndirectLightWithoutBlur) {
     SceneDesc desc = sceneWith(sphereMedium(RGB(0.05), RGB(3.0), 0.3), 48);
     desc.surfaces.push_back({"floor", quad({-6, -1.2, -6}, {0, 0, 12}, {12, 0, 0}), {MaterialType::Diffuse, RGB(0.8)}});
     LightDesc spot;
-    spot.type = LightType::Spot, spot.position = {0, 3, 0}, spot.lookAt = {0, 0, 0}, spot.coneAngle = 15, spot.coneDelta = 2;
+    spot.type = LightType::Spot;
+    spot.position = {0, 3, 0};
+    spot.lookAt = {0, 0, 0};
+    spot.coneAngle = 15;
+    spot.coneDelta = 2;
     spot.intensity = RGB(40);
     desc.lights = {spot};
-    desc.camera.position = {1.8, 0, 0}, desc.camera.lookAt = {1.8, -1.2, 0}, desc.camera.up = {0, 0, 1}, desc.camera.fov = 30;
+    desc.camera.position = {1.8, 0, 0};
+    desc.camera.lookAt = {1.8, -1.2, 0};
+    desc.camera.up = {0, 0, 1};
+    desc.camera.fov = 30;
     const Scene scene(desc);
     const auto mean = [&](const IntegratorDesc& integ, int spp) {
         auto integrator = makeIntegrator(scene, integ);
@@ -252,7 +269,8 @@ TEST(Photon, DefaultAlphaBalancesBiasAndVariance) {
             double bias = 0, variance = 0;
             for (int i = 0; i < n; ++i) {
                 const double r = PhotonIntegrator::radiusScale(uint64_t(i), alpha, dim);
-                bias += r * r / n, variance += std::pow(r, -dim) / (double(n) * n);
+                bias += r * r / n;
+                variance += std::pow(r, -dim) / (double(n) * n);
             }
             return std::pair{bias * bias, variance};
         };

@@ -58,7 +58,9 @@ std::string binaryPly(bool little) {
         for (int v : f) put<uint32_t>(s, v, little);
     }
     put<int32_t>(s, 3, little);
-    put<uint8_t>(s, 2, little), put<int16_t>(s, -1, little), put<int16_t>(s, 5, little);
+    put<uint8_t>(s, 2, little);
+    put<int16_t>(s, -1, little);
+    put<int16_t>(s, 5, little);
     return s;
 }
 

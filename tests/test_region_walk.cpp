@@ -133,7 +133,10 @@ TEST(RegionWalk, PointsAreLocatedInTheirRegionAcrossInterfaces) {
         for (int32_t m = 0; m < 4; ++m) {
             const PointSide side = classifyPoint(scene.meshes[m], p);
             ASSERT_NE(side, PointSide::OnSurface);
-            if (side == PointSide::Inside && m > depth) expected = m, depth = m;  // listed outermost first
+            if (side == PointSide::Inside && m > depth) { // listed outermost first
+                expected = m;
+                depth = m;
+            }
         }
         const int64_t t = scene.volume.locate(p);
         ASSERT_EQ(t < 0 ? -1 : scene.volume.mesh().region(uint32_t(t)), expected) << "point " << i;

@@ -43,7 +43,10 @@ int32_t regionByNesting(const std::vector<TriangleMesh>& meshes, const std::vect
         if (side != PointSide::Inside) continue;
         int depth = 0;
         for (int32_t q = parent[i]; q >= 0; q = parent[q]) ++depth;
-        if (depth > bestDepth) best = i, bestDepth = depth;
+        if (depth > bestDepth) {
+            best = i;
+            bestDepth = depth;
+        }
     }
     return best;
 }

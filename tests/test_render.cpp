@@ -83,7 +83,9 @@ TEST(Render, ShadowRayRouletteKeepsTheTransmittance) {
         for (int i = 0; i < n; ++i) {
             Rng rng(3, uint64_t(i));
             const RGB tr = transmittance(scene, ray, 10, outside, &rng);
-            sum += tr, sum2 += tr * tr, zeros += isBlack(tr);
+            sum += tr;
+            sum2 += tr * tr;
+            zeros += isBlack(tr);
         }
         const RGB mean = sum / double(n), se = glm::sqrt(glm::max(RGB(0), sum2 / double(n) - mean * mean) / double(n - 1));
         if (sigmaA.z < 1) {
@@ -103,10 +105,12 @@ TEST(Render, ShadowRayRouletteKeepsTheTransmittance) {
 TEST(Render, ColumnProfileEventsAreFreeFlights) {
     MediumDesc m = sphereMedium(RGB(0.2, 0.5, 1.0), RGB(1, 2, 3));
     m.density.type = DensityDesc::Type::Noise;
-    m.density.offset = 1, m.density.amplitude = 0.9, m.density.frequency = 3;
+    m.density.offset = 1;
+    m.density.amplitude = 0.9;
+    m.density.frequency = 3;
     m.tetOptions.maxVolume = 0.01;
     const Scene scene(sceneWith(m, 8));
-    const RegionMedia& medium = *scene.volumes()[0].medium;
+    const RegionMedia& medium = *scene.volumes()[0].media;
     ASSERT_FALSE(medium.homogeneous());
     const VolumeState centre = scene.mediumAt({0.05, -0.02, 0.03});
     std::mt19937 random(11);
@@ -137,7 +141,7 @@ TEST(Render, AbsorbingSphereMatchesChords) {
     SceneDesc desc = sceneWith(sphereMedium(sigmaA, RGB(0)), 48);
     desc.lights.push_back(environment(1));
     const Scene scene(desc);
-    const SurfaceBVH& bvh = scene.volumes()[0].medium->volume().bvh();
+    const SurfaceBVH& bvh = scene.volumes()[0].media->volume().bvh();
     for (IntegratorType type : {IntegratorType::VolPath, IntegratorType::Single}) {
         IntegratorDesc integ;
         integ.type = type;
@@ -169,7 +173,8 @@ Estimate samplePixel(const Integrator& integrator, const Ray& ray, uint64_t key,
     for (int i = 0; i < n; ++i) {
         Rng rng(7, key, uint64_t(i));
         const RGB L = integrator.radiance(ray, rng);
-        sum += L, sum2 += L * L;
+        sum += L;
+        sum2 += L * L;
     }
     const RGB mean = sum / double(n);
     return {mean, glm::sqrt(glm::max(RGB(0), sum2 / double(n) - mean * mean) / double(n - 1))};
@@ -182,7 +187,7 @@ void expectFurnace(const MediumDesc& medium) {
     SceneDesc desc = sceneWith(medium, 12);
     desc.lights.push_back(environment(1));
     const Scene scene(desc);
-    ASSERT_EQ(scene.volumes()[0].medium->homogeneous(), medium.density.isConstant());
+    ASSERT_EQ(scene.volumes()[0].media->homogeneous(), medium.density.isConstant());
     if (!medium.density.isConstant()) {
         ASSERT_GT(scene.volumes()[0].steinerPoints, 50u);  // the density varies inside
     }
@@ -195,7 +200,9 @@ void expectFurnace(const MediumDesc& medium) {
         for (int x = 0; x < 12; ++x) {
             const Estimate e = samplePixel(*integrator, scene.camera().generateRay(x + 0.5, y + 0.5), uint64_t(y) * 12 + x, 256);
             for (int c = 0; c < 3; ++c) EXPECT_NEAR(e.mean[c], 1.0, 5 * e.stdError[c] + 1e-12) << "pixel " << x << "," << y;
-            total += e.mean, totalVar += e.stdError * e.stdError, ++pixels;
+            total += e.mean;
+            totalVar += e.stdError * e.stdError;
+            ++pixels;
         }
     const RGB mean = total / double(pixels), se = glm::sqrt(totalVar) / double(pixels);
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(mean[c], 1.0, 3 * se[c]) << "channel " << c;
@@ -206,7 +213,9 @@ TEST(Render, WhiteFurnaceHomogeneous) { expectFurnace(sphereMedium(RGB(0), RGB(0
 TEST(Render, WhiteFurnacePerVertexDensity) {
     MediumDesc m = sphereMedium(RGB(0), RGB(1, 3, 5), -0.4);
     m.density.type = DensityDesc::Type::Noise;
-    m.density.offset = 1, m.density.amplitude = 0.9, m.density.frequency = 3;
+    m.density.offset = 1;
+    m.density.amplitude = 0.9;
+    m.density.frequency = 3;
     m.tetOptions.maxVolume = 0.01;  // interior vertices, so the density varies inside
     expectFurnace(m);
 }
@@ -258,7 +267,10 @@ TEST(Render, SameSeedSameImageAnyThreadCount) {
             if (type == IntegratorType::VolPath && estimate == PhotonEstimate::KnnMarch) continue;
             SCOPED_TRACE(type == IntegratorType::VolPath ? "volpath" : estimate == PhotonEstimate::Beam ? "photon, beam" : "photon, knn-march");
             IntegratorDesc integ;
-            integ.type = type, integ.estimate = estimate, integ.photons = 20000, integ.seed = 42;
+            integ.type = type;
+            integ.estimate = estimate;
+            integ.photons = 20000;
+            integ.seed = 42;
             const auto integrator = makeIntegrator(scene, integ);
             RenderOptions options;
             options.spp = 4;

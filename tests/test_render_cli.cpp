@@ -152,7 +152,10 @@ TEST(RenderCommand, ReferenceWritesTheErrorPerPass) {
     std::getline(csv, line);
     EXPECT_EQ(line, "pass,seconds,noise_estimate,rel_mse_vs_reference");
     int rows = 0;
-    while (std::getline(csv, line)) ++rows, last = line;
+    while (std::getline(csv, line)) {
+        ++rows;
+        last = line;
+    }
     EXPECT_EQ(rows, 5);
     EXPECT_EQ(last.rfind("5,", 0), 0u) << last;
     const auto d = runTetglow("diff " + dir + "/test.exr " + dir + "/ref.exr --json");

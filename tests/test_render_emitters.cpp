@@ -13,7 +13,7 @@ namespace {
 
 // The length of the camera ray inside the unit sphere, from Embree's hits on its boundary.
 double chord(const Scene& scene, const Ray& ray) {
-    const auto hits = scene.volumes()[0].medium->volume().bvh().allHits(ray);
+    const auto hits = scene.volumes()[0].media->volume().bvh().allHits(ray);
     double length = 0;
     for (size_t i = 0; i + 1 < hits.size(); i += 2) length += hits[i + 1].t - hits[i].t;
     return length;
@@ -91,7 +91,8 @@ TEST(Emitters, TwoEnvironmentLightsFurnaceIsTheSum) {
             for (int i = 0; i < 200; ++i, ++n) {
                 Rng rng(9, uint64_t(y) * 6 + x, uint64_t(i));
                 const RGB L = integrator->radiance(scene.camera().generateRay(x + 0.5, y + 0.5), rng);
-                sum += L, sum2 += L * L;
+                sum += L;
+                sum2 += L * L;
             }
     const RGB mean = sum / double(n);
     const RGB se = glm::sqrt(glm::max(RGB(0), sum2 / double(n) - mean * mean) / double(n - 1));

@@ -33,13 +33,18 @@ TEST(Retune, SameImageAsAFreshScene) {
     SceneDesc before = sceneWith(m, 24);
     before.lights.push_back(environment(0.3));
     SceneDesc after = before;
-    after.media[0].sigmaS = RGB(2, 1, 0.5), after.media[0].g = -0.3, after.media[0].emission = RGB(0.5, 0, 0);
+    after.media[0].sigmaS = RGB(2, 1, 0.5);
+    after.media[0].g = -0.3;
+    after.media[0].emission = RGB(0.5, 0, 0);
     after.media[0].density.type = DensityDesc::Type::Noise;  // per-vertex density on the old tets
-    after.camera.width = 16, after.camera.height = 12;
+    after.camera.width = 16;
+    after.camera.height = 12;
     for (const IntegratorType type : {IntegratorType::VolPath, IntegratorType::Photon}) {
         SCOPED_TRACE(type == IntegratorType::VolPath ? "volpath" : "photon");
         IntegratorDesc integ;
-        integ.type = type, integ.photons = 5000, integ.seed = 7;
+        integ.type = type;
+        integ.photons = 5000;
+        integ.seed = 7;
         Scene retuned(before);
         renderPasses(retuned, integ, 1);
         retuned.retuneMedia(after.media);
@@ -70,20 +75,22 @@ TEST(Retune, CoefficientsRoundTripThroughTheLoadersChecks) {
     nlohmann::json j = nlohmann::json::parse(mediumCoefficientsJson(m).dump());
     j["scale"] = 2;
     MediumDesc read;
-    JsonValue(&j, nlohmann::json::json_pointer(), "request").readObject([&](JsonObject& o) { return readMediumCoefficients(o, read), 0; });
+    JsonValue(&j, nlohmann::json::json_pointer(), "request").readObject([&](JsonObject& o) { readMediumCoefficients(o, read); return 0; });
     EXPECT_EQ(read.sigmaA, 2.0 * m.sigmaA);
     EXPECT_EQ(read.sigmaS, 2.0 * m.sigmaS);
     EXPECT_EQ(read.g, m.g);
     EXPECT_EQ(read.emission, m.emission);
     j["g"] = 1.5;
     try {
-        JsonValue(&j, nlohmann::json::json_pointer(), "request").readObject([&](JsonObject& o) { return readMediumCoefficients(o, read), 0; });
+        JsonValue(&j, nlohmann::json::json_pointer(), "request").readObject([&](JsonObject& o) { readMediumCoefficients(o, read); return 0; });
         FAIL() << "g = 1.5 was accepted";
     } catch (const InputError& e) {
         EXPECT_STREQ(e.what(), "request: /g: expected a number in (-1, 1), got 1.5");
     }
     IntegratorDesc integ;
-    integ.photons = 1234, integ.k = 5, integ.maxDepth = 9;
+    integ.photons = 1234;
+    integ.k = 5;
+    integ.maxDepth = 9;
     const nlohmann::json ij = nlohmann::json::parse(integratorJson(integ).dump());
     const IntegratorDesc back = JsonValue(&ij, nlohmann::json::json_pointer(), "request").readObject(readIntegrator);
     EXPECT_EQ(back.photons, 1234u);

@@ -65,7 +65,11 @@ TEST(Sampler, EachSampleIsUniformAndItsPairsIndependent) {
     for (int p = 0; p < pixels; ++p) {
         Rng rng = Rng::pixelSample(11, uint64_t(p), 5);
         std::vector<double> u(dims);
-        for (int d = 0; d < dims; ++d) u[d] = rng.uniform(), sum[d] += u[d], sum2[d] += u[d] * u[d];
+        for (int d = 0; d < dims; ++d) {
+            u[d] = rng.uniform();
+            sum[d] += u[d];
+            sum2[d] += u[d] * u[d];
+        }
         cross += u[1] + u[2] < 1;
     }
     // Uniform on [0, 1): mean 1/2 (standard error 1/sqrt(12 n)), second moment 1/3 (2/sqrt(45 n)).
@@ -153,10 +157,13 @@ TEST(Sampler, ImagesKeepTheirMean) {
     for (const IntegratorType type : {IntegratorType::VolPath, IntegratorType::Photon}) {
         SCOPED_TRACE(type == IntegratorType::VolPath ? "volpath" : "photon");
         IntegratorDesc integ;
-        integ.type = type, integ.photons = 20000, integ.seed = 5;
+        integ.type = type;
+        integ.photons = 20000;
+        integ.seed = 5;
         const auto integrator = makeIntegrator(scene, integ);
         RenderOptions options;
-        options.spp = 16, options.seed = 5;
+        options.spp = 16;
+        options.seed = 5;
         const Image sobol = render(scene, *integrator, options).image;
         const Image independent = renderIndependent(scene, *integrator, options.spp, 6);
         for (int c = 0; c < 3; ++c) {
@@ -164,7 +171,8 @@ TEST(Sampler, ImagesKeepTheirMean) {
             const size_t n = sobol.pixels.size();
             for (size_t i = 0; i < n; ++i) {
                 const double d = double(sobol.pixels[i][c]) - independent.pixels[i][c];
-                sum += d, sum2 += d * d;
+                sum += d;
+                sum2 += d * d;
             }
             const double mean = sum / n, se = std::sqrt((sum2 / n - mean * mean) / (n - 1));
             EXPECT_NEAR(mean, 0, 4 * se) << "channel " << c;

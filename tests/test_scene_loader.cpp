@@ -266,7 +266,9 @@ TEST(SceneLoader, ShippedScenesLoad) {
 // Frame k of n turns the camera by k / n of the turn, right-handed about the axis through the center.
 TEST(Turntable, TurnsTheCameraAboutTheAxis) {
     SceneDesc scene;
-    scene.camera.position = {0.3, 0.2, 4}, scene.camera.lookAt = {1, 0, 0}, scene.camera.up = {0, 1, 0};
+    scene.camera.position = {0.3, 0.2, 4};
+    scene.camera.lookAt = {1, 0, 0};
+    scene.camera.up = {0, 1, 0};
     scene.turntable = {.frames = 4, .center = {1, 0, 0}, .axis = {0, 2, 0}, .degrees = 360};
     const CameraDesc still = cameraAtFrame(scene, 0);
     EXPECT_TRUE(still.position == scene.camera.position && still.lookAt == scene.camera.lookAt && still.up == scene.camera.up);

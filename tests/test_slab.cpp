@@ -26,7 +26,9 @@ TEST(Slab, MatchesPublishedReflectanceAndTransmittance) {
 
 TEST(Slab, NoScatteringGivesBeerLambert) {
     SlabParams p;
-    p.tau = 1.5, p.albedo = 0, p.photons = 1000;
+    p.tau = 1.5;
+    p.albedo = 0;
+    p.photons = 1000;
     const SlabResult r = simulateSlab(p);
     EXPECT_NEAR(r.transmittance.mean, std::exp(-1.5), 4 * r.transmittance.stdError + 1e-12);
     EXPECT_EQ(r.reflectance.mean, 0);
@@ -34,7 +36,8 @@ TEST(Slab, NoScatteringGivesBeerLambert) {
 
 TEST(Slab, SameResultAnyThreadCount) {
     SlabParams p;
-    p.photons = 20000, p.threads = 1;
+    p.photons = 20000;
+    p.threads = 1;
     const SlabResult one = simulateSlab(p);
     p.threads = 2;
     const SlabResult two = simulateSlab(p);
@@ -55,7 +58,10 @@ TEST(Slab, LargestPhotonCountEndsAtItsTimeLimit) {
 // event cap: its flux would be missing from every tally, so the run is refused, not reported.
 TEST(Slab, PhotonAtTheEventCapIsAnError) {
     SlabParams p;
-    p.tau = 1e6, p.albedo = 1, p.g = 0.999999, p.photons = 2;
+    p.tau = 1e6;
+    p.albedo = 1;
+    p.g = 0.999999;
+    p.photons = 2;
     try {
         simulateSlab(p);
         FAIL() << "a photon at the event cap was counted";

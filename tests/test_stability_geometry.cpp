@@ -49,7 +49,8 @@ TEST(Stability, DegenerateLinesThroughAConvexPolyhedron) {
         Tally& k = byKind[kind];
         const Line line{ray, 0, 4 * diagonal, 0.5};
         const double exact = convexChord(surface, ray), tet = tetChord(tets, line), error = std::abs(tet - exact);
-        ++k.lines, k.exact += exact;
+        ++k.lines;
+        k.exact += exact;
         k.tetOff += error > 1e-6 * diagonal;
         k.tetMax = std::max(k.tetMax, error);
         k.marchAbs += std::abs(march.length(line) - exact);
@@ -80,7 +81,8 @@ TEST(Stability, DegenerateLinesThroughAConvexPolyhedron) {
         std::printf("parity ray from inside exactly through a %s, crossings counted:", name);
         for (const auto& [crossings, n] : counts) {
             std::printf(" %d: %d", crossings, n);
-            wrong += crossings % 2 == 0 ? n : 0, all += n;
+            wrong += crossings % 2 == 0 ? n : 0;
+            all += n;
             EXPECT_GE(crossings, 1) << "a watertight test never misses the surface";
         }
         std::printf(" -> wrong (even) %d of %d\n", wrong, all);

@@ -86,7 +86,9 @@ void expectEveryIntegratorAlong(const Scene& scene, const std::vector<NamedLine>
             if (mode.name.rfind("single, ", 0) != 0 || mode.name == "single, tets") {
                 EXPECT_NEAR(L, truth, 1e-6) << mode.name << ", " << kind;
             }
-            e.sum += std::abs(L - truth), e.max = std::max(e.max, std::abs(L - truth)), ++e.lines;
+            e.sum += std::abs(L - truth);
+            e.max = std::max(e.max, std::abs(L - truth));
+            ++e.lines;
         }
         std::printf("%-15s %s, mean (max):", mode.name.c_str(), what);
         for (const auto& [kind, e] : errorByKind) std::printf(" %s %.1e (%.1e);", kind.c_str(), e.sum / double(e.lines), e.max);
@@ -99,7 +101,7 @@ void expectEveryIntegratorAlong(const Scene& scene, const std::vector<NamedLine>
 TEST(StabilityRender, RaysThroughVerticesEdgesAndGrazingEveryIntegrator) {
     const double sigma = 1.5;
     const Scene scene(furnace(tiltedPolyhedron(2), RGB(sigma), RGB(0), 0));
-    const TriangleMesh surface = scene.volumes()[0].medium->mesh().surfaceMesh();
+    const TriangleMesh surface = scene.volumes()[0].media->mesh().surfaceMesh();
     expectEveryIntegratorAlong(
         scene, degenerateLines(surface), [&](const Ray& ray) { return std::exp(-sigma * convexChord(surface, ray)); },
         "|radiance - exp(-sigma chord)|");
@@ -154,7 +156,9 @@ Stats sampleImage(const Scene& scene, Integrator& integrator, int spp) {
                     continue;
                 }
                 const double v = average(L);
-                sum += v, sum2 += v * v, ++n;
+                sum += v;
+                sum2 += v * v;
+                ++n;
             }
     const double mean = sum / double(n);
     return {mean, std::sqrt(std::max(0.0, sum2 / double(n) - mean * mean) / double(n - 1)), bad};

@@ -262,7 +262,10 @@ TEST_P(TetCore, DegenerateRayChordsMatchEmbreeOrExactChord) {
                             << ' ' << ray.o.z << " d " << ray.d.x << ' ' << ray.d.y << ' ' << ray.d.z;
     };
     std::vector<std::vector<uint32_t>> ring(m.vertices.size());  // surface neighbours
-    for (const auto& [a, b] : surfaceEdges) ring[a].push_back(b), ring[b].push_back(a);
+    for (const auto& [a, b] : surfaceEdges) {
+        ring[a].push_back(b);
+        ring[b].push_back(a);
+    }
     for (size_t v = 0; v < m.vertices.size(); v += stride)
         for (int axis = 0; axis < 3; ++axis) {
             glm::dvec3 d(0);
@@ -302,8 +305,8 @@ TEST_P(TetCore, WalkFromInsideMatchesWalkFromOutside) {
         const glm::dvec3 d = uniformDirection(rng);
         const Ray ray{p - d * (2 * diag_), d};
         double inner = 0, outer = 0;
-        volume_->traverse(ray, 2 * diag_, INFINITY, [&](const WalkSegment& s) { return inner += s.tOut - s.tIn, true; }, t);
-        volume_->traverse(ray, 2 * diag_, INFINITY, [&](const WalkSegment& s) { return outer += s.tOut - s.tIn, true; },
+        volume_->traverse(ray, 2 * diag_, INFINITY, [&](const WalkSegment& s) { inner += s.tOut - s.tIn; return true; }, t);
+        volume_->traverse(ray, 2 * diag_, INFINITY, [&](const WalkSegment& s) { outer += s.tOut - s.tIn; return true; },
                           TetVolume::kUnknown);
         double full = 0;
         volume_->traverse(
@@ -345,7 +348,7 @@ TEST(TetWalkDegenerate, BodyDiagonalThroughAPinch) {
         const glm::dvec3 d(s, s, s);
         const Ray ray{glm::dvec3(1) - 2.0 * d, d};  // through the cubes for t in [1, 3]
         double length = 0;
-        ASSERT_TRUE(volume.traverse(ray, 0, INFINITY, [&](const WalkSegment& w) { return length += w.tOut - w.tIn, true; },
+        ASSERT_TRUE(volume.traverse(ray, 0, INFINITY, [&](const WalkSegment& w) { length += w.tOut - w.tIn; return true; },
                                     TetVolume::kOutside));
         EXPECT_NEAR(length, 2.0, 1e-6);
     }

@@ -49,7 +49,8 @@ const Fixture& fixture() {
             if (!hit || !clip(f.box, ray, t0, t1)) continue;
             f.rays.push_back(ray);
             f.entries.push_back(hit->triangle);
-            f.t0.push_back(t0), f.t1.push_back(t1);
+            f.t0.push_back(t0);
+            f.t1.push_back(t1);
             const size_t r = f.rays.size() - 1;
             std::vector<glm::dvec3> in;
             for (size_t k = 0, n = marchSamples(f, r, diag / 100); k < n; ++k)
@@ -89,8 +90,10 @@ void BM_TetStepsAcrossRegions(benchmark::State& state) {
         std::vector<TriangleMesh> meshes{readMesh(dir + "fish.obj")};
         std::vector<std::string> names{"fish"};
         if (state.range(0) == 1)
-            for (const std::string part : {"fish-photophores", "fish-eyes", "fish-lure-core"})
-                meshes.push_back(readMesh(dir + part + ".obj")), names.push_back(part);
+            for (const std::string part : {"fish-photophores", "fish-eyes", "fish-lure-core"}) {
+                meshes.push_back(readMesh(dir + part + ".obj"));
+                names.push_back(part);
+            }
         volume = std::make_unique<TetVolume>(tetrahedralize(meshes, names, TetOptions{}));
         for (const Ray& ray : f.rays) entries[state.range(0)].push_back(volume->bvh().intersect(ray, 0, INFINITY, Facing::Entering)->triangle);
     }
@@ -120,7 +123,7 @@ void BM_RayWalkFull(benchmark::State& state) {
     for (auto _ : state) {
         double length = 0;
         f.volume->traverse(f.rays[i++ % f.rays.size()], 0, INFINITY,
-                           [&](const WalkSegment& s) { return length += s.tOut - s.tIn, true; }, TetVolume::kOutside);
+                           [&](const WalkSegment& s) { length += s.tOut - s.tIn; return true; }, TetVolume::kOutside);
         benchmark::DoNotOptimize(length);
     }
     state.counters["rays/s"] = benchmark::Counter(double(state.iterations()), benchmark::Counter::kIsRate);

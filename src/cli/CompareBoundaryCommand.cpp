@@ -39,7 +39,8 @@ struct Subject {
 MediumReport describe(const std::string& name, const TetVolume& v) {
     MediumReport r;
     r.name = name;
-    r.tets = v.mesh().tets.size(), r.triangles = v.mesh().surface.size();
+    r.tets = v.mesh().tets.size();
+    r.triangles = v.mesh().surface.size();
     r.diagonal = v.bounds().diagonal();
     return r;
 }
@@ -50,11 +51,11 @@ Subject loadSceneSubject(const std::string& path) {
     if (desc.media.empty()) throw InputError(path + ": the scene has no media to compare");
     s.scene = std::make_unique<Scene>(desc);
     for (const auto& m : s.scene->volumes()) {
-        s.volumes.push_back(&m.medium->volume());
-        MediumReport r = describe(m.name, m.medium->volume());
-        r.sigmaT = average(m.medium->region(0).sigmaT);
+        s.volumes.push_back(&m.media->volume());
+        MediumReport r = describe(m.name, m.media->volume());
+        r.sigmaT = average(m.media->region(0).sigmaT);
         r.sigmaSource = "the mean over R, G, B";
-        r.homogeneous = m.medium->homogeneous();
+        r.homogeneous = m.media->homogeneous();
         s.reports.push_back(std::move(r));
     }
     s.camera = desc.camera;

@@ -95,7 +95,10 @@ std::string localPathWarning(const std::string& what, const std::string& path) {
     while (std::getline(mounts, line)) {
         std::istringstream fields(line);
         if (fields >> device >> mountPoint >> type && (mountPoint == "/" || under(mountPoint)) && mountPoint.size() >= deepest.size())
-            deepest = mountPoint, deepestType = type;
+        {
+            deepest = mountPoint;
+            deepestType = type;
+        }
     }
     if (deepestType == "tmpfs" || deepestType == "ramfs") why += (why.empty() ? "on " : ", on ") + deepestType + " " + deepest;
     if (why.empty()) return {};

@@ -90,7 +90,8 @@ FarmPlan plan(const Options& o) {
     p.cpusPerTask = o.cpusPerTask;
     const int frames = desc.turntable.frames;
     const auto [first, end] = o.frames.empty() ? std::pair{0, frames} : parseRange("--frames", o.frames, frames, "frames");
-    p.firstFrame = first, p.frames = end - first;
+    p.firstFrame = first;
+    p.frames = end - first;
     const std::string output = fs::absolute(given).string();
     for (int f = first; f < end; ++f) p.outputs.push_back(frameOutput(output, f, frames > 1));
     p.workDir = fs::path(output).replace_extension(".farm").string();

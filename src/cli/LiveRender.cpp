@@ -72,7 +72,8 @@ void LiveRender::renderGeneration(const SceneDesc& desc, uint64_t generation) {
 
     // The quick look: a sixteenth of the pixels (the photon pass costs what it always does).
     CameraDesc quick = desc.camera;
-    quick.width = std::max(1, (quick.width + 2) / 4), quick.height = std::max(1, (quick.height + 2) / 4);
+    quick.width = std::max(1, (quick.width + 2) / 4);
+    quick.height = std::max(1, (quick.height + 2) / 4);
     scene_->setCamera(quick);
     options.spp = 1;
     RenderResult look = render(*scene_, *makeIntegrator(*scene_, desc.integrator), options);

@@ -314,7 +314,7 @@ void run(const Options& o) {
     const int port = server.bind(o.host, o.port);
     auto scene = std::make_unique<Scene>(desc);
     for (const auto& m : scene->volumes())
-        std::fprintf(stderr, "medium %s: %zu tets, %s in %.2f s\n", m.name.c_str(), m.medium->mesh().tets.size(),
+        std::fprintf(stderr, "medium %s: %zu tets, %s in %.2f s\n", m.name.c_str(), m.media->mesh().tets.size(),
                      m.stats.fromCache ? "read from the cache" : "tetrahedralized", m.stats.seconds);
     std::signal(SIGINT, onStop);
     std::signal(SIGTERM, onStop);

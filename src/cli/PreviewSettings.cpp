@@ -131,7 +131,7 @@ SceneDesc PreviewSettings::read(const nlohmann::json& settings) const {
         if (items.size() != s.media.size())
             media.fail("an array of at most " + std::to_string(s.media.size()) + " media, one per medium of the scene");
         for (size_t i = 0; i < items.size(); ++i) {
-            items[i].readObject([&](JsonObject& m) { return readMediumCoefficients(m, s.media[i]), 0; });
+            items[i].readObject([&](JsonObject& m) { readMediumCoefficients(m, s.media[i]); return 0; });
             const MediumDesc& m = s.media[i];
             if (m.cavity && (m.sigmaA != RGB(0) || m.sigmaS != RGB(0) || m.emission != RGB(0)))
                 items[i].error(m.name + " is a cavity: it holds no medium to tune (its coefficients stay 0)");

@@ -30,18 +30,25 @@ void applyOverrides(const RenderArgs& o, SceneDesc& scene) {
     if (o.step > 0) integ.stepSize = o.step;
     if (o.seed >= 0) integ.seed = uint64_t(o.seed);
     if (o.photons) integ.photons = uint64_t(o.photons);
-    if (o.k) integ.k = o.k, integ.radius = 0;
+    if (o.k) {
+        integ.k = o.k;
+        integ.radius = 0;
+    }
     if (o.radius > 0) integ.radius = o.radius;
     if (const auto v = valueOf(kEstimateNames, o.estimate)) integ.estimate = *v;
     if (!o.boundaryCorrection.empty()) integ.boundaryCorrection = o.boundaryCorrection == "on";
     if (!o.finalGather.empty()) integ.finalGather = o.finalGather == "on";
-    if (o.time > 0) integ.timeLimit = o.time, integ.spp = o.spp ? o.spp : kMaxSpp;
+    if (o.time > 0) {
+        integ.timeLimit = o.time;
+        integ.spp = o.spp ? o.spp : kMaxSpp;
+    }
     if (!o.resolution.empty()) {
         const auto [w, h] = parsePair(o.resolution, 'x');
         if (w < 1 || h < 1 || w > kMaxResolution || h > kMaxResolution)
             throw CLI::ValidationError("--resolution", "expected WxH with W and H in 1.." + std::to_string(kMaxResolution) + ", got '" +
                                                            shorten(o.resolution) + "'");
-        scene.camera.width = w, scene.camera.height = h;
+        scene.camera.width = w;
+        scene.camera.height = h;
     }
 }
 
@@ -50,7 +57,7 @@ void applyOverrides(const RenderArgs& o, SceneDesc& scene) {
 std::vector<CLI::Option*> addRenderArgs(CLI::App* cmd, RenderArgs& o) {
     cmd->add_option("scene", o.scene, "Scene file: JSON, or pbrt-v3 (.pbrt); see docs/FORMAT.md")->required()->check(CLI::ExistingFile);
     std::vector<CLI::Option*> options;
-    auto add = [&](CLI::Option* option) { return options.push_back(option), option; };
+    auto add = [&](CLI::Option* option) { options.push_back(option); return option; };
     add(cmd->add_option("--integrator", o.integrator, "volpath (reference), single (the parity baseline's ray march) or photon")
             ->check(CLI::IsMember(namesOf(kIntegratorNames))));
     add(cmd->add_option("--spp", o.spp, "Samples per pixel")->check(CLI::Range(1, kMaxSpp)));

@@ -67,7 +67,7 @@ void run(const Options& o) {
 
     const Scene scene(desc);
     for (const auto& m : scene.volumes())
-        std::fprintf(stderr, "medium %s: %zu tets, %zu Steiner points, %s in %.2f s\n", m.name.c_str(), m.medium->mesh().tets.size(),
+        std::fprintf(stderr, "medium %s: %zu tets, %zu Steiner points, %s in %.2f s\n", m.name.c_str(), m.media->mesh().tets.size(),
                      m.steinerPoints, m.stats.fromCache ? "read from the cache" : "tetrahedralized", m.stats.seconds);
     if (o.tetsOnly) return;
     for (const std::string& w : unsampledLightWarnings(scene, desc.integrator.type)) std::fprintf(stderr, "tetglow: warning: %s\n", w.c_str());

@@ -105,7 +105,7 @@ std::vector<Line> sampleLines(const Bounds3& box, size_t count, uint64_t seed) {
 
 double tetChord(const TetVolume& tets, const Line& line) {
     double length = 0;
-    tets.traverse(line.ray, 0, INFINITY, [&](const WalkSegment& s) { return length += s.tOut - s.tIn, true; },
+    tets.traverse(line.ray, 0, INFINITY, [&](const WalkSegment& s) { length += s.tOut - s.tIn; return true; },
                   TetVolume::kOutside);
     return length;
 }
@@ -143,10 +143,12 @@ ChordTable compareChords(const std::vector<Line>& lines, const std::vector<Chord
         double sumAbs = 0, sum = 0;
         for (size_t i = 0; i < lines.size(); ++i) {
             const double e = measured[i] - expected[i];
-            sumAbs += std::abs(e), sum += e;
+            sumAbs += std::abs(e);
+            sum += e;
             score.maxAbsError = std::max(score.maxAbsError, std::abs(e));
         }
-        score.meanAbsError = sumAbs / n, score.meanError = sum / n;
+        score.meanAbsError = sumAbs / n;
+        score.meanError = sum / n;
         score.relativeError = total > 0 ? sumAbs / total : 0;
         table.methods.push_back(score);
     }

@@ -15,7 +15,10 @@ BoundaryPicture renderBoundaryPicture(const Camera& camera, const std::vector<co
     };
     std::vector<Bounds3> boxes;
     Bounds3 all;
-    for (const TetVolume* v : media) boxes.push_back(v->bounds()), all.extend(boxes.back());
+    for (const TetVolume* v : media) {
+        boxes.push_back(v->bounds());
+        all.extend(boxes.back());
+    }
     // Lengths shade by 1 - exp(-length / scale): a chord of a tenth of the scene's diagonal is clearly lit.
     const double scale = 0.1 * all.diagonal();
     checkMarchStep("the scene's step (/integrator/step)", step, all.diagonal(), resolutionOf(all, camera.position()));
@@ -47,8 +50,11 @@ BoundaryPicture renderBoundaryPicture(const Camera& camera, const std::vector<co
                                                    : glm::vec3(0.3 * (1 - std::exp(-boxOnly / scale)), 1 - std::exp(-inside / scale), 0);
         }
     });
-    for (const Counts& c : rows)
-        picture.samples += c.samples, picture.disagreements += c.disagreements, picture.pixelsWithDisagreement += c.pixels;
+    for (const Counts& c : rows) {
+        picture.samples += c.samples;
+        picture.disagreements += c.disagreements;
+        picture.pixelsWithDisagreement += c.pixels;
+    }
     return picture;
 }
 

@@ -51,7 +51,7 @@ inline RGB directInMedium(const Scene& scene, int v, const glm::dvec3& p, const 
                           bool roulette = true) {
     if (scene.sealed(v)) return RGB(0);  // no shadow ray from inside reaches a light
     const VolumeState here{v, WalkStart::inside(tet)};
-    return sampleDirect(scene, p, rng, false, phaseScattering(scene.volumes()[v].medium->at(tet).phase, d),
+    return sampleDirect(scene, p, rng, false, phaseScattering(scene.volumes()[v].media->at(tet).phase, d),
                         [&](const Ray& r, double t) { return transmittance(scene, r, t, here, roulette ? &rng : nullptr); });
 }
 

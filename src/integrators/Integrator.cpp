@@ -12,7 +12,7 @@ namespace tetglow {
 std::unique_ptr<Integrator> makeIntegrator(const Scene& scene, const IntegratorDesc& desc) {
     if (desc.type == IntegratorType::Single || (desc.type == IntegratorType::Photon && desc.estimate == PhotonEstimate::KnnMarch)) {
         double diagonal = 0;
-        for (const auto& m : scene.volumes()) diagonal = std::max(diagonal, m.medium->volume().bounds().diagonal());
+        for (const auto& m : scene.volumes()) diagonal = std::max(diagonal, m.media->volume().bounds().diagonal());
         // Rays start anywhere in the scene: the coordinates resolve what the scene's ray offset does.
         checkMarchStep("step (/integrator/step or --step)", desc.stepSize, diagonal, scene.rayEpsilon());
     }

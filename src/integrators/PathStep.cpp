@@ -25,7 +25,7 @@ RGB transmittance(const Scene& scene, Ray ray, double tMax, VolumeState state, R
         if (hit && !scene.indexMatched(*hit)) return RGB(0);
         WalkExit exit;
         if (state.inside()) {
-            const RegionMedia& medium = *scene.volumes()[state.volume].medium;
+            const RegionMedia& medium = *scene.volumes()[state.volume].media;
             const double end = hit ? hit->t : tMax;
             const FreeFlight f = roulette ? medium.shadowFlight(ray, state.start, end, *roulette)
                                           : medium.sampleFlight(ray, state.start, end, 0, 1.0);

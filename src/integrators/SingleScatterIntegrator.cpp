@@ -13,14 +13,14 @@ namespace tetglow {
 SingleScatterIntegrator::SingleScatterIntegrator(const Scene& scene, const IntegratorDesc& desc)
     : scene_(scene), mode_(desc.boundary), step_(desc.stepSize), parityRays_(desc.parityRays), maxDepth_(desc.maxDepth) {
     for (const SceneVolume& v : scene.volumes()) {
-        if (mode_ != BoundaryMode::Tet && !v.medium->homogeneous())
+        if (mode_ != BoundaryMode::Tet && !v.media->homogeneous())
             throw InputError(v.name + ": the parity and bbox boundary modes need a homogeneous medium (no per-vertex density)");
-        boxes_.push_back(v.medium->volume().bounds());
-        const TetMesh& mesh = v.medium->mesh();
-        std::vector<int> depth(v.media.size(), 0);
+        boxes_.push_back(v.media->volume().bounds());
+        const TetMesh& mesh = v.media->mesh();
+        std::vector<int> depth(v.regionMedium.size(), 0);
         for (size_t r = 0; r < depth.size(); ++r)
             for (int32_t p = mesh.regionParent[r]; p >= 0; p = mesh.regionParent[size_t(p)]) ++depth[r];
-        std::vector<int> order(v.media.begin(), v.media.end());
+        std::vector<int> order(v.regionMedium.begin(), v.regionMedium.end());
         std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
             return depth[size_t(scene.media()[a].region)] > depth[size_t(scene.media()[b].region)];
         });
@@ -57,16 +57,19 @@ RGB SingleScatterIntegrator::visibility(const Ray& ray, double tMax, Rng& rng) c
             std::vector<double> cuts{t0, t1};
             for (int m : innermostFirst_[v]) {
                 double a = t0, b = t1;
-                if (clip(mediumBoxes_[m], ray, a, b)) cuts.push_back(a), cuts.push_back(b);
+                if (clip(mediumBoxes_[m], ray, a, b)) {
+                    cuts.push_back(a);
+                    cuts.push_back(b);
+                }
             }
             std::sort(cuts.begin(), cuts.end());
             for (size_t i = 0; i + 1 < cuts.size(); ++i)
                 if (const int m = pick(v, ray.at(0.5 * (cuts[i] + cuts[i + 1]))); m >= 0)
-                    tau += scene_.volumes()[v].medium->region(scene_.media()[m].region).sigmaT * (cuts[i + 1] - cuts[i]);
+                    tau += scene_.volumes()[v].media->region(scene_.media()[m].region).sigmaT * (cuts[i + 1] - cuts[i]);
             continue;
         }
         for (double t = t0 + rng.uniform() * step_; t < t1; t += step_)
-            if (const int m = pick(v, ray.at(t)); m >= 0) tau += scene_.volumes()[v].medium->region(scene_.media()[m].region).sigmaT * step_;
+            if (const int m = pick(v, ray.at(t)); m >= 0) tau += scene_.volumes()[v].media->region(scene_.media()[m].region).sigmaT * step_;
     }
     return exp(-tau);
 }
@@ -79,7 +82,7 @@ RGB SingleScatterIntegrator::inScattered(size_t v, const RegionOptics& optics, c
 }
 
 RGB SingleScatterIntegrator::marchTets(size_t v, const Ray& ray, double tMax, const RGB& beta, Rng& rng, RGB& L) const {
-    const RegionMedia& medium = *scene_.volumes()[v].medium;
+    const RegionMedia& medium = *scene_.volumes()[v].media;
     // One sample every step_ of the volume's own length along the ray (random offset), across
     // tet faces and interfaces: as many samples as the parity march takes inside, each with the
     // exact transmittance up to it. Each sample stands for step_, an unbiased estimate of the integral.
@@ -105,7 +108,7 @@ RGB SingleScatterIntegrator::marchTets(size_t v, const Ray& ray, double tMax, co
 RGB SingleScatterIntegrator::marchSteps(size_t v, const Ray& ray, double tMax, const RGB& beta, Rng& rng, RGB& L) const {
     double t0 = 0, t1 = tMax;
     if (!clip(boxes_[v], ray, t0, t1)) return RGB(1);
-    const RegionMedia& medium = *scene_.volumes()[v].medium;
+    const RegionMedia& medium = *scene_.volumes()[v].media;
     RGB tau(0);
     // pbrt-v2's march: each step's sample stands for the whole step.
     for (double t = t0 + rng.uniform() * step_; t < t1; t += step_) {

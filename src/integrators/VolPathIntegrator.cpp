@@ -39,7 +39,7 @@ RGB VolPathIntegrator::radiance(const Ray& cameraRay, Rng& rng) const {
         auto hit = scene_.intersect(ray, state);
         FreeFlight flight;
         if (state.inside()) {
-            const RegionMedia& medium = *scene_.volumes()[state.volume].medium;
+            const RegionMedia& medium = *scene_.volumes()[state.volume].media;
             const double tMax = hit ? hit->t : INFINITY;
             if (!medium.scatters() && !medium.emissive()) {
                 // Nothing scatters or glows: attenuate exactly instead of sampling where light dies.
@@ -64,7 +64,9 @@ RGB VolPathIntegrator::radiance(const Ray& cameraRay, Rng& rng) const {
                         L += path.weight() * sampleDirect(scene_, p, rng, true, phaseScattering(optics.phase, ray.d), visibility(here));
                     const double u0 = rng.uniform(), u1 = rng.uniform();
                     const glm::dvec3 wi = optics.phase.sample(ray.d, {u0, u1});
-                    specular = false, lastPdf = optics.phase.eval(glm::dot(ray.d, wi)), lastPoint = p;
+                    specular = false;
+                    lastPdf = optics.phase.eval(glm::dot(ray.d, wi));
+                    lastPoint = p;
                     ray = {p, wi};
                     state = here;
                     if (!survives()) break;
@@ -95,7 +97,9 @@ RGB VolPathIntegrator::radiance(const Ray& cameraRay, Rng& rng) const {
         const double u0 = rng.uniform(), u1 = rng.uniform();
         const BsdfSample bs = sampleMaterial(material, ray.d, hit->n, {u0, u1});
         path.beta *= bs.weight;
-        specular = bs.specular, lastPdf = bs.pdf, lastPoint = hit->p;
+        specular = bs.specular;
+        lastPdf = bs.pdf;
+        lastPoint = hit->p;
         leaveSurface(scene_, *hit, bs.direction, ray, state);
         if (!survives()) break;
     }

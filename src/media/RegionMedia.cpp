@@ -130,7 +130,8 @@ FreeFlight RegionMedia::shadowFlight(const Ray& ray, WalkStart start, double tMa
                 stopped = true;
                 return false;
             }
-            weight /= kSurvive, rouletteAt -= std::log(kSurvive);
+            weight /= kSurvive;
+            rouletteAt -= std::log(kSurvive);
         }
         return s.tOut < tMax;
     });

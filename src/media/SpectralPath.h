@@ -20,13 +20,15 @@ struct SpectralPath {
     // The flight passed a stretch with transmittance tr without an interaction.
     void pass(const RGB& tr) {
         const RGB ratio = tr / tr[hero];
-        beta *= ratio, r *= ratio;
+        beta *= ratio;
+        r *= ratio;
     }
     // An interaction after transmittance tr, where the extinction (sigma_t times density) is
     // sigmaT; the caller then multiplies beta by what happens there (scattering coefficient).
     void interact(const RGB& tr, const RGB& sigmaT) {
         const RGB pdf = sigmaT * tr;
-        beta *= tr / pdf[hero], r *= pdf / pdf[hero];
+        beta *= tr / pdf[hero];
+        r *= pdf / pdf[hero];
     }
     // The path is cut: emission collected at the event uses these factors; so does roulette.
     bool alive() const { return !isBlack(beta); }

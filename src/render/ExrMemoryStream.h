@@ -38,8 +38,11 @@ private:
 // The bytes of the OpenEXR file at `path` (`what` names it in the size message), with OpenEXR's
 // header limits in force; InputError if it is not an OpenEXR file.
 inline std::string readExrBytes(const std::string& path, const char* what) {
-    static const bool limited = (Imf::Header::setMaxImageSize(kMaxResolution, kMaxResolution),
-                                 Imf::Header::setMaxTileSize(kMaxResolution, kMaxResolution), true);
+    static const bool limited = [] {  // once, before the first header is read
+        Imf::Header::setMaxImageSize(kMaxResolution, kMaxResolution);
+        Imf::Header::setMaxTileSize(kMaxResolution, kMaxResolution);
+        return true;
+    }();
     (void)limited;
     std::string data = readInputFile(path, kMaxImageFileBytes, what);
     if (data.size() < 4 || !Imf::isImfMagic(data.data())) throw InputError(path + ": not an OpenEXR file");

@@ -108,7 +108,7 @@ public:
         area_ = total;
         centroid_ /= area_;
     }
-    void setSpot(const SpotProfile& profile, const RGB& intensity) { spot_ = profile, radiance_ = intensity / area_; }
+    void setSpot(const SpotProfile& profile, const RGB& intensity) { spot_ = profile; radiance_ = intensity / area_; }
     // The mesh is the rectangle positions[0] + a (positions[1] - positions[0]) + b (positions[3]
     // - positions[0]); its edges are made exactly orthogonal (they are to float rounding).
     void setRectangle() {

@@ -31,7 +31,10 @@ std::vector<std::vector<int>> groupMedia(const std::vector<MediumDesc>& media, c
     std::vector<int> groupOf(n, -1);
     for (int i = 0; i < n; ++i) {
         int& g = groupOf[find(i)];
-        if (g < 0) g = int(groups.size()), groups.emplace_back();
+        if (g < 0) {
+            g = int(groups.size());
+            groups.emplace_back();
+        }
         groups[g].push_back(i);
     }
     return groups;

@@ -35,18 +35,20 @@ double sceneScale(const SceneDesc& desc) {
 
 void Scene::setCoefficients(SceneVolume& volume) const {
     std::vector<RegionMedium> regions;
-    for (int i : volume.media) {
+    for (int i : volume.regionMedium) {
         const MediumDesc& desc = desc_.media[i];
         RegionMedium r{{desc.sigmaA, desc.sigmaS, desc.g, desc.emission}, {}};
         if (desc.density.isConstant()) {
             // A constant density only scales the coefficients.
-            r.params.sigmaA *= desc.density.offset, r.params.sigmaS *= desc.density.offset, r.params.emission *= desc.density.offset;
+            r.params.sigmaA *= desc.density.offset;
+            r.params.sigmaS *= desc.density.offset;
+            r.params.emission *= desc.density.offset;
         } else {
-            r.vertexDensity = evaluateDensity(desc.density, volume.medium->mesh().vertices);
+            r.vertexDensity = evaluateDensity(desc.density, volume.media->mesh().vertices);
         }
         regions.push_back(std::move(r));
     }
-    volume.medium->setRegions(std::move(regions));
+    volume.media->setRegions(std::move(regions));
 }
 
 void Scene::buildVolumes() {
@@ -60,8 +62,8 @@ void Scene::buildVolumes() {
             surfaces.push_back(media[i].boundary);
             names.push_back(media[i].name);
             v.name += (v.name.empty() ? "" : " + ") + media[i].name;
-            media_[i] = {media[i].name, int(volumes_.size()), int32_t(v.media.size())};
-            v.media.push_back(i);
+            media_[i] = {media[i].name, int(volumes_.size()), int32_t(v.regionMedium.size())};
+            v.regionMedium.push_back(i);
         }
         // One medium alone names itself in its errors (as the loader names it), a group each of its meshes.
         try {
@@ -72,8 +74,8 @@ void Scene::buildVolumes() {
             std::vector<bool> stops;
             for (size_t s = 0; s < mesh.surface.size(); ++s)
                 stops.push_back(mesh.surfaceRegions[s][1] >= 0 && v.materials[v.triangleMaterial[s]].type != MaterialType::Interface);
-            v.medium = std::make_unique<RegionMedia>(MediumParams{}, std::move(mesh));
-            v.medium->setStops(std::move(stops));
+            v.media = std::make_unique<RegionMedia>(MediumParams{}, std::move(mesh));
+            v.media->setStops(std::move(stops));
         } catch (const InputError& e) {
             if (group.size() > 1) throw;
             throw InputError(media[group[0]].name + ": " + e.what());
@@ -85,7 +87,7 @@ void Scene::buildVolumes() {
 
 void Scene::classifyVolumes(const std::vector<TriangleMesh>& meshes, const std::vector<std::pair<HitKind, uint32_t>>& shapes) {
     for (const SceneVolume& v : volumes_) {
-        const Bounds3& box = v.medium->volume().bounds();
+        const Bounds3& box = v.media->volume().bounds();
         bool within = false, lightWithin = false;
         for (size_t k = 0; k < meshes.size(); ++k) {
             const bool overlaps = bounds(meshes[k]).overlaps(box, 4 * epsilon_);
@@ -99,7 +101,7 @@ void Scene::classifyVolumes(const std::vector<TriangleMesh>& meshes, const std::
                 lightWithin = lightWithin || at.overlaps(box, l.radius + 4 * epsilon_);
             }
         surfacesWithin_.push_back(within);
-        const TetMesh& mesh = v.medium->mesh();
+        const TetMesh& mesh = v.media->mesh();
         bool refracting = true;  // every outer boundary triangle
         for (size_t s = 0; s < mesh.surface.size() && refracting; ++s)
             if (mesh.surfaceRegions[s][1] < 0) refracting = v.materials[v.triangleMaterial[s]].type == MaterialType::Dielectric;
@@ -115,7 +117,7 @@ Scene::Scene(const SceneDesc& desc) : desc_(desc), camera_(desc.camera) {
     tetSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     Bounds3 geometry;
     for (const auto& surface : desc.surfaces) geometry.extend(bounds(surface.mesh));
-    for (const auto& v : volumes_) geometry.extend(v.medium->volume().bounds());
+    for (const auto& v : volumes_) geometry.extend(v.media->volume().bounds());
     if (geometry.empty()) geometry.extend(desc.camera.position);  // nothing but lights
     // Constant environments add up: they become one light with the summed radiance, in the
     // place of the first, so that rays escaping and light samples see the same sky.
@@ -125,10 +127,13 @@ Scene::Scene(const SceneDesc& desc) : desc_(desc), camera_(desc.camera) {
         if (l.type == LightType::Environment) sky.radiance += l.radiance;
     for (const auto& l : desc.lights) {
         if (l.type != LightType::Environment) lights_.push_back(makeLight(l, geometry));
-        else if (!environment_) lights_.push_back(makeLight(sky, geometry)), environment_ = lights_.back().get();
+        else if (!environment_) {
+            lights_.push_back(makeLight(sky, geometry));
+            environment_ = lights_.back().get();
+        }
     }
 
-    for (SceneVolume& v : volumes_) v.normals = unitNormals(v.medium->mesh().vertices, v.medium->mesh().surface);
+    for (SceneVolume& v : volumes_) v.normals = unitNormals(v.media->mesh().vertices, v.media->mesh().surface);
     surfaces_ = rtcNewScene(embreeDevice());
     all_ = rtcNewScene(embreeDevice());
     for (RTCScene s : {surfaces_, all_}) rtcSetSceneFlags(s, RTC_SCENE_FLAG_ROBUST);
@@ -143,10 +148,15 @@ Scene::Scene(const SceneDesc& desc) : desc_(desc), camera_(desc.camera) {
     for (uint32_t i = 0; i < desc.surfaces.size(); ++i) {
         TriangleMesh mesh = desc.surfaces[i].mesh;
         for (auto& p : mesh.positions) p = {roundToFloat(p.x), roundToFloat(p.y), roundToFloat(p.z)};
-        shapes.push_back({HitKind::Surface, i}), meshes.push_back(std::move(mesh));
+        shapes.push_back({HitKind::Surface, i});
+        meshes.push_back(std::move(mesh));
     }
-    for (uint32_t i = 0; i < lights_.size(); ++i)
-        if (const TriangleMesh* shape = lights_[i]->shape()) shapes.push_back({HitKind::Light, i}), meshes.push_back(*shape);
+    for (uint32_t i = 0; i < lights_.size(); ++i) {
+        if (const TriangleMesh* shape = lights_[i]->shape()) {
+            shapes.push_back({HitKind::Light, i});
+            meshes.push_back(*shape);
+        }
+    }
     for (const TriangleMesh& m : meshes) normals_.push_back(unitNormals(m.positions, m.triangles));
     classifyVolumes(meshes, shapes);
     for (size_t k = 0; k < meshes.size(); ++k) {
@@ -156,8 +166,8 @@ Scene::Scene(const SceneDesc& desc) : desc_(desc), camera_(desc.camera) {
     }
     // The boundary exactly as the tets have it: surface triangle ids are Embree primitive ids.
     for (uint32_t i = 0; i < volumes_.size(); ++i)
-        attach(all_, allGeometries_, {HitKind::MediumBoundary, i, 0}, volumes_[i].medium->mesh().vertices,
-               volumes_[i].medium->mesh().surface);
+        attach(all_, allGeometries_, {HitKind::MediumBoundary, i, 0}, volumes_[i].media->mesh().vertices,
+               volumes_[i].media->mesh().surface);
     rtcCommitScene(surfaces_);
     rtcCommitScene(all_);
 }
@@ -190,8 +200,12 @@ std::optional<Intersection> Scene::intersect(RTCScene scene, const std::vector<G
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRayHit rh{};
-    rh.ray.org_x = float(ray.o.x), rh.ray.org_y = float(ray.o.y), rh.ray.org_z = float(ray.o.z);
-    rh.ray.dir_x = float(ray.d.x), rh.ray.dir_y = float(ray.d.y), rh.ray.dir_z = float(ray.d.z);
+    rh.ray.org_x = float(ray.o.x);
+    rh.ray.org_y = float(ray.o.y);
+    rh.ray.org_z = float(ray.o.z);
+    rh.ray.dir_x = float(ray.d.x);
+    rh.ray.dir_y = float(ray.d.y);
+    rh.ray.dir_z = float(ray.d.z);
     rh.ray.tnear = float(epsilon_);
     rh.ray.tfar = tMax < 1e30 ? float(tMax) : INFINITY;
     rh.ray.mask = ~0u;
@@ -212,7 +226,7 @@ std::optional<Intersection> Scene::intersect(RTCScene scene, const std::vector<G
 std::optional<Intersection> Scene::intersect(const Ray& ray, double tMax) const {
     auto hit = intersect(surfaces_, surfaceGeometries_, ray, tMax);
     for (size_t v = 0; v < volumes_.size(); ++v) {
-        const auto entry = volumes_[v].medium->volume().firstEntry(ray, epsilon_, hit ? hit->t : tMax);
+        const auto entry = volumes_[v].media->volume().firstEntry(ray, epsilon_, hit ? hit->t : tMax);
         if (!entry) continue;
         hit = Intersection{entry->exitT(), ray.at(entry->exitT()), volumes_[v].normals[entry->entryTriangle()], entry->entryTriangle(),
                            HitKind::MediumBoundary, uint32_t(v)};
@@ -254,7 +268,7 @@ const MaterialDesc& Scene::material(const Intersection& hit) const {
 VolumeState Scene::afterHit(const Intersection& hit, const glm::dvec3& d, const VolumeState& before) const {
     if (hit.touch) return {};
     if (hit.kind == HitKind::MediumBoundary) {
-        const TetMesh& mesh = volumes_[hit.index].medium->mesh();
+        const TetMesh& mesh = volumes_[hit.index].media->mesh();
         const bool behind = glm::dot(d, hit.n) < 0;
         if (mesh.surfaceRegions[hit.triangle][behind ? 0 : 1] < 0) return {};
         // From outside, the walk enters through the triangle by its exact tests; from a walk's
@@ -265,7 +279,7 @@ VolumeState Scene::afterHit(const Intersection& hit, const glm::dvec3& d, const 
     }
     if (!before.inside()) return before;
     // A surface inside a medium: the path goes on in the same volume, from the tet at the hit.
-    const int64_t tet = volumes_[before.volume].medium->volume().locate(hit.p);
+    const int64_t tet = volumes_[before.volume].media->volume().locate(hit.p);
     return tet >= 0 ? VolumeState{before.volume, WalkStart::inside(uint32_t(tet))} : VolumeState{};
 }
 
@@ -287,7 +301,7 @@ RGB Scene::emitted(const Ray& ray, const Intersection* hit) const {
 
 VolumeState Scene::mediumAt(const glm::dvec3& p) const {
     for (size_t v = 0; v < volumes_.size(); ++v)
-        if (const int64_t tet = volumes_[v].medium->volume().locate(p); tet >= 0) return {int(v), WalkStart::inside(uint32_t(tet))};
+        if (const int64_t tet = volumes_[v].media->volume().locate(p); tet >= 0) return {int(v), WalkStart::inside(uint32_t(tet))};
     return {};
 }
 

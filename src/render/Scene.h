@@ -44,11 +44,11 @@ struct SceneRegion {
 };
 
 // Media that nest or touch, found from their meshes and tetrahedralized together: one RegionMedia
-// whose region r is the scene medium media[r]. A medium apart from all others is a volume alone.
+// whose region r is the scene medium regionMedium[r]. A medium apart from all others is a volume alone.
 struct SceneVolume {
     std::string name;  // its media's names, joined by " + "
-    std::unique_ptr<RegionMedia> medium;
-    std::vector<int> media;  // per region
+    std::unique_ptr<RegionMedia> media;  // the tets, and each region's medium on them
+    std::vector<int> regionMedium;       // per region: its medium's place in the description
     TetStats stats;
     size_t steinerPoints = 0;
     // Per surface triangle, what lies between the regions on its two sides: index-matched where

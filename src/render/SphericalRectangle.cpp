@@ -11,11 +11,19 @@ namespace tetglow {
 SphericalRectangle::SphericalRectangle(const glm::dvec3& o, const glm::dvec3& corner, const glm::dvec3& ex, const glm::dvec3& ey)
     : o_(o) {
     const double exl = glm::length(ex), eyl = glm::length(ey);
-    x_ = ex / exl, y_ = ey / eyl, z_ = glm::cross(x_, y_);
+    x_ = ex / exl;
+    y_ = ey / eyl;
+    z_ = glm::cross(x_, y_);
     const glm::dvec3 d = corner - o;
     z0_ = glm::dot(d, z_);
-    if (z0_ > 0) z_ = -z_, z0_ = -z0_;
-    x0_ = glm::dot(d, x_), y0_ = glm::dot(d, y_), x1_ = x0_ + exl, y1_ = y0_ + eyl;
+    if (z0_ > 0) {
+        z_ = -z_;
+        z0_ = -z0_;
+    }
+    x0_ = glm::dot(d, x_);
+    y0_ = glm::dot(d, y_);
+    x1_ = x0_ + exl;
+    y1_ = y0_ + eyl;
     // The normals of the four great circles through o and the edges, and the internal angles
     // between them: the solid angle is their sum less 2 pi (Girard's theorem).
     const glm::dvec3 v00(x0_, y0_, z0_), v01(x0_, y1_, z0_), v10(x1_, y0_, z0_), v11(x1_, y1_, z0_);
@@ -23,7 +31,8 @@ SphericalRectangle::SphericalRectangle(const glm::dvec3& o, const glm::dvec3& co
     const glm::dvec3 n2 = glm::normalize(glm::cross(v11, v01)), n3 = glm::normalize(glm::cross(v01, v00));
     auto angle = [](const glm::dvec3& a, const glm::dvec3& b) { return std::acos(std::clamp(-glm::dot(a, b), -1.0, 1.0)); };
     const double g0 = angle(n0, n1), g1 = angle(n1, n2), g2 = angle(n2, n3), g3 = angle(n3, n0);
-    b0_ = n0.z, b1_ = n2.z;
+    b0_ = n0.z;
+    b1_ = n2.z;
     k_ = 2 * std::numbers::pi - g2 - g3;
     solidAngle_ = g0 + g1 - k_;
 }

@@ -12,7 +12,7 @@ std::vector<std::string> unsampledLightWarnings(const Scene& scene, IntegratorTy
     const std::string name = integrator == IntegratorType::VolPath ? "volpath" : "single";
     for (size_t v = 0; v < scene.volumes().size(); ++v) {
         const SceneVolume& volume = scene.volumes()[v];
-        if (!scene.sealed(int(v)) || !volume.medium->scatters()) continue;
+        if (!scene.sealed(int(v)) || !volume.media->scatters()) continue;
         warnings.push_back(volume.name + " lies inside a dielectric boundary, through which " + name +
                            " cannot carry light from a point, spot or distant light (a specular path from a light "
                            "of zero size): that light is missing from it; --integrator photon renders it");

@@ -9,8 +9,10 @@ namespace tetglow {
 
 // A bijective 64-bit mix (splitmix64's finaliser): neighbouring keys give unrelated seeds.
 inline uint64_t mixBits(uint64_t v) {
-    v ^= v >> 30, v *= 0xbf58476d1ce4e5b9ull;
-    v ^= v >> 27, v *= 0x94d049bb133111ebull;
+    v ^= v >> 30;
+    v *= 0xbf58476d1ce4e5b9ull;
+    v ^= v >> 27;
+    v *= 0x94d049bb133111ebull;
     return v ^ (v >> 31);
 }
 

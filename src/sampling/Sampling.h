@@ -57,13 +57,18 @@ inline glm::dvec2 sampleUniformTriangle(const glm::dvec2& u) {
 // Weights (s, t, u) of edges v1 - v0, v2 - v0, v3 - v0 for a point uniform in a tetrahedron
 // (Rocchini and Cignoni 2000: fold the unit cube onto the tet).
 inline glm::dvec3 sampleUniformTetrahedron(glm::dvec3 u) {
-    if (u.x + u.y > 1) u.x = 1 - u.x, u.y = 1 - u.y;
+    if (u.x + u.y > 1) {
+        u.x = 1 - u.x;
+        u.y = 1 - u.y;
+    }
     if (u.y + u.z > 1) {
         const double z = u.z;
-        u.z = 1 - u.x - u.y, u.y = 1 - z;
+        u.z = 1 - u.x - u.y;
+        u.y = 1 - z;
     } else if (u.x + u.y + u.z > 1) {
         const double z = u.z;
-        u.z = u.x + u.y + u.z - 1, u.x = 1 - u.y - z;
+        u.z = u.x + u.y + u.z - 1;
+        u.x = 1 - u.y - z;
     }
     return u;
 }

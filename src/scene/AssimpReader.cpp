@@ -133,7 +133,10 @@ const aiNode* findNode(const std::vector<Placed>& nodes, const std::string& name
     size_t count = 0;
     std::string named;  // the nodes with meshes, for the message
     for (const Placed& p : nodes) {
-        if (name == p.node->mName.C_Str()) found = p.node, ++count;
+        if (name == p.node->mName.C_Str()) {
+            found = p.node;
+            ++count;
+        }
         if (p.node->mNumMeshes && named.size() < 200) named += std::string(named.empty() ? "" : ", ") + "'" + p.node->mName.C_Str() + "'";
     }
     if (count > 1) throw InputError(path + ": " + std::to_string(count) + " nodes are named '" + shorten(name) + "'");
@@ -244,10 +247,11 @@ class Message {
 public:
     void add(const void* p, size_t n) { bytes_.append(static_cast<const char*>(p), n); }
     void add(uint64_t n) { add(&n, sizeof n); }
-    void add(const std::string& s) { add(s.size()), add(s.data(), s.size()); }
+    void add(const std::string& s) { add(s.size()); add(s.data(), s.size()); }
     template <class T>
     void add(const std::vector<T>& items) {
-        add(items.size()), add(items.data(), items.size() * sizeof(T));
+        add(items.size());
+        add(items.data(), items.size() * sizeof(T));
     }
     void addStrings(const std::vector<std::string>& items) {
         add(items.size());
@@ -264,7 +268,8 @@ public:
     explicit Reply(std::string bytes) : bytes_(std::move(bytes)) {}
     void take(void* p, size_t n) {
         if (n > bytes_.size() - pos_) throw std::runtime_error("lost the mesh importer's reply");
-        std::memcpy(p, bytes_.data() + pos_, n), pos_ += n;
+        std::memcpy(p, bytes_.data() + pos_, n);
+        pos_ += n;
     }
     uint64_t count(size_t itemBytes) {
         uint64_t n;
@@ -331,10 +336,15 @@ TriangleMesh parseSceneMeshes(std::string data, const std::string& path, SceneMe
         Message m;
         try {
             Imported r = import(std::move(data), path, format, node);
-            m.add(uint64_t(1)), m.addStrings(r.warnings), m.addStrings(r.files), m.add(r.mesh.positions), m.add(r.mesh.triangles);
+            m.add(uint64_t(1));
+            m.addStrings(r.warnings);
+            m.addStrings(r.files);
+            m.add(r.mesh.positions);
+            m.add(r.mesh.triangles);
         } catch (const std::exception& e) {
             m = Message();
-            m.add(uint64_t(0)), m.add(dynamic_cast<const InputError*>(&e) ? std::string(e.what()) : path + ": " + e.what());
+            m.add(uint64_t(0));
+            m.add(dynamic_cast<const InputError*>(&e) ? std::string(e.what()) : path + ": " + e.what());
         }
         writeAll(fds[1], m.bytes());
         ::_exit(0);

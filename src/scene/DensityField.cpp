@@ -12,7 +12,9 @@ namespace {
 double latticeValue(int x, int y, int z, uint32_t seed) {
     uint64_t h = uint64_t(uint32_t(x)) * 0x9e3779b97f4a7c15ull ^ uint64_t(uint32_t(y)) * 0xc2b2ae3d27d4eb4full ^
                  uint64_t(uint32_t(z)) * 0x165667b19e3779f9ull ^ uint64_t(seed) * 0x27d4eb2f165667c5ull;
-    h ^= h >> 31, h *= 0xbf58476d1ce4e5b9ull, h ^= h >> 29;
+    h ^= h >> 31;
+    h *= 0xbf58476d1ce4e5b9ull;
+    h ^= h >> 29;
     return double(h >> 11) * 0x1.0p-52 - 1;
 }
 

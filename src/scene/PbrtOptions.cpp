@@ -46,7 +46,8 @@ Film readFilm(PbrtCall* call) {
 
 CameraDesc readCamera(PbrtCall* call, const glm::dmat4& cameraToWorld, const Film& film, const PbrtLocation& where) {
     CameraDesc c;
-    c.width = film.width, c.height = film.height;
+    c.width = film.width;
+    c.height = film.height;
     PbrtParams none;
     PbrtParams& p = call ? call->params : none;
     const PbrtLocation at = call ? call->where : where;
@@ -55,7 +56,9 @@ CameraDesc readCamera(PbrtCall* call, const glm::dmat4& cameraToWorld, const Fil
     if (const double half = p.getFloat("halffov", -1); half > 0) c.fov = 2 * half;
     if (!(c.fov > 0 && c.fov < 180)) pbrtError(at, "Camera: the field of view must be in (0, 180) degrees");
     if (p.getFloat("lensradius", 0) != 0) p.fail(*p.find("lensradius", Class::Float), "depth of field is not supported (only 0)");
-    p.find("focaldistance", Class::Float), p.find("shutteropen", Class::Float), p.find("shutterclose", Class::Float);
+    p.find("focaldistance", Class::Float);
+    p.find("shutteropen", Class::Float);
+    p.find("shutterclose", Class::Float);
     if (const PbrtParam* ratio = p.find("frameaspectratio", Class::Float);
         ratio && std::abs(ratio->numbers[0] - double(film.width) / film.height) > 1e-6 * ratio->numbers[0])
         p.fail(*ratio, "only the film's own aspect ratio is supported");
@@ -75,7 +78,8 @@ CameraDesc readCamera(PbrtCall* call, const glm::dmat4& cameraToWorld, const Fil
 // pbrt-v3's samplers: only how many samples each takes per pixel matters to tetglow.
 int samplesPerPixel(PbrtCall& call) {
     PbrtParams& p = call.params;
-    p.find("dimensions", Class::Integer), p.find("jitter", Class::Bool);
+    p.find("dimensions", Class::Integer);
+    p.find("jitter", Class::Bool);
     // In 64 bits: 65536 x 65537 samples must not wrap.
     if (call.type == "stratified") return int(std::min<int64_t>(int64_t(p.getInt("xsamples", 4)) * p.getInt("ysamples", 4), kMaxSpp + 1));
     if (call.type == "random") return p.getInt("pixelsamples", 4);
@@ -114,7 +118,8 @@ IntegratorDesc readIntegrator(PbrtCall* sampler, PbrtCall* integrator, std::vect
         if (maxDepth < 0 || maxDepth >= kMaxDepth)
             p.fail(*p.find("maxdepth", Class::Integer), "must be in 0.." + std::to_string(kMaxDepth - 1));
         reject(p, "pixelbounds", Class::Integer, "cropping is not supported");
-        p.find("rrthreshold", Class::Float), p.find("lightsamplestrategy", Class::String);  // only the noise
+        p.find("rrthreshold", Class::Float);
+        p.find("lightsamplestrategy", Class::String);  // only the noise
         p.reportUnused(warnings);
     }
     // pbrt-v3 scatters at most maxdepth times; tetglow's max_depth counts the event that ends

@@ -40,8 +40,12 @@ ObjectMesh readTriangleMesh(PbrtParams& p, const PbrtLocation& where) {
     if (!m.normals.empty() && m.normals.size() != n)
         p.fail(*p.find("N", Class::Normal), "expected one normal per point (" + std::to_string(n) + "), got " + std::to_string(m.normals.size()));
     // Texture coordinates, tangents and face indices only feed textures: no effect here.
-    for (const char* name : {"uv", "st"}) p.find(name, Class::Point2), p.find(name, Class::Float);
-    p.find("S", Class::Vector3), p.find("faceIndices", Class::Integer);
+    for (const char* name : {"uv", "st"}) {
+        p.find(name, Class::Point2);
+        p.find(name, Class::Float);
+    }
+    p.find("S", Class::Vector3);
+    p.find("faceIndices", Class::Integer);
     return m;
 }
 

@@ -134,7 +134,8 @@ void PbrtWorld::lightSource(PbrtCall& c, const glm::dmat4& lightToWorld) {
     } else {
         pbrtError(c.where, "LightSource \"" + c.type + "\" is not supported (supported: point, spot, distant, infinite)");
     }
-    p.find("samples", Class::Integer), p.find("nsamples", Class::Integer);  // only the noise
+    p.find("samples", Class::Integer);
+    p.find("nsamples", Class::Integer);  // only the noise
     p.reportUnused(warnings_);
     lights.push_back(l);
 }
@@ -145,7 +146,8 @@ PbrtAttributes::AreaLight PbrtWorld::areaLightSource(PbrtCall& c) {
     PbrtAttributes::AreaLight a;
     a.radiance = color(p, "L", RGB(1)) * color(p, "scale", RGB(1));
     a.twoSided = p.getBool("twosided", false);
-    p.find("samples", Class::Integer), p.find("nsamples", Class::Integer);
+    p.find("samples", Class::Integer);
+    p.find("nsamples", Class::Integer);
     p.reportUnused(warnings_);
     return a;
 }
@@ -220,7 +222,11 @@ void PbrtWorld::shape(PbrtCall& c, const glm::dmat4& objectToWorld, const PbrtAt
         d.boundary = std::move(m.mesh);
         d.cavity = cavity;
         if (cavity) d.sigmaA = d.sigmaS = RGB(0);
-        else d.sigmaA = namedMedia_[medium].sigmaA, d.sigmaS = namedMedia_[medium].sigmaS, d.g = namedMedia_[medium].g;
+        else {
+            d.sigmaA = namedMedia_[medium].sigmaA;
+            d.sigmaS = namedMedia_[medium].sigmaS;
+            d.g = namedMedia_[medium].g;
+        }
         d.boundaryMaterial = mat;
         media.push_back(std::move(d));
         interfaces_.push_back({a.insideMedium, a.outsideMedium, c.where});

@@ -154,7 +154,9 @@ Header readHeader(const std::string& data, const std::string& path) {
             if (type == "list") {
                 std::string countType, itemType;
                 if (!(ls >> countType >> itemType >> p.name)) throw bad();
-                p.list = true, p.countType = typeOf(countType, path), p.type = typeOf(itemType, path);
+                p.list = true;
+                p.countType = typeOf(countType, path);
+                p.type = typeOf(itemType, path);
             } else {
                 if (!(ls >> p.name)) throw bad();
                 p.type = typeOf(type, path);

@@ -257,9 +257,17 @@ void checkLimits(const SceneDesc& s) {
         const LightDesc& l = s.lights[i];
         const std::string name = "light " + std::to_string(i);
         if (l.type == LightType::Point || l.type == LightType::Spot) point(l.position, name + " position");
-        if (l.type == LightType::Spot) point(l.lookAt, name + " look-at point"), direction(l.lookAt - l.position, name + " axis");
-        if (l.type == LightType::Distant) point(l.direction, name + " direction"), direction(l.direction, name + " direction");
-        colour(l.intensity, name + " intensity"), colour(l.irradiance, name + " irradiance"), colour(l.radiance, name + " radiance");
+        if (l.type == LightType::Spot) {
+            point(l.lookAt, name + " look-at point");
+            direction(l.lookAt - l.position, name + " axis");
+        }
+        if (l.type == LightType::Distant) {
+            point(l.direction, name + " direction");
+            direction(l.direction, name + " direction");
+        }
+        colour(l.intensity, name + " intensity");
+        colour(l.irradiance, name + " irradiance");
+        colour(l.radiance, name + " radiance");
     }
     for (const MediumDesc& m : s.media) colour(m.emission, m.name + " emission");
 }

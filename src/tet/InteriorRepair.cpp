@@ -67,6 +67,10 @@ void orientPatches(TriangleMesh& soup, const EdgeMap& edges, RepairReport& repor
     const size_t n = soup.triangles.size();
     std::vector<char> flipped(n, 0), visited(n, 0);
     std::vector<uint32_t> stack, patch;
+    const auto flip = [&](uint32_t t) {
+        std::swap(soup.triangles[t][1], soup.triangles[t][2]);
+        flipped[t] ^= 1;
+    };
     for (uint32_t seed = 0; seed < n; ++seed) {
         if (visited[seed]) continue;
         visited[seed] = 1;
@@ -94,12 +98,15 @@ void orientPatches(TriangleMesh& soup, const EdgeMap& edges, RepairReport& repor
             }
         }
         if (flippedArea > keptArea)
-            for (uint32_t t : patch) std::swap(soup.triangles[t][1], soup.triangles[t][2]), flipped[t] ^= 1;
+            for (uint32_t t : patch) flip(t);
     }
     if (signedVolume(soup) < 0)
-        for (uint32_t t = 0; t < n; ++t) std::swap(soup.triangles[t][1], soup.triangles[t][2]), flipped[t] ^= 1;
-    for (uint32_t t = 0; t < n; ++t)
-        if (flipped[t]) ++report.flippedTriangles, keep(report.flippedAt, centroid(soup, t));
+        for (uint32_t t = 0; t < n; ++t) flip(t);
+    for (uint32_t t = 0; t < n; ++t) {
+        if (!flipped[t]) continue;
+        ++report.flippedTriangles;
+        keep(report.flippedAt, centroid(soup, t));
+    }
 }
 
 // Parts: triangles connected through shared edges. Those that cross another part are unioned.
@@ -109,7 +116,7 @@ size_t crossingParts(const TriangleMesh& soup, const EdgeMap& edges, const std::
         for (size_t i = 1; i < users.size(); ++i) parts.unite(users[0], users[i]);
     std::set<uint32_t> crossing;
     for (const auto& [i, j] : pairs)
-        if (parts.find(i) != parts.find(j)) crossing.insert(parts.find(i)), crossing.insert(parts.find(j));
+        if (parts.find(i) != parts.find(j)) crossing.insert({parts.find(i), parts.find(j)});
     return crossing.size();
 }
 
@@ -145,7 +152,8 @@ Tets unpack(const RawTets& raw) {
     for (size_t i = 0; i + 2 < raw.points.size(); i += 3) t.points.push_back({raw.points[i], raw.points[i + 1], raw.points[i + 2]});
     const size_t n = raw.tets.size() / 4;
     if (raw.neighbours.size() != 4 * n) throw InputError("TetGen returned no neighbours");
-    t.tets.resize(n), t.neighbours.resize(n);
+    t.tets.resize(n);
+    t.neighbours.resize(n);
     for (size_t i = 0; i < n; ++i)
         for (int j = 0; j < 4; ++j) {
             t.tets[i][j] = uint32_t(raw.tets[4 * i + j]);
@@ -207,7 +215,10 @@ TriangleMesh boundaryOf(const Tets& t, const std::vector<char>& inside, const st
             std::sort(key.begin(), key.end());
             if (!constraints.count(key)) spanned.push_back(uint32_t(out.triangles.size()));
             for (auto& v : f) {
-                if (remap[v] == UINT32_MAX) remap[v] = uint32_t(out.positions.size()), out.positions.push_back(t.points[v]);
+                if (remap[v] == UINT32_MAX) {
+                    remap[v] = uint32_t(out.positions.size());
+                    out.positions.push_back(t.points[v]);
+                }
                 v = remap[v];
             }
             out.triangles.push_back(f);
@@ -229,7 +240,9 @@ void describeHoles(const TriangleMesh& surface, const std::vector<uint32_t>& spa
         if (added) report.holes.emplace_back();
         RepairReport::Hole& h = report.holes[it->second];
         const double a = area(surface, spanned[i]);
-        h.centre += a * centroid(surface, spanned[i]), h.area += a, ++h.faces;
+        h.centre += a * centroid(surface, spanned[i]);
+        h.area += a;
+        ++h.faces;
         report.spannedArea += a;
     }
     for (auto& h : report.holes)
@@ -262,13 +275,17 @@ RepairReport repairInterior(TriangleMesh& mesh) {
     TriangleMesh soup = mesh;
     weldVertices(soup);
     const SoupCleaning cleaning = dropDegenerateAndDuplicates(soup);
-    report.degenerateDropped = cleaning.degenerate, report.duplicatesDropped = cleaning.duplicates;
+    report.degenerateDropped = cleaning.degenerate;
+    report.duplicatesDropped = cleaning.duplicates;
     for (const auto& p : cleaning.degenerateAt) keep(report.degenerateAt, p);
     for (const auto& p : cleaning.duplicateAt) keep(report.duplicateAt, p);
     if (soup.triangles.empty()) throw InputError("mesh encloses no volume: every triangle has zero area");
 
     const EdgeMap edges = edgeTriangles(soup.triangles);
-    for (const auto& [key, users] : edges) report.holeEdges += users.size() == 1, report.nonManifoldEdges += users.size() > 2;
+    for (const auto& [key, users] : edges) {
+        report.holeEdges += users.size() == 1;
+        report.nonManifoldEdges += users.size() > 2;
+    }
     orientPatches(soup, edges, report);
     const auto pairs = findSelfIntersections(soup);
     report.crossingPairs = pairs.size();
@@ -280,7 +297,10 @@ RepairReport repairInterior(TriangleMesh& mesh) {
     RegionComplex plc;
     plc.surface = resolveIntersections(soup);
     std::set<std::array<uint32_t, 3>> constraints;
-    for (auto f : plc.surface.triangles) std::sort(f.begin(), f.end()), constraints.insert(f);
+    for (auto f : plc.surface.triangles) {
+        std::sort(f.begin(), f.end());
+        constraints.insert(f);
+    }
     addPaddedBox(plc.surface);
     const Tets tets = unpack(runIsolated(plc, "pYq1.5nQz"));
     if (tets.tets.empty()) throw InputError("TetGen produced no tetrahedra");
@@ -329,8 +349,14 @@ std::string surveyProblems(const TriangleMesh& input) {
     uint64_t holeKey = UINT64_MAX, nonManifoldKey = UINT64_MAX;  // the lowest edge, not the first hashed
     for (const auto& [key, users] : edges) {
         const glm::dvec3 p = mesh.positions[uint32_t(key >> 32)];
-        if (users.size() == 1 && ++holes && key < holeKey) holeKey = key, firstHole = p;
-        if (users.size() > 2 && ++nonManifold && key < nonManifoldKey) nonManifoldKey = key, firstNonManifold = p;
+        if (users.size() == 1 && ++holes && key < holeKey) {
+            holeKey = key;
+            firstHole = p;
+        }
+        if (users.size() > 2 && ++nonManifold && key < nonManifoldKey) {
+            nonManifoldKey = key;
+            firstNonManifold = p;
+        }
     }
     add(holes, "hole edge", "hole edges", firstHole);
     add(nonManifold, "non-manifold edge", "non-manifold edges", firstNonManifold);

@@ -39,7 +39,8 @@ TriangleMesh autorefine(const TriangleMesh& soup) {
     SurfaceMesh mesh;
     PMP::polygon_soup_to_polygon_mesh(points, polygons, mesh);
     PMP::experimental::autorefine(mesh);
-    points.clear(), polygons.clear();
+    points.clear();
+    polygons.clear();
     PMP::polygon_mesh_to_polygon_soup(mesh, points, polygons);
     TriangleMesh out;
     for (const Point& p : points) out.positions.push_back({CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())});

@@ -200,7 +200,8 @@ ValidationReport validateAndRepair(TriangleMesh& mesh) {
     if (mesh.triangles.empty()) throw InputError("mesh has no triangles");
     checkFinite(mesh);
     const WeldCounts weld = weldVertices(mesh);
-    report.weldedVertices = weld.welded, report.unusedVertices = weld.unused;
+    report.weldedVertices = weld.welded;
+    report.unusedVertices = weld.unused;
     checkTriangles(mesh);
     const auto edges = edgeFaces(mesh);
     checkManifold(mesh, edges);

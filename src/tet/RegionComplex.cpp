@@ -148,7 +148,10 @@ RegionComplex buildRegionComplex(const std::vector<TriangleMesh>& surfaces, cons
     for (size_t i = 0; i < n; ++i)
         for (const glm::dvec3& p : surfaces[i].positions) {
             auto [it, inserted] = vertexIndex.emplace(p, uint32_t(c.surface.positions.size()));
-            if (inserted) c.surface.positions.push_back(p), owner.push_back(uint32_t(i));
+            if (inserted) {
+                c.surface.positions.push_back(p);
+                owner.push_back(uint32_t(i));
+            }
             vertexIds[i].push_back(it->second);
         }
     if (n > 1) refuseNearVertices(c.surface.positions, owner, vertexIds, names);

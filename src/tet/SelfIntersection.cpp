@@ -36,7 +36,10 @@ int dropAxis(const Tri& t) {
     for (int axis = 0; axis < 3; ++axis) {
         const int u = (axis + 1) % 3, v = (axis + 2) % 3;
         const double area = std::abs(orient2d({t[0][u], t[0][v]}, {t[1][u], t[1][v]}, {t[2][u], t[2][v]}));
-        if (area > bestArea) best = axis, bestArea = area;
+        if (area > bestArea) {
+            best = axis;
+            bestArea = area;
+        }
     }
     return best;
 }

@@ -55,7 +55,10 @@ SurfaceBVH::SurfaceBVH(const std::vector<glm::dvec3>& positions, const std::vect
     // rays start at the bounds (see candidates()), so its float error is about 1e-7 of the
     // bounds' extent; the margin is 1e-5 of it.
     glm::dvec3 lo(INFINITY), hi(-INFINITY);
-    for (const auto& p : positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+    for (const auto& p : positions) {
+        lo = glm::min(lo, p);
+        hi = glm::max(hi, p);
+    }
     margin_ = 1e-5 * (glm::length(hi - lo) + glm::length(glm::max(glm::abs(lo), glm::abs(hi))));
     std::vector<glm::dvec3> grown;
     std::vector<std::array<uint32_t, 3>> separate;
@@ -130,9 +133,14 @@ void filter(const RTCFilterFunctionNArguments* args) {
 RTCRayHit makeRay(const Ray& ray, double tnear, double tfar, double shift = 0) {
     RTCRayHit rh{};
     const glm::dvec3 o = ray.at(shift);
-    tnear -= shift, tfar -= shift;
-    rh.ray.org_x = float(o.x), rh.ray.org_y = float(o.y), rh.ray.org_z = float(o.z);
-    rh.ray.dir_x = float(ray.d.x), rh.ray.dir_y = float(ray.d.y), rh.ray.dir_z = float(ray.d.z);
+    tnear -= shift;
+    tfar -= shift;
+    rh.ray.org_x = float(o.x);
+    rh.ray.org_y = float(o.y);
+    rh.ray.org_z = float(o.z);
+    rh.ray.dir_x = float(ray.d.x);
+    rh.ray.dir_y = float(ray.d.y);
+    rh.ray.dir_z = float(ray.d.z);
     // Rounded down by a margin above Embree's float error, so no hit at tnear is lost.
     rh.ray.tnear = float(std::max(tnear * (1 - 1e-6) - 1e-12, 0.0));
     rh.ray.tfar = std::isfinite(tfar) && tfar < 3e38 ? float(tfar) : INFINITY;

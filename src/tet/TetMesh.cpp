@@ -205,7 +205,8 @@ CacheRead readTetMesh(TetMesh& mesh, uint64_t key, const std::string& path, std:
     if (data[sizeof kMagic - 1] != kMagic[sizeof kMagic - 1]) return CacheRead::OtherVersion;
     Reader in{data, sizeof kMagic};
     uint64_t storedKey = 0, checksum = 0, nsv = 0;
-    in.get(storedKey), in.get(checksum);
+    in.get(storedKey);
+    in.get(checksum);
     if (storedKey != key) return damaged("its key does not match its name");
     if (fnv1a(kFnvOffset, data.data() + kHeaderBytes, data.size() - kHeaderBytes) != checksum)
         return damaged("checksum mismatch");

@@ -34,7 +34,10 @@ TetVolume::TetVolume(TetMesh mesh) : mesh_(std::move(mesh)), bvh_(mesh_.vertices
         const glm::dvec3 centre = gridLo_ + (glm::dvec3(cell3) + 0.5) / gridScale_;
         const double d = glm::distance(c, centre);
         const size_t i = index(cell3);
-        if (d < best[i]) best[i] = d, grid_[i] = t;
+        if (d < best[i]) {
+            best[i] = d;
+            grid_[i] = t;
+        }
     }
     std::deque<glm::ivec3> queue;
     for (int z = 0; z < gridRes_.z; ++z)

@@ -90,7 +90,10 @@ bool TetVolume::traverse(const Ray& ray, double tmin, double tmax, Visitor&& vis
             if (t >= tmax) return true;  // left the medium at or beyond the end: nothing to ask Embree
         }
         const double tolerance = 1e-9 * (1.0 + std::abs(t));
-        if (!haveEntries) entries = entriesAlong(ray, t - tolerance), haveEntries = true;
+        if (!haveEntries) {
+            entries = entriesAlong(ray, t - tolerance);
+            haveEntries = true;
+        }
         while (next < entries.size() && entries[next].exitT() < t - tolerance) ++next;
         if (next == entries.size() || entries[next].exitT() > tmax) return true;
         walk = entries[next++];

@@ -67,8 +67,12 @@ inline double TetWalk::faceT(const Vertex& e, const Vertex& x, const Vertex& y, 
 inline void TetWalk::setFace(uint32_t tet, int apex, Vertex a, Vertex b, Vertex c, double ab, double bc, double ca) {
     tet_ = tet;
     apex_ = apex;
-    face_[0] = a, face_[1] = b, face_[2] = c;
-    side_[0] = ab, side_[1] = bc, side_[2] = ca;
+    face_[0] = a;
+    face_[1] = b;
+    face_[2] = c;
+    side_[0] = ab;
+    side_[1] = bc;
+    side_[2] = ca;
 }
 
 std::array<TetWalk::Vertex, 3> TetWalk::projectSurface(uint32_t s) const {
@@ -128,7 +132,11 @@ TetWalk TetWalk::start(const TetMesh& mesh, const Ray& ray, uint32_t tet, double
         const Vertex &a = p[kInwardFace[j][0]], &b = p[kInwardFace[j][2]], &c = p[kInwardFace[j][1]];
         const double s[3] = {orient(a, b), orient(b, c), orient(c, a)};
         const double m = std::min({s[0], s[1], s[2]});
-        if (m > bestMin) best = j, bestMin = m, std::copy(s, s + 3, bestSides);
+        if (m > bestMin) {
+            best = j;
+            bestMin = m;
+            std::copy(s, s + 3, bestSides);
+        }
         if (m > 0) break;
     }
     // Pose the exit face as the entry face of the tet across it, then emit the first segment.

@@ -20,9 +20,13 @@ namespace tetglow {
 
 std::string TetOptions::switches() const {
     std::string s = "pYnQzA";
-    char buf[64];
-    if (radiusEdgeRatio > 0) s += (std::snprintf(buf, sizeof buf, "q%.17g", radiusEdgeRatio), buf);
-    if (maxVolume > 0) s += (std::snprintf(buf, sizeof buf, "a%.17g", maxVolume), buf);
+    const auto add = [&s](char option, double value) {
+        char buf[64];
+        std::snprintf(buf, sizeof buf, "%c%.17g", option, value);
+        s += buf;
+    };
+    if (radiusEdgeRatio > 0) add('q', radiusEdgeRatio);
+    if (maxVolume > 0) add('a', maxVolume);
     return s;
 }
 
@@ -262,8 +266,10 @@ TetMesh tetrahedralize(std::vector<TriangleMesh> surfaces, const std::vector<std
         return mesh.surfaceVertexCount == p.size() && std::equal(p.begin(), p.end(), mesh.vertices.begin()) &&
                mesh.surface == complex.surface.triangles && mesh.surfaceRegions == complex.sides;
     };
-    if (cached == CacheRead::Used && !sameSurface())
-        cached = CacheRead::Damaged, problem = "it holds the tets of another set of meshes";  // a key collision
+    if (cached == CacheRead::Used && !sameSurface()) {  // a key collision
+        cached = CacheRead::Damaged;
+        problem = "it holds the tets of another set of meshes";
+    }
     if (cached == CacheRead::Used) {
         local.fromCache = true;
         local.cacheFile = file.string();

@@ -25,7 +25,8 @@ bool clip(const Bounds3& box, const Ray& ray, double& t0, double& t1) {
         const double inv = 1 / ray.d[k];
         double a = (box.lo[k] - ray.o[k]) * inv, b = (box.hi[k] - ray.o[k]) * inv;
         if (a > b) std::swap(a, b);
-        t0 = std::max(t0, a), t1 = std::min(t1, b);  // NaN (0 * inf) leaves the bound as it was
+        t0 = std::max(t0, a);
+        t1 = std::min(t1, b);  // NaN (0 * inf) leaves the bound as it was
     }
     return t0 < t1;
 }

@@ -31,7 +31,10 @@ struct Bounds3 {
     glm::dvec3 lo{1e300}, hi{-1e300};
     void extend(const glm::dvec3& p);
     void extend(const Bounds3& b) {
-        if (!b.empty()) extend(b.lo), extend(b.hi);
+        if (!b.empty()) {
+            extend(b.lo);
+            extend(b.hi);
+        }
     }
     bool empty() const { return lo.x > hi.x; }
     // Closed box; false for NaN.

@@ -31,7 +31,8 @@ WindingNumber::WindingNumber(const TriangleMesh& soup) : soup_(soup), order_(sou
 // Fills nodes_[index] for order_[begin, end); splits at the median of the longest axis of the centroids.
 void WindingNumber::build(uint32_t index, uint32_t begin, uint32_t end) {
     Node node;
-    node.begin = begin, node.end = end;
+    node.begin = begin;
+    node.end = end;
     double total = 0;
     Bounds3 box;
     for (uint32_t i = begin; i < end; ++i) {

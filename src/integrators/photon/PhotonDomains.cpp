@@ -30,12 +30,12 @@ PhotonDomains photonDomains(const Scene& scene) {
     std::vector<int> parent(n);
     std::iota(parent.begin(), parent.end(), 0);
     for (const SceneVolume& v : scene.volumes()) {
-        const RegionMedia& medium = *v.medium;
+        const RegionMedia& medium = *v.media;
         const TetMesh& mesh = medium.mesh();
         for (size_t s = 0; s < mesh.surface.size(); ++s) {
             const auto [r0, r1] = mesh.surfaceRegions[s];
             if (r1 < 0 || medium.stopsAt(uint32_t(s))) continue;
-            const int a = v.media[size_t(r0)], b = v.media[size_t(r1)];
+            const int a = v.regionMedium[size_t(r0)], b = v.regionMedium[size_t(r1)];
             if (!sameMedium(scene.desc().media[a], scene.desc().media[b], medium.region(r0), medium.region(r1))) continue;
             const int ra = root(parent, a), rb = root(parent, b);
             parent[std::max(ra, rb)] = std::min(ra, rb);  // a set's root stays its smallest medium
@@ -55,10 +55,10 @@ PhotonDomains photonDomains(const Scene& scene) {
     }
     d.boundary.resize(d.media.size());
     for (const SceneVolume& v : scene.volumes()) {
-        const TetMesh& mesh = v.medium->mesh();
+        const TetMesh& mesh = v.media->mesh();
         for (size_t s = 0; s < mesh.surface.size(); ++s) {
             const auto [r0, r1] = mesh.surfaceRegions[s];
-            const int a = d.ofMedium[size_t(v.media[size_t(r0)])], b = r1 < 0 ? -1 : d.ofMedium[size_t(v.media[size_t(r1)])];
+            const int a = d.ofMedium[size_t(v.regionMedium[size_t(r0)])], b = r1 < 0 ? -1 : d.ofMedium[size_t(v.regionMedium[size_t(r1)])];
             if (a == b) continue;
             d.boundary[size_t(a)].push_back(mesh.surface[s]);
             if (b >= 0) d.boundary[size_t(b)].push_back(mesh.surface[s]);

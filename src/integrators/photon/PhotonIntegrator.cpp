@@ -38,7 +38,7 @@ PhotonIntegrator::PhotonIntegrator(const Scene& scene, const IntegratorDesc& des
     checkMemory(double(desc.photons) * sizeof(Photon), std::to_string(desc.photons) + " photon paths per pass (a 32-byte photon each)");
     Bounds3 all;
     for (size_t d = 0; d < domains_.media.size(); ++d) {
-        const TetMesh& mesh = scene.volumes()[size_t(domains_.volume[d])].medium->mesh();
+        const TetMesh& mesh = scene.volumes()[size_t(domains_.volume[d])].media->mesh();
         Bounds3 box;
         for (const auto& triangle : domains_.boundary[d])
             for (uint32_t v : triangle) box.extend(mesh.vertices[v]);
@@ -128,7 +128,7 @@ RGB PhotonIntegrator::radiance(const Ray& cameraRay, Rng& rng) const {
         WalkExit exit;
         if (state.inside()) {
             const double tMax = hit ? hit->t : INFINITY;
-            const ColumnProfile column(*scene_.volumes()[state.volume].medium, ray, state.start, tMax);
+            const ColumnProfile column(*scene_.volumes()[state.volume].media, ray, state.start, tMax);
             L += beta * inMedium(state.volume, ray, column, rng);
             beta *= exp(-column.depth());
             if (isBlack(beta)) break;
@@ -167,11 +167,11 @@ RGB PhotonIntegrator::radiance(const Ray& cameraRay, Rng& rng) const {
 
 int PhotonIntegrator::domainOf(int v, uint32_t tet) const {
     const SceneVolume& volume = scene_.volumes()[v];
-    return domains_.ofMedium[size_t(volume.media[size_t(volume.medium->mesh().region(tet))])];
+    return domains_.ofMedium[size_t(volume.regionMedium[size_t(volume.media->mesh().region(tet))])];
 }
 
 RGB PhotonIntegrator::inMedium(int v, const Ray& ray, const ColumnProfile& column, Rng& rng) const {
-    const RegionMedia& medium = *scene_.volumes()[v].medium;
+    const RegionMedia& medium = *scene_.volumes()[v].media;
     const auto& pieces = column.pieces();
     RGB L(0);
     // Emission, piece by piece: the integral of emission * density * transmittance over a piece
@@ -192,7 +192,7 @@ RGB PhotonIntegrator::inMedium(int v, const Ray& ray, const ColumnProfile& colum
 }
 
 RGB PhotonIntegrator::marchKnn(int v, const Ray& ray, const ColumnProfile& column, Rng& rng) const {
-    const RegionMedia& medium = *scene_.volumes()[v].medium;
+    const RegionMedia& medium = *scene_.volumes()[v].media;
     const double u = rng.uniform();
     RGB L(0);
     // Each exact piece is split into equal steps no longer than the step size, one jittered
@@ -231,7 +231,7 @@ RGB PhotonIntegrator::knnEstimate(int v, uint32_t tet, const glm::dvec3& p, cons
     if (!mp.map) return RGB(0);
     thread_local std::vector<Neighbour> near;
     const double r = gather(*mp.map, p, volumeScale_, mp.maxRadius, near);
-    const HenyeyGreenstein& phase = scene_.volumes()[v].medium->at(tet).phase;
+    const HenyeyGreenstein& phase = scene_.volumes()[v].media->at(tet).phase;
     const auto& photons = mp.map->photons();
     RGB sum(0);
     for (const Neighbour& n : near) {
@@ -258,7 +258,7 @@ RGB PhotonIntegrator::beamEstimate(int v, const Ray& ray, const ColumnProfile& c
         for (last = first + 1; last < pieces.size() && domainOf(v, pieces[last].tet) == m;) ++last;
         const MediumPhotons& mp = media_[m];
         if (!mp.beams) continue;
-        const HenyeyGreenstein& phase = scene_.volumes()[v].medium->at(pieces[first].tet).phase;
+        const HenyeyGreenstein& phase = scene_.volumes()[v].media->at(pieces[first].tet).phase;
         const auto& photons = mp.map->photons();
         const double begin = pieces[first].tIn, end = pieces[last - 1].tOut;
         mp.beams->query(ray.o, ray.d, begin - mp.largestRadius, end + mp.largestRadius, [&](uint32_t i, double t, double distance2) {
@@ -275,7 +275,7 @@ RGB PhotonIntegrator::beamEstimate(int v, const Ray& ray, const ColumnProfile& c
 
 RGB PhotonIntegrator::directAlong(int v, const Ray& ray, const ColumnProfile& column, Rng& rng) const {
     if (scene_.lights().empty() || scene_.sealed(v)) return RGB(0);
-    const RegionMedia& medium = *scene_.volumes()[v].medium;
+    const RegionMedia& medium = *scene_.volumes()[v].media;
     // The distance follows one channel's transmittance, truncated to the stretch; the channels
     // with extinction share the sample by one-sample MIS, so no channel's weight blows up.
     const RGB depth = column.depth();

@@ -52,14 +52,14 @@ public:
             if (state.inside()) {
                 const SceneVolume& volume = scene_.volumes()[state.volume];
                 const WalkResult walk = photonWalk(
-                    *volume.medium, ray, state.start, e.flux, path, rng, options_.maxDepth - depth,
+                    *volume.media, ray, state.start, e.flux, path, rng, options_.maxDepth - depth,
                     [&](const Ray& r) {
                         hit = scene_.intersect(r, state);
                         return hit ? hit->t : INFINITY;
                     },
                     [&](const PhotonEvent& event) {
                         // Stored in the photon map of the medium that scattered it.
-                        const int m = volume.media[size_t(volume.medium->mesh().region(event.tet))];
+                        const int m = volume.regionMedium[size_t(volume.media->mesh().region(event.tet))];
                         if (!direct) store(out_.volume[m], makePhoton(event.position, event.power, event.direction));
                         direct = specularOnly = false;
                     });
@@ -128,15 +128,19 @@ private:
 }  // namespace
 
 void EnergyBalance::add(const EnergyBalance& o) {
-    emitted += o.emitted, absorbedInMedia += o.absorbedInMedia, absorbedOnSurfaces += o.absorbedOnSurfaces;
-    escaped += o.escaped, cut += o.cut, deficitSquares += o.deficitSquares;
+    emitted += o.emitted;
+    absorbedInMedia += o.absorbedInMedia;
+    absorbedOnSurfaces += o.absorbedOnSurfaces;
+    escaped += o.escaped;
+    cut += o.cut;
+    deficitSquares += o.deficitSquares;
 }
 
 PhotonSource::PhotonSource(const Scene& scene) {
     for (int i = 0; i < int(scene.lights().size()); ++i) emitters_.push_back({i, -1, scene.lights()[i]->power(), {}});
     for (int m = 0; m < int(scene.media().size()); ++m) {
         const SceneRegion& sm = scene.media()[m];
-        const RegionMedia& medium = *scene.volumes()[sm.volume].medium;
+        const RegionMedia& medium = *scene.volumes()[sm.volume].media;
         const RegionOptics& optics = medium.region(sm.region);
         if (!(maxComponent(optics.params.emission) > 0)) continue;
         Emitter e{-1, m, RGB(0), {}, medium.mesh().regionTets[sm.region]};
@@ -150,7 +154,10 @@ PhotonSource::PhotonSource(const Scene& scene) {
         if (total > 0) emitters_.push_back(std::move(e));
     }
     double total = 0;
-    for (const Emitter& e : emitters_) cdf_.push_back(total += average(e.power)), total_ += e.power;
+    for (const Emitter& e : emitters_) {
+        cdf_.push_back(total += average(e.power));
+        total_ += e.power;
+    }
     if (!(total > 0)) throw InputError("photon tracing: nothing in the scene emits power");
 }
 
@@ -162,12 +169,13 @@ PhotonSource::Emission PhotonSource::sample(const Scene& scene, Rng& rng) const 
     if (e.light >= 0) {
         const double u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform(), u3 = rng.uniform();
         const PhotonEmission p = scene.lights()[e.light]->emitPhoton({u0, u1}, {u2, u3});
-        out.ray = p.ray, out.flux = p.flux / chosen;
+        out.ray = p.ray;
+        out.flux = p.flux / chosen;
         out.medium = scene.mediumAt(p.ray.o);
         return out;
     }
     const int volume = scene.media()[e.medium].volume;
-    const RegionMedia& medium = *scene.volumes()[volume].medium;
+    const RegionMedia& medium = *scene.volumes()[volume].media;
     const TetMesh& mesh = medium.mesh();
     const auto tet = e.firstTet + uint32_t(sampleCdf(e.tetCdf, rng.uniform()));
     const auto& v = mesh.tets[tet];
