@@ -94,8 +94,7 @@ std::string localPathWarning(const std::string& what, const std::string& path) {
     std::string line, device, mountPoint, type, deepest, deepestType;
     while (std::getline(mounts, line)) {
         std::istringstream fields(line);
-        if (fields >> device >> mountPoint >> type && (mountPoint == "/" || under(mountPoint)) && mountPoint.size() >= deepest.size())
-        {
+        if (fields >> device >> mountPoint >> type && (mountPoint == "/" || under(mountPoint)) && mountPoint.size() >= deepest.size()) {
             deepest = mountPoint;
             deepestType = type;
         }
