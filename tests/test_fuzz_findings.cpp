@@ -51,5 +51,17 @@ TEST(FuzzFindings, PlyVertexIndexBeyondEveryIntegerType) {
     expectTriangleRefused("uchar float", "3 0 1 3.33333e32", "face 0: vertex index 3.33333e+32 out of range (3 vertices)");
 }
 
+// fuzz_off: a face size of 2e9 allocated 8 GB for its indices before reading any of them
+// (libFuzzer: out-of-memory, malloc(8000000000)).
+TEST(FuzzFindings, OffFaceSizeBeyondTheFile) {
+    const std::string path = test::writeTemp("tri.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n2000000000 0 1 2\n");
+    try {
+        readMesh(path);
+        ADD_FAILURE() << "no error";
+    } catch (const InputError& e) {
+        EXPECT_EQ(std::string(e.what()), path + ":6: face of 2000000000 vertices, but only 3 numbers follow");
+    }
+}
+
 }  // namespace
 }  // namespace tetglow

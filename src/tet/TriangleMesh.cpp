@@ -159,7 +159,12 @@ TriangleMesh parseOff(const std::string& data, const std::string& path) {
     }
     for (size_t f = 0; f < nf; ++f) {
         const size_t line = i < toks.size() ? toks[i].second : 0;
-        std::vector<uint32_t> poly(integer("face size"));
+        const size_t size = integer("face size");
+        // Checked before allocating: a size of 2e9 must not reserve 8 GB for a file that ends here.
+        if (size > toks.size() - i)
+            throw InputError(where(path, line) + "face of " + std::to_string(size) + " vertices, but only " +
+                             std::to_string(toks.size() - i) + " numbers follow");
+        std::vector<uint32_t> poly(size);
         for (auto& v : poly) {
             v = static_cast<uint32_t>(integer("vertex index"));
             if (v >= nv) throw InputError(where(path, line) + "face index " + std::to_string(v) + " out of range");
