@@ -1,5 +1,7 @@
 // What the fuzz targets in fuzz/ found, each as the smallest input that showed it (the tet cache
 // reader's finding is in test_tet_cache.cpp, beside the other cache entries).
+#include <sys/resource.h>
+
 #include <string>
 #include <vector>
 
@@ -49,6 +51,22 @@ TEST(FuzzFindings, PlyListLengthBeyondTheFile) {
 // fuzz_ply: a vertex index of 3.3e32 was converted to int64_t for the error message (UB).
 TEST(FuzzFindings, PlyVertexIndexBeyondEveryIntegerType) {
     expectTriangleRefused("uchar float", "3 0 1 3.33333e32", "face 0: vertex index 3.33333e+32 out of range (3 vertices)");
+}
+
+// fuzz_scene_mesh: a character that is not a digit in a Collada index list (<p>0 2\xdf3 ...) makes
+// Assimp's parser stop advancing and append indices without end: the import ran, and grew, until
+// something killed the process. It is refused within the import's time limit, in bounded memory.
+TEST(FuzzFindings, ColladaIndexListThatNeverEndsRunsOutOfTime) {
+    const std::string path = TETGLOW_SOURCE_DIR "/fuzz/corpus/scene_mesh/index-list-never-ends.dae";
+    try {
+        readMesh(path);
+        ADD_FAILURE() << "no error";
+    } catch (const InputError& e) {
+        EXPECT_EQ(std::string(e.what()), path + ": the dae importer (Assimp) ran past its time limit of 10 s");
+    }
+    rusage children{};
+    ::getrusage(RUSAGE_CHILDREN, &children);
+    EXPECT_LT(double(children.ru_maxrss) * 1024, 2e9) << "the fuzzer's memory limit";
 }
 
 }  // namespace

@@ -1,4 +1,5 @@
-// TetGen in a child process: its crashes, aborts and thrown ints become InputErrors in the caller.
+// TetGen in a child process bounded in memory and time (base/ChildProcess.h): its crashes,
+// aborts, thrown ints and limits reached become InputErrors in the caller.
 #pragma once
 #include <string>
 #include <vector>
