@@ -81,7 +81,7 @@ TEST(ChildProcess, AChildThatSegfaultsNamesTheSignal) {
         },
         {256 * kMiB, 60});
     EXPECT_EQ(e.kind, ChildFailure::Kind::Signal);
-    EXPECT_EQ(e.detail, "SIGSEGV (Segmentation fault)");
+    EXPECT_EQ(e.detail, "Segmentation fault, SIGSEGV");
     EXPECT_STREQ(e.what(), "was killed by SIGSEGV (Segmentation fault)");
 }
 

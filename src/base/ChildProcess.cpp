@@ -116,9 +116,10 @@ ChildFailure outOfMemory(double limit) {
     ::_exit(0);
 }
 
-std::string signalName(int sig) {
+ChildFailure killedBy(int sig) {
     const char* abbrev = ::sigabbrev_np(sig);
-    return (abbrev ? "SIG" + std::string(abbrev) : "signal " + std::to_string(sig)) + " (" + ::strsignal(sig) + ")";
+    const std::string name = abbrev ? "SIG" + std::string(abbrev) : "signal " + std::to_string(sig);
+    return ChildFailure(ChildFailure::Kind::Signal, ::strsignal(sig) + (", " + name), "was killed by " + name + " (" + ::strsignal(sig) + ")");
 }
 
 }  // namespace
@@ -190,10 +191,7 @@ std::string runInChild(const std::function<std::string()>& work, ChildLimits lim
         if (double(answer.size()) > limits.memoryBytes || statmBytes(pid, 1) - shared > limits.memoryBytes) stop(outOfMemory(limits.memoryBytes));
     }
     ::close(fd);
-    if (WIFSIGNALED(status)) {
-        const std::string name = signalName(WTERMSIG(status));
-        throw ChildFailure(ChildFailure::Kind::Signal, name, "was killed by " + name);
-    }
+    if (WIFSIGNALED(status)) throw killedBy(WTERMSIG(status));
     if (WEXITSTATUS(status) != 0 || answer.empty()) {
         const std::string code = std::to_string(WEXITSTATUS(status));
         throw ChildFailure(ChildFailure::Kind::Exit, code, "exited with status " + code + " before answering");

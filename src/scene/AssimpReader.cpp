@@ -15,10 +15,10 @@
 #include <glm/mat4x4.hpp>
 #include <glm/matrix.hpp>
 
-#include "base/ByteMessage.h"
 #include "base/ChildProcess.h"
 #include "base/InputFile.h"
 #include "scene/MeshWeld.h"
+#include "tet/MeshMessage.h"
 
 namespace tetglow {
 namespace {
@@ -253,7 +253,7 @@ TriangleMesh parseSceneMeshes(std::string data, const std::string& path, SceneMe
             [&] {
                 Imported r = import(std::move(data), path, format, node);
                 ByteWriter m;
-                m.addStrings(r.warnings), m.addStrings(r.files), m.add(r.mesh.positions), m.add(r.mesh.triangles);
+                m.addStrings(r.warnings), m.addStrings(r.files), addMesh(m, r.mesh);
                 return std::move(m.bytes());
             },
             limits);
@@ -266,13 +266,7 @@ TriangleMesh parseSceneMeshes(std::string data, const std::string& path, SceneMe
     for (const auto& w : reply.strings())
         if (warnings) addWarning(*warnings, w);
     for (const auto& f : reply.strings()) noteInputFile(f);
-    TriangleMesh mesh;
-    mesh.positions = reply.items<glm::dvec3>();
-    mesh.triangles = reply.items<std::array<uint32_t, 3>>();
-    for (const auto& t : mesh.triangles)
-        for (uint32_t v : t)
-            if (v >= mesh.positions.size()) reply.lost();
-    return mesh;
+    return takeMesh(reply);
 }
 
 }  // namespace tetglow

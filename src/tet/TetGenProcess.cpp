@@ -6,7 +6,6 @@
 #include <tetgen.h>
 
 #include "base/ByteMessage.h"
-#include "base/ChildProcess.h"
 
 namespace tetglow {
 namespace {
@@ -76,14 +75,10 @@ std::string runTetGen(const RegionComplex& complex, const std::string& switches)
 
 }  // namespace
 
-// Plain tetrahedralization runs at tens of microseconds per input triangle and the tet count is
-// bounded (kMaxTets): ten minutes plus a millisecond per triangle leaves a wide margin, and only
-// a TetGen that loops reaches it.
 RawTets runIsolated(const RegionComplex& complex, const std::string& switches) {
-    const ChildLimits limits{defaultChildMemory(), 600 + 1e-3 * double(complex.surface.triangles.size())};
     std::string answer;
     try {
-        answer = runInChild([&] { return runTetGen(complex, switches); }, limits);
+        answer = runInChild([&] { return runTetGen(complex, switches); }, meshingLimits(complex.surface.triangles.size()));
     } catch (const ChildFailure& e) {
         if (e.kind == ChildFailure::Kind::Signal)
             throw InputError("TetGen crashed (" + e.detail + ") on this mesh; it likely has nearly touching or intersecting faces");
