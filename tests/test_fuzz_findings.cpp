@@ -1,5 +1,7 @@
 // What the fuzz targets in fuzz/ found, each as the smallest input that showed it (the tet cache
 // reader's finding is in test_tet_cache.cpp, beside the other cache entries).
+#include <sys/resource.h>
+
 #include <string>
 #include <vector>
 
@@ -61,6 +63,22 @@ TEST(FuzzFindings, OffFaceSizeBeyondTheFile) {
     } catch (const InputError& e) {
         EXPECT_EQ(std::string(e.what()), path + ":6: face of 2000000000 vertices, but only 3 numbers follow");
     }
+}
+
+// fuzz_scene_mesh: a character that is not a digit in a Collada index list (<p>0 2\xdf3 ...) makes
+// Assimp's parser stop advancing and append indices without end: the import ran, and grew, until
+// something killed the process. It is refused within the import's time limit, in bounded memory.
+TEST(FuzzFindings, ColladaIndexListThatNeverEndsRunsOutOfTime) {
+    const std::string path = TETGLOW_SOURCE_DIR "/fuzz/corpus/scene_mesh/index-list-never-ends.dae";
+    try {
+        readMesh(path);
+        ADD_FAILURE() << "no error";
+    } catch (const InputError& e) {
+        EXPECT_EQ(std::string(e.what()), path + ": the dae importer (Assimp) ran past its time limit of 10 s");
+    }
+    rusage children{};
+    ::getrusage(RUSAGE_CHILDREN, &children);
+    EXPECT_LT(double(children.ru_maxrss) * 1024, 2e9) << "the fuzzer's memory limit";
 }
 
 }  // namespace

@@ -4,7 +4,8 @@
 // turned from Z-up to Y-up), its winding reversed under a mirroring transform (glTF's rule), and
 // its equal positions welded per node. Points and lines are skipped with a warning. Every file
 // Assimp opens (a glTF's .bin buffers, say) goes through readInputFile: a regular file, and all of
-// them together within the mesh limit. Assimp runs in a child process: a crash is an InputError.
+// them together within the mesh limit. Assimp runs in a child process bounded in memory and time
+// (base/ChildProcess.h): a crash or a limit reached is an InputError.
 #pragma once
 #include <string>
 #include <vector>

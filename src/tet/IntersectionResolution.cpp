@@ -11,8 +11,10 @@
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/Surface_mesh.h>
 
+#include "tet/MeshMessage.h"
 #include "tet/MeshValidation.h"
 #include "tet/SelfIntersection.h"
+#include "tet/TetGenProcess.h"
 
 namespace tetglow {
 namespace {
@@ -51,6 +53,27 @@ TriangleMesh autorefine(const TriangleMesh& soup) {
     return out;
 }
 
+// CGAL's autorefinement in a child process (meshingLimits): the crossings of a hostile mesh
+// can be quadratic in its triangles, in time and in memory. The child has the soup from the
+// fork; only the result crosses the pipe (36 bytes a vertex and a triangle).
+TriangleMesh autorefineIsolated(const TriangleMesh& soup) {
+    std::string answer;
+    try {
+        answer = runInChild(
+            [&] {
+                ByteWriter m;
+                addMesh(m, autorefine(soup));
+                return std::move(m.bytes());
+            },
+            meshingLimits(soup.triangles.size()));
+    } catch (const ChildFailure& e) {
+        if (e.kind == ChildFailure::Kind::Exception) throw InputError("cannot split the crossing triangles (CGAL: " + oneLine(e.detail) + ")");
+        throw InputError("cannot split the crossing triangles: CGAL's autorefinement " + std::string(e.what()));
+    }
+    ByteReader reply(std::move(answer), "CGAL's autorefinement");
+    return takeMesh(reply);
+}
+
 }  // namespace
 
 SoupCleaning dropDegenerateAndDuplicates(TriangleMesh& soup) {
@@ -84,13 +107,7 @@ TriangleMesh resolveIntersections(const TriangleMesh& soup) {
     TriangleMesh current = soup;
     for (int round = 0; round < kMaxRounds; ++round) {
         if (findSelfIntersections(current).empty()) return current;
-        try {
-            current = autorefine(current);
-        } catch (const InputError&) {
-            throw;
-        } catch (const std::exception& e) {
-            throw InputError(std::string("cannot split the crossing triangles (CGAL: ") + oneLine(e.what()) + ")");
-        }
+        current = autorefineIsolated(current);
         weldVertices(current);  // rounds the constructed points to float
         dropDegenerateAndDuplicates(current);
     }

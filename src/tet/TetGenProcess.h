@@ -1,8 +1,10 @@
-// TetGen in a child process: its crashes, aborts and thrown ints become InputErrors in the caller.
+// TetGen in a child process bounded in memory and time (base/ChildProcess.h): its crashes,
+// aborts, thrown ints and limits reached become InputErrors in the caller.
 #pragma once
 #include <string>
 #include <vector>
 
+#include "base/ChildProcess.h"
 #include "tet/RegionComplex.h"
 
 namespace tetglow {
@@ -13,6 +15,12 @@ struct RawTets {
     std::vector<int> tets, neighbours;
     std::vector<double> attributes;  // per tet, with -A: the seeded region + 1, or TetGen's own number
 };
+
+// The bounds of a child process that meshes a surface of `triangles` (TetGen, CGAL's
+// autorefinement): half the machine's memory, and ten minutes plus a millisecond per triangle,
+// which only a loop reaches (they take tens of microseconds per triangle, and the tet count is
+// bounded by kMaxTets).
+inline ChildLimits meshingLimits(size_t triangles) { return {defaultChildMemory(), 600 + 1e-3 * double(triangles)}; }
 
 // TetGen on complex.surface (and its seeds, with -A) under `switches`, in a forked child.
 RawTets runIsolated(const RegionComplex& complex, const std::string& switches);
