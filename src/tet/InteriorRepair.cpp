@@ -6,7 +6,6 @@
 #include <numeric>
 #include <set>
 #include <unordered_map>
-#include <unordered_set>
 
 #include <glm/geometric.hpp>
 #include <tbb/blocked_range.h>
@@ -272,30 +271,6 @@ bool isBoundary(const Tets& t, const std::vector<char>& inside, size_t i, int j)
     return inside[i] && (n < 0 || !inside[size_t(n)]);
 }
 
-// An edge of the inside's boundary with more than two boundary faces (two inside tets meeting
-// only along it) is no surface TetGen can take; the outside tets around such edges join the
-// inside until none is left.
-void closePinches(const Tets& t, std::vector<char>& inside) {
-    static constexpr int kEdges[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
-    for (int pass = 0; pass < 16; ++pass) {
-        std::unordered_map<uint64_t, int> count;
-        for (size_t i = 0; i < t.tets.size(); ++i)
-            for (int j = 0; j < 4; ++j)
-                if (isBoundary(t, inside, i, j)) {
-                    const auto f = faceOf(t.tets[i], j);
-                    for (int k = 0; k < 3; ++k) ++count[edgeKey(f[k], f[(k + 1) % 3])];
-                }
-        std::unordered_set<uint64_t> pinched;
-        for (const auto& [e, c] : count)
-            if (c > 2) pinched.insert(e);
-        if (pinched.empty()) return;
-        for (size_t i = 0; i < t.tets.size(); ++i)
-            for (const auto& e : kEdges)
-                if (pinched.count(edgeKey(t.tets[i][e[0]], t.tets[i][e[1]]))) inside[i] = 1;
-    }
-    throw InputError("the repaired boundary stays non-manifold where inside parts touch along an edge");
-}
-
 // The inside's boundary faces, wound outward, as a mesh of their own vertices; `spanned` marks
 // those that are not constraint triangles (the box's count as not).
 TriangleMesh boundaryOf(const Tets& t, const std::vector<char>& inside, const std::set<std::array<uint32_t, 3>>& constraints,
@@ -415,7 +390,6 @@ RepairReport repairInterior(TriangleMesh& mesh) {
     }
     std::vector<char> inside(w.size());
     for (size_t i = 0; i < w.size(); ++i) inside[i] = w[i] > 0.5;
-    closePinches(tets, inside);
     mesh = boundaryOf(tets, inside, constraints, report.spannedTriangles);
     describeHoles(mesh, report.spannedTriangles, report);
     return report;
@@ -465,7 +439,7 @@ ValidationReport prepareSurface(TriangleMesh& mesh, bool strict) {
         repair.reason = refusal.what();
         ValidationReport report;
         try {
-            report = validateAndRepair(mesh);
+            report = validateAndRepair(mesh, true);
         } catch (const InputError& e) {
             throw InputError(std::string("the repaired mesh is still invalid (") + e.what() + "); the input: " + refusal.what());
         }
