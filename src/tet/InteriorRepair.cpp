@@ -8,6 +8,7 @@
 #include <unordered_map>
 
 #include <glm/geometric.hpp>
+#include <glm/vector_relational.hpp>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -145,10 +146,11 @@ double distanceToSegment(const glm::dvec3& p, const glm::dvec3& a, const glm::dv
 // inside through the hole to the box. Refining the whole box instead (-q) costs many times the
 // clean path. The lattice is as fine as the rim's edges but at most kLatticeAcross points
 // across a ball, kLatticeBudget points in all; offset so that it misses the planes of
-// axis-aligned faces, and rounded to float like every vertex of the repaired surface. A hole
+// axis-aligned faces, rounded to float like every vertex of the repaired surface, and only
+// strictly inside `box` (a ball may reach past the padded box TetGen fills). A hole
 // less than kSmallHole rim edges across gets none: the tets between its rim vertices span it
 // flat, where lattice points beside the surface would let tets poke out of it.
-std::vector<glm::dvec3> holeLattice(const TriangleMesh& soup, const EdgeMap& edges, const WindingNumber& winding) {
+std::vector<glm::dvec3> holeLattice(const TriangleMesh& soup, const EdgeMap& edges, const WindingNumber& winding, const Bounds3& box) {
     static constexpr double kLatticeAcross = 16, kBallScale = 1.25, kLatticeBudget = 200000, kSmallHole = 2;
     static constexpr int kBisections = 10;
     static constexpr double kRimClearance = 0.5;
@@ -193,7 +195,10 @@ std::vector<glm::dvec3> holeLattice(const TriangleMesh& soup, const EdgeMap& edg
         return d;
     };
     std::vector<glm::dvec3> points;
-    const auto add = [&](const glm::dvec3& p) { points.push_back({roundToFloat(p.x), roundToFloat(p.y), roundToFloat(p.z)}); };
+    const auto add = [&](const glm::dvec3& p) {
+        const glm::dvec3 f(roundToFloat(p.x), roundToFloat(p.y), roundToFloat(p.z));
+        if (glm::all(glm::greaterThan(f, box.lo)) && glm::all(glm::lessThan(f, box.hi))) points.push_back(f);
+    };
     for (uint32_t root : roots) {
         const Ball& b = balls[root];
         if (b.radius < kSmallHole * b.edgeLength) continue;
@@ -366,7 +371,7 @@ RepairReport repairInterior(TriangleMesh& mesh) {
     // Labels from the cleaned and oriented input, not from its split pieces: the same field,
     // without the rounding of the split points.
     const WindingNumber winding(soup);
-    const std::vector<glm::dvec3> lattice = holeLattice(soup, edges, winding);
+    const std::vector<glm::dvec3> lattice = holeLattice(soup, edges, winding, bounds(plc.surface));
     plc.surface.positions.insert(plc.surface.positions.end(), lattice.begin(), lattice.end());
     const Tets tets = unpack(runIsolated(plc, "pYnQz"));
     if (tets.tets.empty()) throw InputError("TetGen produced no tetrahedra");
