@@ -136,6 +136,24 @@ TEST(InteriorRepair, CrossingBoxesBecomeTheirUnion) {
     EXPECT_NEAR(mesh.surfaceVolume(), 2 - 0.125, 1e-12);
 }
 
+// Closed parts that touch only along an edge (four triangles on it) keep exactly their volume
+// and their triangles as the boundary; a duplicated face makes sure the repair runs.
+TEST(InteriorRepair, CubesSharingOnlyAnEdgeKeepTheirVolume) {
+    TriangleMesh both = merge(box(), box({1, 1, 0}, {2, 2, 1}));
+    const TriangleMesh input = both;
+    both.triangles.push_back(both.triangles[3]);
+    ValidationReport report;
+    const TetMesh mesh = tets(both, &report);
+    ASSERT_TRUE(report.repair.applied);
+    EXPECT_EQ(report.repair.nonManifoldEdges, 1u);
+    EXPECT_EQ(report.repair.duplicatesDropped, 1u);
+    EXPECT_TRUE(report.repair.holes.empty());
+    EXPECT_DOUBLE_EQ(mesh.volume(), 2);
+    EXPECT_DOUBLE_EQ(mesh.surfaceVolume(), 2);
+    EXPECT_EQ(inputTrianglesOnBoundary(input, mesh), 24u);
+    EXPECT_EQ(mesh.surface.size(), 24u);
+}
+
 TEST(InteriorRepair, CrossingSpheresBecomeTheirUnion) {
     // Crossing points in general position: split exactly, rounded to float, checked again.
     const double d = 0.8;

@@ -138,6 +138,30 @@ TEST(MeshFormats, GltfNodesArePlacedByTheProductOfTheirTransforms) {
     }
 }
 
+// The same hierarchy as Blender 3.4's glTF importer places it: the corners below are what
+// bench/studies/gltf_blender_placement.py prints (Blender's world coordinates, turned back into
+// glTF's Y-up frame; printed to 6 decimals, so Blender's float rounding shows as 1e-6).
+TEST(MeshFormats, GltfNodesArePlacedWhereBlenderPlacesThem) {
+    const std::string path = hierarchy("blender.glb");
+    const std::vector<std::pair<std::string, Bounds3>> blender = {
+        {"Body", {{1.0, 4.0, 3.0}, {3.0, 6.0, 4.0}}},
+        {"Fin", {{0.999999, 2.0, -7.000001}, {1.999999, 3.0, -6.000001}}},
+    };
+    for (const auto& [node, expected] : blender) {
+        const TriangleMesh mesh = readMesh(path, nullptr, node);
+        ASSERT_EQ(mesh.positions.size(), 8u) << node;
+        // A box's corners are every combination of its bounds.
+        for (const auto& p : mesh.positions)
+            for (int k = 0; k < 3; ++k)
+                EXPECT_LT(std::min(std::abs(p[k] - expected.lo[k]), std::abs(p[k] - expected.hi[k])), 2e-6) << node << " axis " << k;
+        const Bounds3 b = bounds(mesh);
+        for (int k = 0; k < 3; ++k) {
+            EXPECT_NEAR(b.lo[k], expected.lo[k], 2e-6) << node << " axis " << k;
+            EXPECT_NEAR(b.hi[k], expected.hi[k], 2e-6) << node << " axis " << k;
+        }
+    }
+}
+
 TEST(MeshFormats, ASceneMeshShapeReadsAnyFormatAndNamesANode) {
     const std::string glb = hierarchy("scene/fish.glb");
     test::writeTemp("scene/box.ply", test::plyBinary(test::boxQuads(), false));

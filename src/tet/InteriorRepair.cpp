@@ -6,9 +6,9 @@
 #include <numeric>
 #include <set>
 #include <unordered_map>
-#include <unordered_set>
 
 #include <glm/geometric.hpp>
+#include <glm/vector_relational.hpp>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -141,6 +141,115 @@ void addPaddedBox(TriangleMesh& plc) {
     }
 }
 
+double distanceToSegment(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b) {
+    const glm::dvec3 ab = b - a;
+    const double t = std::clamp(glm::dot(p - a, ab) / std::max(glm::dot(ab, ab), 1e-300), 0.0, 1.0);
+    return glm::length(p - (a + t * ab));
+}
+
+// Points TetGen inserts around each hole (rim edges connected through their corners): a lattice
+// filling a ball around the rim, so that the tets across the hole are small enough for the
+// winding number at their centroids to place the spanning surface, and none reaches from far
+// inside through the hole to the box. Refining the whole box instead (-q) costs many times the
+// clean path. The lattice is as fine as the rim's edges but at most kLatticeAcross points
+// across a ball, kLatticeBudget points in all; offset so that it misses the planes of
+// axis-aligned faces, rounded to float like every vertex of the repaired surface, and only
+// strictly inside `box` (a ball may reach past the padded box TetGen fills). A hole
+// less than kSmallHole rim edges across gets none: the tets between its rim vertices span it
+// flat, where lattice points beside the surface would let tets poke out of it.
+std::vector<glm::dvec3> holeLattice(const TriangleMesh& soup, const EdgeMap& edges, const WindingNumber& winding, const Bounds3& box) {
+    static constexpr double kLatticeAcross = 16, kBallScale = 1.25, kLatticeBudget = 200000, kSmallHole = 2;
+    static constexpr int kBisections = 10;
+    static constexpr double kRimClearance = 0.5;
+    std::vector<uint64_t> rim;
+    for (const auto& [key, users] : edges)
+        if (users.size() == 1) rim.push_back(key);
+    std::sort(rim.begin(), rim.end());  // the same lattice whatever the hash order
+    UnionFind loops(soup.positions.size());
+    for (uint64_t e : rim) loops.unite(uint32_t(e >> 32), uint32_t(e));
+    struct Ball {
+        glm::dvec3 centre{0};
+        double radius = 0, edgeLength = 0, spacing = 0;
+        size_t edges = 0;
+        std::vector<uint64_t> rim;
+    };
+    std::unordered_map<uint32_t, Ball> balls;
+    for (uint64_t e : rim) {
+        Ball& b = balls[loops.find(uint32_t(e))];
+        const glm::dvec3 p = soup.positions[uint32_t(e >> 32)], q = soup.positions[uint32_t(e)];
+        b.centre += p + q, b.edgeLength += glm::length(q - p), b.edges += 1, b.rim.push_back(e);
+    }
+    for (uint64_t e : rim) {
+        Ball& b = balls[loops.find(uint32_t(e))];
+        const glm::dvec3 c = b.centre / double(2 * b.edges);
+        b.radius = std::max(b.radius, glm::length(soup.positions[uint32_t(e >> 32)] - c));
+    }
+    double total = 0;
+    for (auto& [root, b] : balls) {
+        b.centre /= double(2 * b.edges);
+        b.radius *= kBallScale;
+        b.edgeLength /= double(b.edges);
+        b.spacing = std::max(b.edgeLength, 2 * b.radius / kLatticeAcross);
+        total += 4.19 * std::pow(b.radius / b.spacing, 3);  // 4 pi / 3 lattice points per unit ball
+    }
+    const double coarsen = std::max(1.0, std::cbrt(total / kLatticeBudget));
+    std::vector<uint32_t> roots;
+    for (const auto& [root, b] : balls) roots.push_back(root);
+    std::sort(roots.begin(), roots.end());
+    const auto distanceToRim = [&](const std::vector<uint64_t>& rim, const glm::dvec3& p) {
+        double d = INFINITY;
+        for (uint64_t e : rim) d = std::min(d, distanceToSegment(p, soup.positions[uint32_t(e >> 32)], soup.positions[uint32_t(e)]));
+        return d;
+    };
+    std::vector<glm::dvec3> points;
+    const auto add = [&](const glm::dvec3& p) {
+        const glm::dvec3 f(roundToFloat(p.x), roundToFloat(p.y), roundToFloat(p.z));
+        if (glm::all(glm::greaterThan(f, box.lo)) && glm::all(glm::lessThan(f, box.hi))) points.push_back(f);
+    };
+    for (uint32_t root : roots) {
+        const Ball& b = balls[root];
+        if (b.radius < kSmallHole * b.edgeLength) continue;
+        const double s = b.spacing * coarsen;
+        const int n = int(std::ceil(b.radius / s)), side = 2 * n + 1;
+        const auto at = [&](int i, int j, int k) { return b.centre + s * glm::dvec3(i + 0.3183, j + 0.2718, k + 0.4142); };
+        const auto index = [&](int i, int j, int k) { return size_t((i + n) * side + j + n) * side + k + n; };
+        std::vector<double> w(size_t(side) * side * side, NAN);  // NaN: outside the ball
+        for (int i = -n; i <= n; ++i)
+            for (int j = -n; j <= n; ++j)
+                for (int k = -n; k <= n; ++k)
+                    if (glm::length(at(i, j, k) - b.centre) <= b.radius) w[index(i, j, k)] = winding.approximate(at(i, j, k));
+        // Where the winding number crosses 1/2 between neighbours, a point on that level set
+        // (by bisection) replaces both: the spanning surface then runs through these points
+        // instead of stepping between lattice points on either side of it. Not beside the rim,
+        // where the level set meets the surface: there such a point would make slivers whose
+        // centroids fall on the wrong side of an input triangle.
+        std::vector<char> nearLevel(w.size(), 0);
+        for (int i = -n; i <= n; ++i)
+            for (int j = -n; j <= n; ++j)
+                for (int k = -n; k <= n; ++k)
+                    for (const glm::ivec3 step : {glm::ivec3(1, 0, 0), glm::ivec3(0, 1, 0), glm::ivec3(0, 0, 1)}) {
+                        const glm::ivec3 q = glm::ivec3(i, j, k) + step;
+                        if (q.x > n || q.y > n || q.z > n) continue;
+                        const size_t a = index(i, j, k), c = index(q.x, q.y, q.z);
+                        if (!((w[a] - 0.5) * (w[c] - 0.5) < 0)) continue;  // also false for NaN
+                        nearLevel[a] = nearLevel[c] = 1;
+                        glm::dvec3 lo = at(i, j, k), hi = at(q.x, q.y, q.z);
+                        const bool loInside = w[a] > 0.5;
+                        for (int halving = 0; halving < kBisections; ++halving) {
+                            const glm::dvec3 mid = 0.5 * (lo + hi);
+                            ((winding.approximate(mid) > 0.5) == loInside ? lo : hi) = mid;
+                        }
+                        const glm::dvec3 level = 0.5 * (lo + hi);
+                        if (distanceToRim(b.rim, level) > kRimClearance * s) add(level);
+                    }
+        for (int i = -n; i <= n; ++i)
+            for (int j = -n; j <= n; ++j)
+                for (int k = -n; k <= n; ++k)
+                    if (!std::isnan(w[index(i, j, k)]) && !nearLevel[index(i, j, k)]) add(at(i, j, k));
+    }
+    return points;
+}
+
 struct Tets {
     std::vector<glm::dvec3> points;
     std::vector<std::array<uint32_t, 4>> tets;
@@ -173,30 +282,6 @@ std::array<uint32_t, 3> faceOf(const std::array<uint32_t, 4>& tet, int j) {
 bool isBoundary(const Tets& t, const std::vector<char>& inside, size_t i, int j) {
     const int n = t.neighbours[i][j];
     return inside[i] && (n < 0 || !inside[size_t(n)]);
-}
-
-// An edge of the inside's boundary with more than two boundary faces (two inside tets meeting
-// only along it) is no surface TetGen can take; the outside tets around such edges join the
-// inside until none is left.
-void closePinches(const Tets& t, std::vector<char>& inside) {
-    static constexpr int kEdges[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
-    for (int pass = 0; pass < 16; ++pass) {
-        std::unordered_map<uint64_t, int> count;
-        for (size_t i = 0; i < t.tets.size(); ++i)
-            for (int j = 0; j < 4; ++j)
-                if (isBoundary(t, inside, i, j)) {
-                    const auto f = faceOf(t.tets[i], j);
-                    for (int k = 0; k < 3; ++k) ++count[edgeKey(f[k], f[(k + 1) % 3])];
-                }
-        std::unordered_set<uint64_t> pinched;
-        for (const auto& [e, c] : count)
-            if (c > 2) pinched.insert(e);
-        if (pinched.empty()) return;
-        for (size_t i = 0; i < t.tets.size(); ++i)
-            for (const auto& e : kEdges)
-                if (pinched.count(edgeKey(t.tets[i][e[0]], t.tets[i][e[1]]))) inside[i] = 1;
-    }
-    throw InputError("the repaired boundary stays non-manifold where inside parts touch along an edge");
 }
 
 // The inside's boundary faces, wound outward, as a mesh of their own vertices; `spanned` marks
@@ -292,8 +377,9 @@ RepairReport repairInterior(TriangleMesh& mesh) {
     for (const auto& [i, j] : pairs) keep(report.crossingAt, centroid(soup, i));
     report.partsUnioned = crossingParts(soup, edges, pairs);
 
-    // The constraints: the input's triangles with their crossings split, in a box. Their
-    // vertices come first in TetGen's output, then the box's, then Steiner points.
+    // The constraints: the input's triangles with their crossings split, in a box, and a lattice
+    // around each hole. Their vertices come first in TetGen's output, then the box's, the
+    // lattice's, then Steiner points.
     RegionComplex plc;
     plc.surface = resolveIntersections(soup);
     std::set<std::array<uint32_t, 3>> constraints;
@@ -302,12 +388,14 @@ RepairReport repairInterior(TriangleMesh& mesh) {
         constraints.insert(f);
     }
     addPaddedBox(plc.surface);
-    const Tets tets = unpack(runIsolated(plc, "pYq1.5nQz"));
-    if (tets.tets.empty()) throw InputError("TetGen produced no tetrahedra");
-
     // Labels from the cleaned and oriented input, not from its split pieces: the same field,
     // without the rounding of the split points.
     const WindingNumber winding(soup);
+    const std::vector<glm::dvec3> lattice = holeLattice(soup, edges, winding, bounds(plc.surface));
+    plc.surface.positions.insert(plc.surface.positions.end(), lattice.begin(), lattice.end());
+    const Tets tets = unpack(runIsolated(plc, "pYnQz"));
+    if (tets.tets.empty()) throw InputError("TetGen produced no tetrahedra");
+
     std::vector<double> w(tets.tets.size());
     tbb::parallel_for(tbb::blocked_range<size_t>(0, w.size()), [&](const auto& range) {
         for (size_t i = range.begin(); i != range.end(); ++i) {
@@ -327,7 +415,6 @@ RepairReport repairInterior(TriangleMesh& mesh) {
     }
     std::vector<char> inside(w.size());
     for (size_t i = 0; i < w.size(); ++i) inside[i] = w[i] > 0.5;
-    closePinches(tets, inside);
     mesh = boundaryOf(tets, inside, constraints, report.spannedTriangles);
     describeHoles(mesh, report.spannedTriangles, report);
     return report;
@@ -383,7 +470,7 @@ ValidationReport prepareSurface(TriangleMesh& mesh, bool strict) {
         repair.reason = refusal.what();
         ValidationReport report;
         try {
-            report = validateAndRepair(mesh);
+            report = validateAndRepair(mesh, true);
         } catch (const InputError& e) {
             throw InputError(std::string("the repaired mesh is still invalid (") + e.what() + "); the input: " + refusal.what());
         }

@@ -10,7 +10,8 @@
 namespace tetglow {
 
 // Replaces `mesh` by the closed, outward boundary of its inside tets (float vertices, no
-// crossings: it then passes validateAndRepair). Throws InputError when the mesh encloses no
+// crossings: it then passes validateAndRepair, parts that touch along an edge kept as they are,
+// pinchedEdges). Throws InputError when the mesh encloses no
 // volume (a sheet, an open shell: no tet's winding number reaches kInsideWinding).
 RepairReport repairInterior(TriangleMesh& mesh);
 

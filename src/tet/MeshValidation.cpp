@@ -102,11 +102,13 @@ std::unordered_map<uint64_t, std::vector<uint32_t>> edgeFaces(const TriangleMesh
     return edges;
 }
 
-void checkManifold(const TriangleMesh& mesh, const std::unordered_map<uint64_t, std::vector<uint32_t>>& edges) {
+bool pinched(size_t triangles) { return triangles >= 4 && triangles % 2 == 0; }
+
+void checkManifold(const TriangleMesh& mesh, const std::unordered_map<uint64_t, std::vector<uint32_t>>& edges, bool pinchedEdges) {
     // Report the edge whose first triangle comes first, so the message does not depend on hashing.
     const std::pair<const uint64_t, std::vector<uint32_t>>* worst = nullptr;
     for (const auto& e : edges)
-        if (e.second.size() != 2 && (!worst || e.second[0] < worst->second[0])) worst = &e;
+        if (e.second.size() != 2 && !(pinchedEdges && pinched(e.second.size())) && (!worst || e.second[0] < worst->second[0])) worst = &e;
     if (!worst) return;
     const uint32_t a = uint32_t(worst->first >> 32), b = uint32_t(worst->first);
     const std::string edge = "edge (" + std::to_string(a) + ", " + std::to_string(b) + ") at " + formatPosition(mesh.positions[a]);
@@ -127,6 +129,7 @@ bool sameDirection(const std::array<uint32_t, 3>& s, const std::array<uint32_t, 
 }
 
 // Makes winding consistent within each connected shell by flood fill; returns shell id per triangle.
+// Shells connect across edges of two triangles only: parts pinched together along an edge stay two.
 std::vector<uint32_t> orientShells(TriangleMesh& mesh, const std::unordered_map<uint64_t, std::vector<uint32_t>>& edges,
                                    ValidationReport& report) {
     const uint32_t none = UINT32_MAX;
@@ -143,6 +146,7 @@ std::vector<uint32_t> orientShells(TriangleMesh& mesh, const std::unordered_map<
             for (int k = 0; k < 3; ++k) {
                 const uint32_t a = mesh.triangles[t][k], b = mesh.triangles[t][(k + 1) % 3];
                 const auto& pair = edges.at(edgeKey(a, b));
+                if (pair.size() != 2) continue;
                 const uint32_t n = pair[0] == t ? pair[1] : pair[0];
                 const bool flip = sameDirection(mesh.triangles[t], mesh.triangles[n], a, b);
                 if (shell[n] == none) {
@@ -177,7 +181,9 @@ void orientOutward(TriangleMesh& mesh, const std::vector<uint32_t>& shell, Valid
     std::vector<int> depth(members.size(), 0);
     if (members.size() > 1)
         for (size_t s = 0; s < members.size(); ++s) {
-            const glm::dvec3 probe = mesh.corner(members[s][0], 0);  // shells do not touch, so probe is off the others
+            // Shells meet at most at shared corners and edges, so a centroid is off the others.
+            const uint32_t t = members[s][0];
+            const glm::dvec3 probe = (mesh.corner(t, 0) + mesh.corner(t, 1) + mesh.corner(t, 2)) / 3.0;
             for (size_t o = 0; o < members.size(); ++o)
                 depth[s] += o != s && std::abs(windingNumber(mesh, members[o], probe)) > 0.5;
         }
@@ -195,7 +201,7 @@ void orientOutward(TriangleMesh& mesh, const std::vector<uint32_t>& shell, Valid
 
 }  // namespace
 
-ValidationReport validateAndRepair(TriangleMesh& mesh) {
+ValidationReport validateAndRepair(TriangleMesh& mesh, bool pinchedEdges) {
     ValidationReport report;
     if (mesh.triangles.empty()) throw InputError("mesh has no triangles");
     checkFinite(mesh);
@@ -204,7 +210,7 @@ ValidationReport validateAndRepair(TriangleMesh& mesh) {
     report.unusedVertices = weld.unused;
     checkTriangles(mesh);
     const auto edges = edgeFaces(mesh);
-    checkManifold(mesh, edges);
+    checkManifold(mesh, edges, pinchedEdges);
     // Before orientation: nesting of shells means nothing once they cross.
     if (auto hit = findSelfIntersection(mesh))
         throw InputError("mesh intersects itself: " + face(hit->first) + " crosses " + face(hit->second));

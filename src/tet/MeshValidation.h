@@ -23,8 +23,10 @@ struct ValidationReport {
 // the tets see bit-identical vertices); exact duplicate vertices welded; unused vertices
 // removed; no degenerate (repeated or collinear corners) or duplicate triangles; every edge
 // shared by exactly two triangles; no self-intersections; consistent, outward winding per
-// shell (fixed, not rejected); positive volume.
-ValidationReport validateAndRepair(TriangleMesh& mesh);
+// shell (fixed, not rejected); positive volume. With `pinchedEdges`, an edge may also have an
+// even number of triangles, at least four: closed parts that touch along it, as a repaired
+// surface has them (a clean mesh with such an edge is refused, and repaired).
+ValidationReport validateAndRepair(TriangleMesh& mesh, bool pinchedEdges = false);
 
 // "(x, y, z)", as messages give positions.
 std::string formatPosition(const glm::dvec3& p);
