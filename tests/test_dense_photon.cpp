@@ -76,5 +76,24 @@ TEST(DensePhoton, AgreesWithVolpath) {
     }
 }
 
+// A dense core inside a thin medium, index-matched: an eye ray reads the thin medium's photons
+// up to the core and walks the core from where it enters it.
+TEST(DensePhoton, DenseCoreInAThinMediumAgreesWithVolpath) {
+    SceneDesc s = denseSphere(24);
+    s.media[0].sigmaA = RGB(0.2), s.media[0].sigmaS = RGB(0.8);
+    MediumDesc core = sphereMedium(RGB(0), RGB(1e4), 0, 2);
+    for (auto& p : core.boundary.positions) p *= 0.5f;
+    core.name = "core";
+    s.media.push_back(core);
+    const Scene scene(s);
+    const RGB reference = meanImage(scene, VolPathIntegrator(scene, 64), 256);
+    IntegratorDesc desc;
+    desc.type = IntegratorType::Photon;
+    desc.photons = 20000;
+    const RGB photon = meanImage(scene, PhotonIntegrator(scene, desc), 64);
+    std::printf("volpath %.5f, photon %.5f\n", reference[0], photon[0]);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(photon[c], reference[c], 0.04 * reference[c]);
+}
+
 }  // namespace
 }  // namespace tetglow::test
