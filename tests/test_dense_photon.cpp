@@ -50,15 +50,6 @@ TEST(DensePhoton, WalksLoseNoPower) {
     }
 }
 
-RGB meanImage(const Scene& scene, Integrator&& integrator, int spp) {
-    RenderOptions options;
-    options.spp = spp;
-    const Image image = render(scene, integrator, options).image;
-    RGB sum(0);
-    for (const glm::vec3& p : image.pixels) sum += RGB(p);
-    return sum / double(image.pixels.size());
-}
-
 // The photon kernel cannot resolve a density that changes within a mean free path of the
 // boundary, where the eye sees the medium (it read 25 to 50% dark, darker at greater depths):
 // the image agrees with volpath's at the same max depth, short and long.
