@@ -58,6 +58,14 @@ RGB ColumnProfile::transmitted(double t) const {
     return p->transmittedIn + transmittedOver(tOut - p->tIn, exp(-p->depthIn), depth);
 }
 
+RGB ColumnProfile::transmitted(double a, double b) const {
+    const Piece* p = pieceAt(a);
+    if (!p || b > p->tOut) return transmitted(b) - transmitted(a);
+    const RGB& sigmaT = medium_.at(p->tet).sigmaT;
+    const RGB trA = exp(-(p->depthIn + sigmaT * medium_.densityIntegral(p->tet, ray_, p->tIn, a)));
+    return transmittedOver(b - a, trA, sigmaT * medium_.densityIntegral(p->tet, ray_, a, b));
+}
+
 std::optional<ColumnProfile::Event> ColumnProfile::atDepth(int c, double depth) const {
     // The last piece starting at or before that depth: depths only grow along the ray.
     const auto it = std::upper_bound(pieces_.begin(), pieces_.end(), depth, [c](double d, const Piece& p) { return d < p.depthIn[c]; });

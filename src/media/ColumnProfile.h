@@ -35,6 +35,8 @@ public:
     // The transmittance integrated over [begin, t] (t clamped to [begin, end]): exact where the
     // density is constant in a tet, with the optical depth taken linear in t inside a tet otherwise.
     RGB transmitted(double t) const;
+    // The same over [a, b] (begin <= a <= b <= end), in one lookup where both lie in one piece.
+    RGB transmitted(double a, double b) const;
     // Where channel c's optical depth from the start reaches `depth`, or null where the stretch
     // ends first: a free flight sampled from the profile, without walking the tets again.
     struct Event {

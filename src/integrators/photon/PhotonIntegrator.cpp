@@ -307,7 +307,7 @@ RGB PhotonIntegrator::beamEstimate(int v, const Ray& ray, const ColumnProfile& c
             const double a = std::max(begin, t - half), b = std::min(end, t + half);
             if (b <= a) return;
             const double f = phase.eval(-glm::dot(glm::dvec3(unpackDirection(photon.direction)), ray.d));
-            L += (column.transmitted(b) - column.transmitted(a)) * RGB(photon.power) * (f * mp.invBallVolume[i]);
+            L += column.transmitted(a, b) * RGB(photon.power) * (f * mp.invBallVolume[i]);
         });
     }
     return L;
