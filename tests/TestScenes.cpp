@@ -1,5 +1,6 @@
 #include "TestScenes.h"
 
+#include "integrators/Renderer.h"
 #include "tet/Shapes.h"
 
 namespace tetglow::test {
@@ -45,6 +46,15 @@ SceneDesc glowingSphereUnderQuad(int resolution) {
     quad.radiance = RGB(5);
     desc.lights.push_back(quad);
     return desc;
+}
+
+RGB meanImage(const Scene& scene, Integrator&& integrator, int spp) {
+    RenderOptions options;
+    options.spp = spp;
+    const Image image = render(scene, integrator, options).image;
+    RGB sum(0);
+    for (const glm::vec3& p : image.pixels) sum += RGB(p);
+    return sum / double(image.pixels.size());
 }
 
 }  // namespace tetglow::test

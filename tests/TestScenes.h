@@ -1,5 +1,6 @@
 // Small scenes the render tests build: a sphere of medium in front of the camera.
 #pragma once
+#include "integrators/Integrator.h"
 #include "scene/SceneDescription.h"
 
 namespace tetglow::test {
@@ -12,5 +13,8 @@ LightDesc environment(double radiance);
 // A glowing, scattering, absorbing sphere (chromatic) under a quad light in a sky: every kind of
 // light an integrator handles, for tests of determinism and of unchanged means.
 SceneDesc glowingSphereUnderQuad(int resolution);
+
+// The mean over the pixels of an image rendered with `spp` samples (or passes) per pixel.
+RGB meanImage(const Scene& scene, Integrator&& integrator, int spp);
 
 }  // namespace tetglow::test

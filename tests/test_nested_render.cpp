@@ -244,15 +244,6 @@ SceneDesc nestedScattering() {
     return s;
 }
 
-RGB meanImage(const Scene& scene, Integrator&& integrator, int spp) {
-    RenderOptions options;
-    options.spp = spp;
-    const Image image = render(scene, integrator, options).image;
-    RGB sum(0);
-    for (const glm::vec3& p : image.pixels) sum += RGB(p);
-    return sum / double(image.pixels.size());
-}
-
 TEST(NestedRender, VolpathAndPhotonMappingAgreeOnNestedScatteringMedia) {
     const SceneDesc desc = nestedScattering();
     const Scene scene(desc);

@@ -9,7 +9,7 @@ pixels and channels against a long Cycles reference (or tetglow volpath's, --vol
 estimated from a second reference with another seed (MSE(a, b) / 2) and must be at most a
 quarter of the smallest MSE plotted; the script says so when it is not.
 
-  bench/results/peer_sweep.py [--build DIR] [--scenes fish-body,blub,sphere] [--budgets 2,5,15,60]
+  bench/results/peer_sweep.py [--build DIR] [--scenes fish-body,blub,sphere,jade] [--budgets 2,5,15,60]
                       [--res 100x100] [--threads 2] [--reference-spp 16384] [--volpath-reference fish-body]
                       [--photons-per-pixel 1] [--out DIR] [--docs]
 
@@ -115,7 +115,8 @@ def table(results):
 def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--build", default=os.path.join(ROOT, "build"))
-    p.add_argument("--scenes", default="fish-body,blub,sphere")
+    # jade: the dense showcase (albedo >= 0.99, mean free path about 1% of the figure, a small spot).
+    p.add_argument("--scenes", default="fish-body,blub,sphere,jade")
     p.add_argument("--budgets", default="2,5,15,60")
     p.add_argument("--res", default="100x100")
     p.add_argument("--threads", type=int, default=2)

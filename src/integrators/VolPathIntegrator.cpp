@@ -11,14 +11,15 @@ namespace tetglow {
 VolPathIntegrator::VolPathIntegrator(const Scene& scene, int maxDepth)
     : scene_(scene), maxDepth_(maxDepth), cameraMedium_(scene.mediumAt(scene.camera().position())) {}
 
-RGB VolPathIntegrator::radiance(const Ray& cameraRay, Rng& rng) const {
+RGB VolPathIntegrator::radiance(const Ray& cameraRay, Rng& rng) const { return continuePath(cameraRay, cameraMedium_, 0, true, rng); }
+
+RGB VolPathIntegrator::continuePath(const Ray& start, VolumeState state, int depth, bool emittersSeen, Rng& rng) const {
     RGB L(0);
     SpectralPath path = SpectralPath::pick(rng.uniform());
-    Ray ray = cameraRay;
-    VolumeState state = cameraMedium_;
+    Ray ray = start;
     // How the current direction was chosen, for the MIS weight of an emitter it reaches:
-    // from the camera or a specular event (weight 1), else with lastPdf at lastPoint.
-    bool specular = true;
+    // from the camera or a specular event (weight 1), else with lastPdf at lastPoint (0: none).
+    bool specular = emittersSeen;
     double lastPdf = 0;
     glm::dvec3 lastPoint = ray.o;
     auto emitterWeight = [&](const Light& light, const glm::dvec3& point, uint32_t triangle) {
@@ -27,7 +28,6 @@ RGB VolPathIntegrator::radiance(const Ray& cameraRay, Rng& rng) const {
     auto visibility = [&](const VolumeState& from) {
         return [this, from, &rng](const Ray& r, double tMax) { return transmittance(scene_, r, tMax, from, &rng); };
     };
-    int depth = 0;
     auto survives = [&] {
         if (!path.alive()) return false;
         const double keep = eyePathSurvival(path.weight(), depth, rng);

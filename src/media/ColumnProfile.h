@@ -1,6 +1,7 @@
 // The density integrated along a ray through a medium's regions (its "column"), piece by piece
 // as the tet walk crossed it, with the optical depth at each piece's start, so that the
-// transmittance to any point on the ray is exact and costs one binary search.
+// transmittance to any point on the ray is exact and costs one binary search; so does the
+// transmittance integrated along the ray, which a kernel wider than the mean free path needs.
 #pragma once
 #include <optional>
 #include <vector>
@@ -16,6 +17,7 @@ public:
         uint32_t tet;
         double columnIn;  // from the start to tIn
         RGB depthIn;      // optical depth from the start to tIn
+        RGB transmittedIn;  // transmittance integrated over [start, tIn] (a length)
     };
     // From `start` to tMax or to where the ray leaves the medium or stops at an interface (unit
     // direction).
@@ -30,6 +32,11 @@ public:
     // Column from the start to t, clamped to [begin, end].
     double column(double t) const;
     RGB transmittance(double t) const;
+    // The transmittance integrated over [begin, t] (t clamped to [begin, end]): exact where the
+    // density is constant in a tet, with the optical depth taken linear in t inside a tet otherwise.
+    RGB transmitted(double t) const;
+    // The same over [a, b] (begin <= a <= b <= end), in one lookup where both lie in one piece.
+    RGB transmitted(double a, double b) const;
     // Where channel c's optical depth from the start reaches `depth`, or null where the stretch
     // ends first: a free flight sampled from the profile, without walking the tets again.
     struct Event {
@@ -47,6 +54,7 @@ private:
     std::vector<Piece> pieces_;
     double total_ = 0;
     RGB depth_{0};
+    RGB transmitted_{0};  // over the whole stretch
     WalkExit exit_;
 };
 

@@ -1,5 +1,6 @@
 #include "integrators/photon/PhotonIntegrator.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -23,12 +24,33 @@ constexpr double kMaxRadiusFraction = 0.2;  // of the medium's (or the scene's) 
 // What one stored photon costs at the peak of a pass: itself in the tracer's blocks and again
 // when they are joined, then in its map with the k-d tree, the beam BVH and its ball's volume.
 constexpr double kBytesPerStoredPhoton = 160;
+// A domain whose longest mean free path is shorter than this fraction of its bounding-box
+// diagonal is optically dense: the photon density changes within a mean free path of its
+// boundary (where the eye sees it) and within sqrt(max depth) mean free paths (where a truncated
+// walk stops), both far below any kernel radius a pass's photons fill. There the eye path walks
+// the medium as volpath does.
+constexpr double kDenseMeanFreePath = 0.02;
+
+// The smallest extinction (any channel, any tet) of the domain's media, times its diagonal.
+double opticalSize(const Scene& scene, const std::vector<int>& media, double diagonal) {
+    double smallest = INFINITY;
+    for (int m : media) {
+        const SceneRegion& sm = scene.media()[size_t(m)];
+        const RegionMedia& medium = *scene.volumes()[sm.volume].media;
+        const TetMesh& mesh = medium.mesh();
+        const RGB& sigmaT = medium.region(sm.region).sigmaT;
+        const double least = std::min({sigmaT[0], sigmaT[1], sigmaT[2]});
+        for (uint32_t t = mesh.regionTets[sm.region]; t < mesh.regionTets[sm.region + 1]; ++t)
+            for (uint32_t v : mesh.tets[t]) smallest = std::min(smallest, least * medium.density(t, mesh.vertices[v]));
+    }
+    return smallest * diagonal;
+}
 
 }  // namespace
 
 PhotonIntegrator::PhotonIntegrator(const Scene& scene, const IntegratorDesc& desc)
     : scene_(scene), desc_(desc), cameraMedium_(scene.mediumAt(scene.camera().position())), source_(scene),
-      domains_(photonDomains(scene)) {
+      domains_(photonDomains(scene)), walk_(scene, desc.maxDepth) {
     // The render's time limit runs from here (the render starts next): no photon pass traces past it.
     if (desc.timeLimit > 0)
         deadline_ = std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
@@ -46,6 +68,7 @@ PhotonIntegrator::PhotonIntegrator(const Scene& scene, const IntegratorDesc& des
         balls_.emplace_back(*regionBoundaries_.back());
         MediumPhotons photons;
         photons.maxRadius = float(kMaxRadiusFraction * box.diagonal());
+        photons.dense = opticalSize(scene, domains_.media[d], box.diagonal()) * kDenseMeanFreePath > 1;
         media_.push_back(std::move(photons));
         all.extend(box);
     }
@@ -80,6 +103,7 @@ void PhotonIntegrator::beginPass(uint64_t pass, const std::atomic<bool>* cancel)
             if (photons.empty()) photons = std::move(stored);
             else photons.insert(photons.end(), stored.begin(), stored.end());
         }
+        if (mp.dense) photons.clear();  // the eye path walks the medium instead
         stats_.volumePhotons += photons.size();
         if (photons.empty()) continue;
         mp.map = std::make_unique<PhotonMap>(std::move(photons));
@@ -128,7 +152,22 @@ RGB PhotonIntegrator::radiance(const Ray& cameraRay, Rng& rng) const {
         WalkExit exit;
         if (state.inside()) {
             const double tMax = hit ? hit->t : INFINITY;
-            const ColumnProfile column(*scene_.volumes()[state.volume].media, ray, state.start, tMax);
+            const RegionMedia& media = *scene_.volumes()[state.volume].media;
+            const ColumnProfile column(media, ray, state.start, tMax);
+            // A dense domain ahead: estimate up to it, then walk it (and all after) as volpath does.
+            const auto& pieces = column.pieces();
+            const auto dense = std::find_if(pieces.begin(), pieces.end(), [&](const auto& p) { return media_[domainOf(state.volume, p.tet)].dense; });
+            if (dense != pieces.end()) {
+                if (dense != pieces.begin()) {
+                    const ColumnProfile before(media, ray, state.start, dense->tIn);
+                    L += beta * inMedium(state.volume, ray, before, rng);
+                    beta *= exp(-before.depth());
+                    state.start = WalkStart::inside(dense->tet);
+                    ray.o = ray.at(dense->tIn);
+                }
+                L += beta * walk_.continuePath(ray, state, depth, !gathering, rng);
+                break;
+            }
             L += beta * inMedium(state.volume, ray, column, rng);
             beta *= exp(-column.depth());
             if (isBlack(beta)) break;
@@ -249,10 +288,11 @@ RGB PhotonIntegrator::beamEstimate(int v, const Ray& ray, const ColumnProfile& c
     const auto& pieces = column.pieces();
     RGB L(0);
     // Each run of pieces in one domain sees that domain's photons only. Each photon's ball
-    // kernel is integrated along the run: the chord of the ball within [begin, end] over the
-    // ball's volume (inside its domain, with boundary correction). Unlike the disc kernel
-    // 1 / (pi r^2), which assumes the whole chord lies in the medium, this stays right where the
-    // ball reaches past the run's ends, however large the radius.
+    // kernel is integrated along the run: the transmittance integrated over the ball's chord
+    // within [begin, end], over the ball's volume (inside its domain, with boundary correction).
+    // Unlike the disc kernel 1 / (pi r^2), which assumes the whole chord lies in the medium, this
+    // stays right where the ball reaches past the run's ends, however large the radius, and
+    // where the transmittance changes within the ball.
     for (size_t first = 0, last; first < pieces.size(); first = last) {
         const int m = domainOf(v, pieces[first].tet);
         for (last = first + 1; last < pieces.size() && domainOf(v, pieces[last].tet) == m;) ++last;
@@ -264,10 +304,10 @@ RGB PhotonIntegrator::beamEstimate(int v, const Ray& ray, const ColumnProfile& c
         mp.beams->query(ray.o, ray.d, begin - mp.largestRadius, end + mp.largestRadius, [&](uint32_t i, double t, double distance2) {
             const Photon& photon = photons[i];
             const double half = std::sqrt(std::max(0.0, double(photon.radius) * photon.radius - distance2));
-            const double chord = std::min(end, t + half) - std::max(begin, t - half);
-            if (chord <= 0) return;
+            const double a = std::max(begin, t - half), b = std::min(end, t + half);
+            if (b <= a) return;
             const double f = phase.eval(-glm::dot(glm::dvec3(unpackDirection(photon.direction)), ray.d));
-            L += column.transmittance(std::clamp(t, begin, end)) * RGB(photon.power) * (f * chord * mp.invBallVolume[i]);
+            L += column.transmitted(a, b) * RGB(photon.power) * (f * mp.invBallVolume[i]);
         });
     }
     return L;

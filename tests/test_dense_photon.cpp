@@ -1,0 +1,90 @@
+// The photon integrator in an optically dense, non-absorbing medium (a mean free path of 1e-4 in
+// a unit sphere): where the traced power goes, and the image against volpath's.
+#include <cmath>
+#include <cstdio>
+
+#include <gtest/gtest.h>
+
+#include "TestScenes.h"
+#include "integrators/Renderer.h"
+#include "integrators/VolPathIntegrator.h"
+#include "integrators/photon/PhotonIntegrator.h"
+#include "integrators/photon/PhotonTracer.h"
+
+namespace tetglow::test {
+namespace {
+
+SceneDesc denseSphere(int resolution) {
+    SceneDesc s = sceneWith(sphereMedium(RGB(0), RGB(1e4), 0, 3), resolution);
+    LightDesc point;
+    point.type = LightType::Point, point.position = {2, 3, 2}, point.intensity = RGB(20);
+    s.lights.push_back(point);
+    return s;
+}
+
+// Albedo 1: nothing is absorbed, so all the power that enters leaves (escaped) or is still in a
+// walk when the event cap ends it (cut), within three standard errors, at every max depth.
+// The deeper the cap, the more events each walk stores, and the less power is cut (of what
+// enters, about 1.2 / sqrt(max depth): a walk's return to the surface is heavy-tailed).
+TEST(DensePhoton, WalksLoseNoPower) {
+    const Scene scene(denseSphere(8));
+    const PhotonSource source(scene);
+    double cut = INFINITY, stored = 0;
+    for (int maxDepth : {16, 64, 256}) {
+        const TracedPhotons traced = tracePhotons(scene, source, {20000, maxDepth, 3, 0});
+        const EnergyBalance& e = traced.energy;
+        RGB power(0);
+        for (const Photon& p : traced.volume[0]) power += RGB(p.power);
+        std::printf("max depth %d: emitted %.4f, escaped %.4f, cut %.4f, absorbed %.4f, +- %.5f; %zu photons stored, power %.3f\n",
+                    maxDepth, e.emitted[0], e.escaped[0], e.cut[0], e.absorbedInMedia[0], std::sqrt(e.deficitSquares[0]),
+                    traced.volume[0].size(), power[0]);
+        for (int c = 0; c < 3; ++c) {
+            EXPECT_EQ(e.absorbedInMedia[c], 0);
+            EXPECT_EQ(e.absorbedOnSurfaces[c], 0);
+            EXPECT_NEAR(e.escaped[c] + e.cut[c], e.emitted[c], 3 * std::sqrt(e.deficitSquares[c]) + 1e-9 * e.emitted[c]);
+        }
+        EXPECT_GT(e.cut[0], 0);
+        EXPECT_LE(e.cut[0], cut);
+        EXPECT_GT(power[0], stored);
+        cut = e.cut[0], stored = power[0];
+    }
+}
+
+// The photon kernel cannot resolve a density that changes within a mean free path of the
+// boundary, where the eye sees the medium (it read 25 to 50% dark, darker at greater depths):
+// the image agrees with volpath's at the same max depth, short and long.
+TEST(DensePhoton, AgreesWithVolpath) {
+    const Scene scene(denseSphere(24));
+    for (int maxDepth : {16, 256}) {
+        const RGB reference = meanImage(scene, VolPathIntegrator(scene, maxDepth), 128);
+        IntegratorDesc desc;
+        desc.type = IntegratorType::Photon;
+        desc.photons = 5000;
+        desc.maxDepth = maxDepth;
+        const RGB photon = meanImage(scene, PhotonIntegrator(scene, desc), 128);
+        std::printf("max depth %d: volpath %.5f, photon %.5f\n", maxDepth, reference[0], photon[0]);
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(photon[c], reference[c], 0.04 * reference[c]);
+    }
+}
+
+// A dense core inside a thin medium, index-matched: an eye ray reads the thin medium's photons
+// up to the core and walks the core from where it enters it.
+TEST(DensePhoton, DenseCoreInAThinMediumAgreesWithVolpath) {
+    SceneDesc s = denseSphere(24);
+    s.media[0].sigmaA = RGB(0.2), s.media[0].sigmaS = RGB(0.8);
+    MediumDesc core = sphereMedium(RGB(0), RGB(1e4), 0, 2);
+    for (auto& p : core.boundary.positions) p *= 0.5f;
+    core.name = "core";
+    s.media.push_back(core);
+    const Scene scene(s);
+    const RGB reference = meanImage(scene, VolPathIntegrator(scene, 64), 256);
+    IntegratorDesc desc;
+    desc.type = IntegratorType::Photon;
+    desc.photons = 20000;
+    const RGB photon = meanImage(scene, PhotonIntegrator(scene, desc), 64);
+    std::printf("volpath %.5f, photon %.5f\n", reference[0], photon[0]);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(photon[c], reference[c], 0.04 * reference[c]);
+}
+
+}  // namespace
+}  // namespace tetglow::test
