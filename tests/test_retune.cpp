@@ -27,6 +27,15 @@ bool sameBits(const Image& a, const Image& b) {
            std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(a.pixels[0])) == 0;
 }
 
+// Both kinds of pass a retuned scene must reproduce: volpath's, and photon mapping's (whose
+// photons come from the lights and media as retuned).
+std::vector<IntegratorDesc> integrators() {
+    std::vector<IntegratorDesc> all(2);
+    all[0].type = IntegratorType::VolPath, all[1].type = IntegratorType::Photon;
+    for (IntegratorDesc& integ : all) integ.photons = 5000, integ.seed = 7;
+    return all;
+}
+
 TEST(Retune, SameImageAsAFreshScene) {
     MediumDesc m = sphereMedium(RGB(0.2, 0.5, 0.1), RGB(0.8, 0.6, 1.2), 0.5);
     m.emission = RGB(0.1, 0.2, 0.9);
@@ -36,10 +45,8 @@ TEST(Retune, SameImageAsAFreshScene) {
     after.media[0].sigmaS = RGB(2, 1, 0.5), after.media[0].g = -0.3, after.media[0].emission = RGB(0.5, 0, 0);
     after.media[0].density.type = DensityDesc::Type::Noise;  // per-vertex density on the old tets
     after.camera.width = 16, after.camera.height = 12;
-    for (const IntegratorType type : {IntegratorType::VolPath, IntegratorType::Photon}) {
-        SCOPED_TRACE(type == IntegratorType::VolPath ? "volpath" : "photon");
-        IntegratorDesc integ;
-        integ.type = type, integ.photons = 5000, integ.seed = 7;
+    for (const IntegratorDesc& integ : integrators()) {
+        SCOPED_TRACE(std::string(nameOf(kIntegratorNames, integ.type)));
         Scene retuned(before);
         renderPasses(retuned, integ, 1);
         retuned.retuneMedia(after.media);
@@ -64,9 +71,8 @@ TEST(Retune, AMovedCameraRendersAsInAFreshScene) {
     ASSERT_NE(moved.rayEpsilon(), Scene(after).rayEpsilon()) << "the move must change the epsilon to test it";
     moved.setCamera(after.camera);
     EXPECT_EQ(moved.rayEpsilon(), Scene(after).rayEpsilon());
-    for (const IntegratorType type : {IntegratorType::VolPath, IntegratorType::Photon}) {
-        IntegratorDesc integ;
-        integ.type = type, integ.photons = 5000, integ.seed = 3;
+    for (const IntegratorDesc& integ : integrators()) {
+        SCOPED_TRACE(std::string(nameOf(kIntegratorNames, integ.type)));
         EXPECT_TRUE(sameBits(renderPasses(moved, integ, 2), renderPasses(Scene(after), integ, 2)));
     }
 }
@@ -82,10 +88,8 @@ TEST(Retune, LightsRenderAsInAFreshScene) {
     after.lights[0].radiance = RGB(0.1, 0.2, 0.6);  // the environment
     after.lights[1].on = false;                     // the quad
     after.lights[2].intensity = RGB(1, 5, 9);
-    for (const IntegratorType type : {IntegratorType::VolPath, IntegratorType::Photon}) {
-        SCOPED_TRACE(type == IntegratorType::VolPath ? "volpath" : "photon");
-        IntegratorDesc integ;
-        integ.type = type, integ.photons = 5000, integ.seed = 7;
+    for (const IntegratorDesc& integ : integrators()) {
+        SCOPED_TRACE(std::string(nameOf(kIntegratorNames, integ.type)));
         Scene retuned(before);
         renderPasses(retuned, integ, 1);
         retuned.retuneLights(after.lights);
