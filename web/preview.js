@@ -253,7 +253,7 @@ function moveCamera(view) {
 }
 let drag = null;  // the pointer's start and the view then
 $('image').addEventListener('pointerdown', (e) => {
-  if (!settings) return;
+  if (!settings || e.button !== 0) return;
   e.preventDefault();
   $('image').setPointerCapture(e.pointerId);
   drag = { x: e.clientX, y: e.clientY, view: viewCamera(), pan: e.shiftKey };
