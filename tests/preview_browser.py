@@ -7,8 +7,13 @@ shows the image; dragging the g slider restarts the render (the pass counter sta
 changes the image; a bad value typed into the page shows the error there, in the field's words;
 an emission that overflows the film and a negative photon count, typed in turn, show two errors
 (the first naming the medium and field) while the render goes on, each cleared when its field
-takes a good value; a second tab sees the same settings and render; the saved scene holds the new values, never overwrites, and renders the
-same through `tetglow render`, bit for bit. A screenshot of the page goes to OUT/preview.png.
+takes a good value; dragging the image orbits the camera, a shift-drag pans it, the wheel zooms
+and the field of view is typed (a bad one refused in the page), each moving the camera as it
+should, and the image follows; a light turned off and on, and its strength typed, and the image
+follows; a second tab sees the same settings and render; the saved scene holds the new values,
+differs from the file loaded only where they changed, never overwrites, and renders the same
+through `tetglow render`, bit for bit. A screenshot of the page goes to OUT/preview.png.
+The test relies on the demo fish having a camera, a light and glowing media, not on their values.
 
   tests/preview_browser.py --tetglow build/tetglow --out build/preview-browser
 
@@ -71,6 +76,14 @@ def test_scene(folder):
     return path
 
 
+def distance(a, b):
+    return sum((x - y) ** 2 for x, y in zip(a, b)) ** 0.5
+
+
+def close(a, b, tolerance=1e-9):
+    return distance(a, b) <= tolerance * max(1, max(abs(x) for x in a + b))
+
+
 def differences(a, b, path=""):
     """The JSON pointers at which a and b differ (a value, or a key one of them lacks)."""
     if isinstance(a, dict) and isinstance(b, dict):
@@ -88,6 +101,7 @@ class Server:
         line = self.process.stdout.readline() if ready else ""
         check(line.startswith("preview: http://127.0.0.1:"), "no URL printed: " + repr(line))
         self.url = line.split()[1].rstrip("/")
+        self.scene = scene
 
     def request(self, path, body=None):
         data = None if body is None else body.encode()
@@ -126,7 +140,11 @@ def check_requests(server):
         '{"media": [{}, {}, {}, {}, {}]}':  # the fish has four media: body, photophores, lure core, eyes
             "request: /media: expected an array of at most 4 media, one per medium of the scene, got [{...",
         '{"resolution_scale": 3}': "request: /resolution_scale: expected a number in (0, 1], got 3",
-        '{"path": "/tmp/x"}': "request: /path: unknown key; allowed here: integrator, media, resolution_scale",
+        '{"path": "/tmp/x"}': "request: /path: unknown key; allowed here: integrator, media, camera, lights, resolution_scale",
+        '{"camera": {"fov": 200}}': "request: /camera/fov: expected a number in (0, 180), got 200",
+        '{"camera": {"look_at": null}}': "request: /camera/look_at: expected an array of 3 numbers",
+        '{"lights": [{"on": "off"}]}': 'request: /lights/0/on: expected true or false, got "off"',
+        '{"lights": [{"position": [0, 0, 0]}]}': "request: /lights/0/position: unknown key; allowed here: scale, {...",
         '[1]': "request: expected an object, got [1]",
         '{"media": [{"g": 0.5}': "request:1:22: /media/1: syntax error while parsing array - unexpected end of input; expected ']'",
     }
@@ -203,7 +221,13 @@ def main():
         box.send_keys(Keys.CONTROL, "a")  # not clear(): it sends a change of its own
         box.send_keys("1.5", Keys.TAB)
         shown = wait_for("the error in the page", lambda: browser.find_element(By.ID, "error").text)
-        check(shown == "fish.obj · g: 1.5 is outside the range allowed, a number (-1, 1)", "page error: " + shown)
+        # The media are named as the scene names them, else by their mesh files.
+        with open(server.scene) as f:
+            body = json.load(f)["media"][0]
+        name = body.get("name", os.path.basename(body["shape"]["file"]))
+        check(server.state()["media_names"][0] == name, f"the body is named {server.state()['media_names'][0]!r}, not {name!r}")
+        check(js("return document.querySelector('.medium legend').textContent") == name, "the page does not show the medium's name")
+        check(shown == name + " · g: 1.5 is outside the range allowed, a number (-1, 1)", "page error: " + shown)
         wait_for("the good g back in the page", lambda: float(box.get_attribute("value")) == g)
         check(server.state()["generation"] == generation, "a bad value restarted the render")
         g = round(g - 0.05, 2)  # another value: typing the one shown again changes nothing
@@ -237,6 +261,62 @@ def main():
         wait_for("the overflow's error cleared", lambda: len(errors()) == 1)
         type_into("[data-key=photons]", str(photons_before // 2))
         wait_for("every error cleared", lambda: errors() == [])
+
+        # The camera. Each gesture is checked on the server for what it must do to the view, once
+        # the page has sent all it had (no pass is assumed rendered in between).
+        settled = lambda: finished() and server.state()["image"]["generation"] == server.state()["generation"]
+        wait_for("the render to finish", settled)
+        _, before_camera = server.request("/image.png")
+        idle = lambda: js("return !sending && queued === null")
+        camera = lambda: server.state()["settings"]["camera"]
+        def gesture(what, actions, moved):
+            start = camera()
+            actions.perform()
+            return wait_for(what, lambda: idle() and moved(start, camera()) and camera())
+        image = browser.find_element(By.ID, "image")
+        offset = lambda c: [p - l for p, l in zip(c["position"], c["look_at"])]
+        # Orbit: about the look-at point, at the same distance.
+        gesture("the orbit", ActionChains(browser).drag_and_drop_by_offset(image, 40, 0),
+                lambda a, b: b["position"] != a["position"] and b["look_at"] == a["look_at"]
+                and abs(distance(b["position"], b["look_at"]) - distance(a["position"], a["look_at"])) < 1e-9 * distance(a["position"], a["look_at"]))
+        # Pan: the view moves as a whole.
+        gesture("the pan", ActionChains(browser).key_down(Keys.SHIFT).click_and_hold(image).move_by_offset(25, 15).release().key_up(Keys.SHIFT),
+                lambda a, b: b["look_at"] != a["look_at"] and close(offset(a), offset(b)))
+        # Zoom: along the view, towards or away from the look-at point.
+        from selenium.webdriver.common.actions.wheel_input import ScrollOrigin
+        zoomed = gesture("the zoom", ActionChains(browser).scroll_from_origin(ScrollOrigin.from_element(image), 0, 200),
+                         lambda a, b: b["look_at"] == a["look_at"] and distance(b["position"], b["look_at"]) > distance(a["position"], a["look_at"])
+                         and close([x / distance(a["position"], a["look_at"]) for x in offset(a)], [x / distance(b["position"], b["look_at"]) for x in offset(b)]))
+        # The field of view, typed: out of range refused in the page in its words, then a good one.
+        type_into("#camera .fov", "200")
+        wait_for("the fov refused", lambda: errors() == ["camera · field of view: 200 is outside the range allowed, a number (0, 180)"])
+        fov = zoomed["fov"] + 5 if zoomed["fov"] < 170 else zoomed["fov"] - 5
+        type_into("#camera .fov", f"{fov:g}")
+        wait_for("the fov sent", lambda: camera()["fov"] == fov and errors() == [])
+        wait_for("the position's field to follow",  # shown to 6 digits
+                 lambda: abs(float(js("return document.querySelector('#camera .position').value")) - camera()["position"][0]) <= 1e-5 * distance(camera()["position"], [0, 0, 0]))
+        wait_for("the render of the new view", settled)
+        wait_for("the page to show it", lambda: progress() == (str(PASSES), str(server.state()["generation"])))
+        _, moved = server.request("/image.png")
+        check(moved != before_camera, "the image did not follow the camera")
+
+        # A light: off, then on again with another strength; the image follows.
+        light = server.state()["settings"]["lights"][0]
+        key = next(k for k in ("intensity", "irradiance", "radiance") if k in light)
+        check(js("return document.querySelector('.light legend').textContent") == "Light · " + server.state()["light_names"][0], "the light is not named")
+        browser.find_element(By.CSS_SELECTOR, ".light .on").click()
+        wait_for("the light off", lambda: server.state()["settings"]["lights"][0]["on"] is False)
+        wait_for("the render without it", settled)
+        _, dark = server.request("/image.png")
+        check(dark != moved, "the image did not follow the light turned off")
+        browser.find_element(By.CSS_SELECTOR, ".light .on").click()
+        strength = max(light[key]) * 2 if max(light[key]) > 0 else 1
+        type_into(".light .strength", f"{strength:g}")
+        wait_for("the light on, at the new strength", lambda: server.state()["settings"]["lights"][0]["on"] is True
+                 and max(server.state()["settings"]["lights"][0][key]) == float(f"{strength:g}"))
+        wait_for("the render with it", settled)
+        _, lit = server.request("/image.png")
+        check(lit not in (moved, dark), "the image did not follow the light's strength")
 
         # A second tab sees the same render; a change made there shows in the first.
         browser.switch_to.new_window("tab")
@@ -272,7 +352,9 @@ def main():
         with open(os.path.join(work, "fish.json")) as f:
             original = json.load(f)
         changed = sorted(differences(original, tuned))
-        check(changed == ["/integrator/photons", "/media/0/emission", "/media/0/g"], f"the saved scene differs at {changed}")
+        expected = sorted(["/camera/fov", "/camera/look_at", "/camera/position", "/integrator/photons", "/lights/0/" + key,
+                           "/media/0/emission", "/media/0/g"])
+        check(changed == expected, f"the saved scene differs at {changed}, not {expected}")
         check(not [n for n in os.listdir(work) if n.endswith(".obj")], "a mesh was copied beside the saved scene")
         browser.find_element(By.ID, "save-image").click()
         wait_for("the image saved", lambda: f"({PASSES} passes)" in saved())

@@ -219,13 +219,59 @@ TEST_F(PreviewServer, AValueThatOverflowsUndoesOnlyItself) {
     EXPECT_EQ(state()["settings"]["media"][0]["g"], 0.5);
 }
 
+// The camera and the lights change as the media do: the render starts again and the image
+// follows; a value the loader refuses is refused with its words and changes nothing.
+TEST_F(PreviewServer, TheImageFollowsTheCameraAndTheLights) {
+    const auto change = [&](const std::string& patch) {
+        return rawHttp(port(), httpRequest("POST", "/settings", port(), {{"Content-Type", "application/json"}}, patch));
+    };
+    const auto finished = [&] {
+        for (int i = 0; i < 600 * timeScale(); ++i) {
+            const Json s = state();
+            if (!s["image"].is_null() && s["image"]["generation"] == s["generation"] && s["image"]["passes"] == 4) return true;
+            std::this_thread::sleep_for(std::chrono::milliseconds(50));
+        }
+        return false;
+    };
+    const auto image = [&] { return rawHttp(port(), httpRequest("GET", "/image.png", port())).body; };
+    EXPECT_EQ(state()["light_names"], Json::parse(R"(["point"])"));
+    EXPECT_EQ(state()["media_names"], Json::parse(R"(["/media/0"])")) << "a built-in shape is named by its place";
+    ASSERT_TRUE(finished());
+    const std::string first = image();
+    const uint64_t generation = state()["generation"];
+    ASSERT_EQ(change(R"({"camera": {"position": [1.5, 0.5, 3.5]}})").status, 200);
+    EXPECT_EQ(state()["generation"], generation + 1);
+    ASSERT_TRUE(finished());
+    const std::string moved = image();
+    EXPECT_NE(moved, first) << "the image did not follow the camera";
+    ASSERT_EQ(change(R"({"lights": [{"intensity": 60}]})").status, 200);
+    ASSERT_TRUE(finished());
+    EXPECT_NE(image(), moved) << "the image did not follow the light";
+    EXPECT_EQ(state()["settings"]["lights"][0]["intensity"], 60);
+
+    const Json before = state();
+    const auto refused = [&](const std::string& patch, const std::string& message) {
+        const HttpReply r = change(patch);
+        EXPECT_EQ(r.status, 400) << patch;
+        EXPECT_EQ(Json::parse(r.body)["error"], message) << patch;
+    };
+    refused(R"({"camera": {"fov": 0}})", "request: /camera/fov: expected a number in (0, 180), got 0");
+    refused(R"({"lights": [{"on": false}]})", "request: nothing emits light: turn a light on, or give it or a medium an emission");
+    refused(R"({"lights": [{"intensity": [1, 2]}]})", "request: /lights/0/intensity: expected an array of 3 numbers in [0, 3.40282e38] (or one for all 3), got [1,2]");
+    EXPECT_EQ(state()["settings"], before["settings"]);
+    EXPECT_EQ(state()["generation"], before["generation"]);
+}
+
 TEST_F(PreviewServer, ASavedSceneChangesOnlyWhatWasChanged) {
     std::ifstream in(dir_ / "sphere.json");
     const nlohmann::ordered_json original = nlohmann::ordered_json::parse(in);
     const auto post = [&](const std::string& path, const std::string& body) {
         return rawHttp(port(), httpRequest("POST", path, port(), {{"Content-Type", "application/json"}}, body));
     };
-    ASSERT_EQ(post("/settings", R"({"media": [{"g": 0.5, "sigma_s": [1, 2, 3], "scale": 2}], "integrator": {"spp": 8}})").status, 200);
+    ASSERT_EQ(post("/settings", R"({"media": [{"g": 0.5, "sigma_s": [1, 2, 3], "scale": 2}], "integrator": {"spp": 8},
+                                    "camera": {"position": [0.5, 0.2, 4], "fov": 30}, "lights": [{"intensity": [10, 10, 10]}]})")
+                  .status,
+              200);
     const HttpReply saved = post("/save/scene", "{}");
     ASSERT_EQ(saved.status, 200) << saved.body;
     EXPECT_EQ(Json::parse(saved.body)["scene"], (dir_ / "sphere-tuned-1.json").string());
@@ -235,6 +281,9 @@ TEST_F(PreviewServer, ASavedSceneChangesOnlyWhatWasChanged) {
     expected["media"][0]["sigma_s"] = {1.0, 2.0, 3.0};  // the file had no scale: units of 1
     expected["media"][0]["scale"] = 2.0;
     expected["integrator"]["spp"] = 8;
+    expected["camera"]["position"] = {0.5, 0.2, 4.0};
+    expected["camera"]["fov"] = 30.0;
+    expected["lights"][0]["intensity"] = 10.0;  // a single number, as the file has it
     EXPECT_EQ(nlohmann::ordered_json::parse(back), expected) << "the shape, the units or the order changed";
     EXPECT_EQ(files(), 2u) << "a mesh was written beside the scene";
     // Over the original only when asked.

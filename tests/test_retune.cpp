@@ -1,4 +1,4 @@
-// Re-tuning a built scene (the preview's path: new coefficients and camera on the same tets)
+// Re-tuning a built scene (the preview's path: new coefficients, lights and camera on the same tets)
 // must render exactly what a scene built afresh from the new description renders; and the
 // loader's pieces the preview reuses read and reject as inside a scene file.
 #include <cstring>
@@ -27,6 +27,15 @@ bool sameBits(const Image& a, const Image& b) {
            std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(a.pixels[0])) == 0;
 }
 
+// Both kinds of pass a retuned scene must reproduce: volpath's, and photon mapping's (whose
+// photons come from the lights and media as retuned).
+std::vector<IntegratorDesc> integrators() {
+    std::vector<IntegratorDesc> all(2);
+    all[0].type = IntegratorType::VolPath, all[1].type = IntegratorType::Photon;
+    for (IntegratorDesc& integ : all) integ.photons = 5000, integ.seed = 7;
+    return all;
+}
+
 TEST(Retune, SameImageAsAFreshScene) {
     MediumDesc m = sphereMedium(RGB(0.2, 0.5, 0.1), RGB(0.8, 0.6, 1.2), 0.5);
     m.emission = RGB(0.1, 0.2, 0.9);
@@ -39,12 +48,8 @@ TEST(Retune, SameImageAsAFreshScene) {
     after.media[0].density.type = DensityDesc::Type::Noise;  // per-vertex density on the old tets
     after.camera.width = 16;
     after.camera.height = 12;
-    for (const IntegratorType type : {IntegratorType::VolPath, IntegratorType::Photon}) {
-        SCOPED_TRACE(type == IntegratorType::VolPath ? "volpath" : "photon");
-        IntegratorDesc integ;
-        integ.type = type;
-        integ.photons = 5000;
-        integ.seed = 7;
+    for (const IntegratorDesc& integ : integrators()) {
+        SCOPED_TRACE(std::string(nameOf(kIntegratorNames, integ.type)));
         Scene retuned(before);
         renderPasses(retuned, integ, 1);
         retuned.retuneMedia(after.media);
@@ -57,6 +62,54 @@ TEST(Retune, SameImageAsAFreshScene) {
         EXPECT_FALSE(sameBits(image, renderPasses(Scene(cameraOnly), integ, 2)));
         EXPECT_EQ(retuned.desc().media[0].g, -0.3);
     }
+}
+
+// A camera moved away from the origin (the preview's orbit and zoom) sets a larger ray epsilon
+// in a scene built with it: the moved scene takes it too, and renders the same.
+TEST(Retune, AMovedCameraRendersAsInAFreshScene) {
+    const SceneDesc before = glowingSphereUnderQuad(16);
+    SceneDesc after = before;
+    after.camera.position = 3.0 * before.camera.position + glm::dvec3(0.5, 1, 0);
+    Scene moved(before);
+    ASSERT_NE(moved.rayEpsilon(), Scene(after).rayEpsilon()) << "the move must change the epsilon to test it";
+    moved.setCamera(after.camera);
+    EXPECT_EQ(moved.rayEpsilon(), Scene(after).rayEpsilon());
+    for (const IntegratorDesc& integ : integrators()) {
+        SCOPED_TRACE(std::string(nameOf(kIntegratorNames, integ.type)));
+        EXPECT_TRUE(sameBits(renderPasses(moved, integ, 2), renderPasses(Scene(after), integ, 2)));
+    }
+}
+
+// New light emission on a built scene (the preview's light controls): an area light, a point
+// light and the sky retuned, one turned off, render what a scene built with them renders.
+TEST(Retune, LightsRenderAsInAFreshScene) {
+    SceneDesc before = glowingSphereUnderQuad(16);
+    LightDesc point;
+    point.type = LightType::Point, point.position = {2, 2, 2}, point.intensity = RGB(4, 2, 1);
+    before.lights.push_back(point);
+    SceneDesc after = before;
+    after.lights[0].radiance = RGB(0.1, 0.2, 0.6);  // the environment
+    after.lights[1].on = false;                     // the quad
+    after.lights[2].intensity = RGB(1, 5, 9);
+    for (const IntegratorDesc& integ : integrators()) {
+        SCOPED_TRACE(std::string(nameOf(kIntegratorNames, integ.type)));
+        Scene retuned(before);
+        renderPasses(retuned, integ, 1);
+        retuned.retuneLights(after.lights);
+        const Image image = renderPasses(retuned, integ, 2);
+        EXPECT_TRUE(sameBits(image, renderPasses(Scene(after), integ, 2)));
+        // An off light is a light of no emission, where it was.
+        SceneDesc dark = after;
+        dark.lights[1].on = true, dark.lights[1].radiance = RGB(0);
+        EXPECT_TRUE(sameBits(image, renderPasses(Scene(dark), integ, 2)));
+        EXPECT_FALSE(sameBits(image, renderPasses(Scene(before), integ, 2))) << "the lights changed nothing";
+        EXPECT_FALSE(retuned.desc().lights[1].on);
+        EXPECT_EQ(retuned.desc().lights[1].radiance, RGB(5)) << "the off light's values were lost";
+    }
+    Scene scene(before);
+    EXPECT_THROW(scene.retuneLights({}), std::invalid_argument);
+    after.lights[2].type = LightType::Spot;
+    EXPECT_THROW(scene.retuneLights(after.lights), std::invalid_argument);
 }
 
 TEST(Retune, RefusesOtherTets) {

@@ -199,6 +199,16 @@ const Broken kBroken[] = {
     {"turntable without frames", R"("camera":)", R"("turntable": {"degrees": 90}, "camera":)", "/turntable/frames: missing"},
     {"turntable of 0 frames", R"("camera":)", R"("turntable": {"frames": 0}, "camera":)", "/turntable/frames: expected an integer in 1..1000000"},
     {"turntable about no axis", R"("camera":)", R"("turntable": {"frames": 4, "axis": [0, 0, 0]}, "camera":)", "/turntable/axis: expected a non-zero vector"},
+    {"medium name not a string", R"("g": 0.5)", R"("g": 0.5, "name": 7)", "/media/0/name: expected a non-empty string, got 7"},
+    {"medium name too long", R"("g": 0.5)", R"("g": 0.5, "name": ")" + std::string(65, 'x') + "\"",
+     "/media/0/name: expected a name of 1 to 64 bytes without control characters, got \"xxxxxxxx"},
+    {"medium name with a control character", R"("g": 0.5)", R"("g": 0.5, "name": "body\u0007")",
+     R"(/media/0/name: expected a name of 1 to 64 bytes without control characters, got "body\u0007")"},
+    {"medium name with a C1 control character", R"("g": 0.5)", R"("g": 0.5, "name": "body\u0085")",
+     "/media/0/name: expected a name of 1 to 64 bytes without control characters"},
+    {"medium name with a line break", R"("g": 0.5)", R"("g": 0.5, "name": "body\nlure")",
+     "/media/0/name: expected a name of 1 to 64 bytes without control characters"},
+    {"light switched by a number", R"("two_sided": true)", R"("two_sided": true, "on": 1)", "/lights/2/on: expected true or false, got 1"},
     {"no lights at all", "", R"({"camera": {"position": [0, 0, 5], "look_at": [0, 0, 0]}})", "/lights: nothing emits light"},
     {"no camera", "", R"({"lights": [{"type": "environment", "radiance": 1}]})", "/camera: missing; expected an object"},
     {"top level not an object", "", "[1, 2]", "scene.json: expected an object, got [1,2]"},
@@ -225,6 +235,50 @@ TEST(SceneLoader, BrokenScenesNameTheFileAndField) {
             EXPECT_NE(message.find(b.expected), std::string::npos) << message;
             EXPECT_EQ(message.find('\n'), std::string::npos) << "one line: " << message;
         }
+    }
+}
+
+// A medium's "name" is what the preview shows; without one, its mesh's file name (a built-in
+// shape: its place in the file). Up to 64 bytes of UTF-8, so a name in any script fits.
+TEST(SceneLoader, MediaAreNamedByTheFileOrByTheirMesh) {
+    const std::string longest(64, 'x');
+    const SceneDesc s = loadScene(writeScene(R"({
+  "camera": {"position": [0, 0, 5], "look_at": [0, 0, 0]},
+  "lights": [{"type": "point", "position": [0, 4, 0], "intensity": 1}],
+  "media": [
+    {"name": "Köder", "shape": {"type": "mesh", "file": "meshes/box.obj"}},
+    {"shape": {"type": "mesh", "file": "meshes/box.obj", "transform": [{"translate": [3, 0, 0]}]}},
+    {"shape": {"type": "sphere", "center": [-3, 0, 0], "radius": 0.5}, "name": ")" + longest + R"("}
+  ],
+  "cavities": [{"shape": {"type": "sphere", "center": [0.5, 0.5, 0.5], "radius": 0.1}, "name": "bubble"}]
+})"));
+    ASSERT_EQ(s.media.size(), 4u);
+    EXPECT_EQ(s.media[0].label, "Köder");
+    EXPECT_EQ(s.media[1].label, "box.obj");
+    EXPECT_EQ(s.media[2].label, longest);
+    EXPECT_EQ(s.media[3].label, "bubble");
+    EXPECT_EQ(s.media[0].name, "/media/0 (meshes/box.obj)") << "messages still name the file's place";
+}
+
+// A light that is off keeps its values (so that it can be turned on again) and emits nothing.
+TEST(SceneLoader, ALightThatIsOffKeepsItsValues) {
+    const std::string on = R"({
+  "camera": {"position": [0, 0, 5], "look_at": [0, 0, 0]},
+  "lights": [{"type": "spot", "position": [0, 4, 0], "look_at": [0, 0, 0], "intensity": [1, 2, 3], "scale": 10, "on": true},
+             {"type": "environment", "radiance": 0.5, "on": false}]
+})";
+    const SceneDesc s = loadScene(writeScene(on));
+    EXPECT_TRUE(s.lights[0].on);
+    EXPECT_FALSE(s.lights[1].on);
+    expectRgb(s.lights[1].radiance, RGB(0.5));
+    EXPECT_TRUE(emitsLight(s));
+    std::string off = on;
+    off.replace(off.find(R"("on": true)"), 10, R"("on": false)");
+    try {
+        loadScene(writeScene(off));
+        ADD_FAILURE() << "a scene with every light off loaded";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("/lights: nothing emits light"), std::string::npos) << e.what();
     }
 }
 

@@ -1,6 +1,6 @@
 'use strict';
-// tetglow preview: polls /state, shows the newest image, and sends every change as a JSON merge
-// patch on the settings (POST /settings). Each value typed is checked here first, in the words of
+// tetglow preview: polls /state, shows the newest image, and sends every change (media, lights,
+// camera, integrator) as a JSON merge patch on the settings (POST /settings). Each value typed is checked here first, in the words of
 // its field (what was typed, the range allowed); the server checks again. Errors are kept per
 // field, all shown at once, each until its field takes a good value; the render goes on with the
 // last good settings.
@@ -10,6 +10,8 @@ let generation = -1;      // which of them the controls show
 let shownImage = '', imageLoading = false;  // shownImage: the version and exposure on screen
 let sending = false, queued = null;
 let mediumNames = [];     // the scene's names of its media
+let lightNames = [];      // and of its lights ("spot", "environment")
+let askedCamera = null;   // the view last asked for, until the server holds it (drags and wheel build on it)
 
 // Colours are linear [0, 1] values, shown as the sRGB #rrggbb a screen shows them by.
 const encode = (v) => (v <= 0.0031308 ? 12.92 * v : 1.055 * Math.pow(v, 1 / 2.4) - 0.055);
@@ -26,10 +28,13 @@ function colourForm(m) {
   const d = density > 0 ? density : 1;
   return { density, scatter: scaled(m.sigma_s, 1 / d), absorb: scaled(m.sigma_a, 1 / d) };
 }
-function emissionForm(m) {
-  const strength = largest(m.emission);
-  return { strength, colour: strength > 0 ? scaled(m.emission, 1 / strength) : [1, 1, 1] };
+// An emitted colour as its largest channel (the strength) and that colour divided by it.
+const rgbOf = (v) => (Array.isArray(v) ? v : [v, v, v]);
+function strengthForm(value) {
+  const rgb = rgbOf(value), strength = largest(rgb);
+  return { strength, colour: strength > 0 ? scaled(rgb, 1 / strength) : [1, 1, 1] };
 }
+const emissionForm = (m) => strengthForm(m.emission);
 
 // What each field takes (the scene loader's ranges): lo, hi, whether the ends are excluded, integers only.
 const kLargest = 3.40282e38;  // colours and scales are floats
@@ -37,6 +42,7 @@ const RANGES = {
   spp: { lo: 1, hi: 2 ** 20, integer: true }, photons: { lo: 1, hi: 2 ** 40, integer: true },
   k: { lo: 1, hi: 100000, integer: true }, radius: { lo: 0, hi: kLargest, loOpen: true },
   max_depth: { lo: 1, hi: 2 ** 20, integer: true }, g: { lo: -1, hi: 1, loOpen: true, hiOpen: true },
+  position: { lo: -1e12, hi: 1e12 }, look_at: { lo: -1e12, hi: 1e12 }, fov: { lo: 0, hi: 180, loOpen: true, hiOpen: true },
 };
 const rangeOf = (input) => RANGES[input.dataset.key || input.className] || { lo: 0, hi: kLargest };
 function rangeText(r) {
@@ -98,6 +104,7 @@ function change(patch, fields = {}) {
     .catch((e) => { for (const [field, words] of Object.entries(fields)) setError(field, words + ': ' + e.message); })
     .finally(() => {
       sending = false;
+      if (!queued) askedCamera = null;
       showControls();  // the good settings, also after an error
       if (queued) {
         const next = queued, nextFields = queuedFields;
@@ -122,9 +129,9 @@ function onNumber(input, field, makePatch) {
 function mergePatch(a, b) {
   const out = { ...a };
   for (const [key, value] of Object.entries(b)) {
-    if (key === 'media') {
-      out.media = [...(a.media || [])];
-      value.forEach((m, i) => { out.media[i] = { ...(out.media[i] || {}), ...m }; });
+    if (key === 'media' || key === 'lights') {
+      out[key] = [...(a[key] || [])];
+      value.forEach((m, i) => { out[key][i] = { ...(out[key][i] || {}), ...m }; });
     } else if (value && typeof value === 'object' && !Array.isArray(value)) {
       out[key] = { ...(a[key] || {}), ...value };
     } else {
@@ -133,7 +140,8 @@ function mergePatch(a, b) {
   }
   return out;
 }
-const mediumPatch = (i, m) => ({ media: Array.from({ length: i + 1 }, (_, j) => (j === i ? m : {})) });
+const entryPatch = (key, i, m) => ({ [key]: Array.from({ length: i + 1 }, (_, j) => (j === i ? m : {})) });
+const mediumPatch = (i, m) => entryPatch('media', i, m);
 const number = (input) => Number(input.value === '' ? NaN : input.value);
 
 function setValue(input, value) {
@@ -174,6 +182,97 @@ function buildMedia() {
   });
 }
 
+// What each light's emitted quantity is, by its key in the scene file.
+const EMITTED = {
+  intensity: 'radiant intensity, power per unit solid angle: its largest channel (times the scale)',
+  irradiance: 'irradiance on a surface facing the light, power per unit area: its largest channel (times the scale)',
+  radiance: 'emitted radiance, power per unit area and solid angle: its largest channel (times the scale)',
+};
+const emittedKey = (light) => Object.keys(EMITTED).find((k) => k in light);
+
+function buildLights() {
+  const box = $('lights');
+  box.textContent = '';
+  settings.lights.forEach((light, i) => {
+    const f = $('light-template').content.firstElementChild.cloneNode(true);
+    const q = (c) => f.querySelector('.' + c);
+    const key = emittedKey(light), name = lightNames[i] || 'light ' + i, now = () => settings.lights[i];
+    const field = (c) => 'lights/' + i + '/' + c;
+    f.querySelector('legend').textContent = 'Light · ' + name;
+    const label = f.querySelector('.strength-label');
+    label.firstChild.textContent = key + ' ';
+    label.title = EMITTED[key];
+    q('strength').dataset.label = name + ' · ' + key;
+    q('scale').dataset.label = name + ' · scale';
+    q('on').addEventListener('change', () => change(entryPatch('lights', i, { on: q('on').checked }), { [field('on')]: name + ' · on ' + q('on').checked }));
+    q('light-colour').addEventListener('change', () =>
+      change(entryPatch('lights', i, { [key]: scaled(unhex(q('light-colour').value), strengthForm(now()[key]).strength) })));
+    onNumber(q('strength'), field(key), (x) => entryPatch('lights', i, { [key]: scaled(strengthForm(now()[key]).colour, x) }));
+    onNumber(q('scale'), field('scale'), (scale) => entryPatch('lights', i, { scale }));
+    box.appendChild(f);
+  });
+}
+
+// The camera: orbit about the look-at point (around the up direction), pan across the view,
+// zoom towards the look-at point. Each builds on the view last asked for.
+const add = (a, b) => a.map((x, i) => x + b[i]);
+const sub = (a, b) => a.map((x, i) => x - b[i]);
+const dot = (a, b) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+const cross = (a, b) => [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
+const unit = (a) => scaled(a, 1 / Math.hypot(...a));
+const clamp = (x, lo, hi) => Math.min(hi, Math.max(lo, x));
+const viewCamera = () => ({ ...settings.camera, ...(askedCamera || {}) });
+const kRadiansPerPixel = 0.01, kPole = 0.02;  // the view stays this far (radians) from the up direction
+
+function orbit(cam, dx, dy) {
+  const up = unit(cam.up), offset = sub(cam.position, cam.look_at), r = Math.hypot(...offset);
+  const across = sub(offset, scaled(up, dot(offset, up)));
+  const e1 = Math.hypot(...across) > 1e-9 * r ? unit(across) : unit(cross(up, Math.abs(up[0]) < 0.9 ? [1, 0, 0] : [0, 1, 0]));
+  const e2 = cross(up, e1);
+  const polar = clamp(Math.acos(clamp(dot(offset, up) / r, -1, 1)) - dy * kRadiansPerPixel, kPole, Math.PI - kPole);
+  const turn = -dx * kRadiansPerPixel;
+  const around = add(scaled(e1, Math.cos(turn)), scaled(e2, Math.sin(turn)));
+  return { position: add(cam.look_at, scaled(add(scaled(around, Math.sin(polar)), scaled(up, Math.cos(polar))), r)), look_at: cam.look_at };
+}
+function pan(cam, dx, dy) {
+  const view = sub(cam.look_at, cam.position);
+  const right = unit(cross(view, cam.up)), up = unit(cross(right, view));
+  // A pixel's width at the look-at point: the image follows the drag there.
+  const perPixel = (2 * Math.hypot(...view) * Math.tan((cam.fov * Math.PI) / 360)) / $('image').clientHeight;
+  const move = add(scaled(right, -dx * perPixel), scaled(up, dy * perPixel));
+  return { position: add(cam.position, move), look_at: add(cam.look_at, move) };
+}
+function zoom(cam, wheel) {
+  const offset = sub(cam.position, cam.look_at), r = Math.hypot(...offset);
+  const k = Math.max(Math.exp(wheel * 0.001), 1e-6 / r);
+  return { position: add(cam.look_at, scaled(offset, k)), look_at: cam.look_at };
+}
+function moveCamera(view) {
+  askedCamera = view;
+  change({ camera: view }, { camera: 'camera' });
+}
+let drag = null;  // the pointer's start and the view then
+$('image').addEventListener('pointerdown', (e) => {
+  if (!settings || e.button !== 0) return;
+  e.preventDefault();
+  $('image').setPointerCapture(e.pointerId);
+  drag = { x: e.clientX, y: e.clientY, view: viewCamera(), pan: e.shiftKey };
+});
+$('image').addEventListener('pointermove', (e) => {
+  if (!drag) return;
+  const dx = e.clientX - drag.x, dy = e.clientY - drag.y;
+  if (dx || dy) moveCamera((drag.pan ? pan : orbit)(drag.view, dx, dy));
+});
+for (const end of ['pointerup', 'pointercancel']) $('image').addEventListener(end, () => { drag = null; });
+$('image').addEventListener('wheel', (e) => {
+  e.preventDefault();
+  if (settings) moveCamera(zoom(viewCamera(), e.deltaY));
+}, { passive: false });
+for (const key of ['position', 'look_at'])
+  $('camera').querySelectorAll('.' + key).forEach((input, k) =>
+    onNumber(input, 'camera/' + key + k, (x) => ({ camera: { [key]: viewCamera()[key].map((v, j) => (j === k ? x : v)) } })));
+onNumber($('camera').querySelector('.fov'), 'camera/fov', (fov) => ({ camera: { fov } }));
+
 function showControls() {
   const integ = settings.integrator;
   document.querySelectorAll('[data-key]').forEach((input) => setValue(input, integ[input.dataset.key] ?? ''));
@@ -182,6 +281,17 @@ function showControls() {
   $('k-label').hidden = fixed;
   $('radius-label').hidden = !fixed;
   setValue($('resolution-scale'), String(settings.resolution_scale));
+  for (const key of ['position', 'look_at'])
+    $('camera').querySelectorAll('.' + key).forEach((input, k) => setValue(input, +settings.camera[key][k].toPrecision(6)));
+  setValue($('camera').querySelector('.fov'), settings.camera.fov);
+  if ($('lights').children.length !== settings.lights.length) buildLights();
+  settings.lights.forEach((light, i) => {
+    const f = $('lights').children[i], key = emittedKey(light), e = strengthForm(light[key]);
+    f.querySelector('.on').checked = light.on;
+    setValue(f.querySelector('.light-colour'), hex(e.colour));
+    setValue(f.querySelector('.strength'), +e.strength.toPrecision(6));
+    setValue(f.querySelector('.scale'), light.scale);
+  });
   if ($('media').children.length !== settings.media.length) buildMedia();
   settings.media.forEach((m, i) => {
     const f = $('media').children[i];
@@ -220,6 +330,7 @@ async function poll() {
     const state = await (await fetch('/state')).json();
     // Another tab's change: show its settings (unless one of ours is on its way).
     mediumNames = state.media_names || [];
+    lightNames = state.light_names || [];
     if (!sending && state.generation !== generation) {
       settings = state.settings;
       generation = state.generation;

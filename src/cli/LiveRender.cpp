@@ -65,6 +65,7 @@ void LiveRender::renderGeneration(const SceneDesc& desc, uint64_t generation) {
     const auto start = std::chrono::steady_clock::now();
     auto seconds = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
     scene_->retuneMedia(desc.media);
+    scene_->retuneLights(desc.lights);
     RenderOptions options;
     options.seed = desc.integrator.seed;
     options.threads = threads_;

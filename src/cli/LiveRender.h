@@ -33,7 +33,7 @@ public:
     LiveRender& operator=(const LiveRender&) = delete;
 
     // Renders `desc` from its first pass: the scene's geometry (the tets are kept) with desc's
-    // media coefficients, camera and integrator. Returns the generation that shows it.
+    // media coefficients, light emission, camera and integrator. Returns the generation that shows it.
     uint64_t restart(const SceneDesc& desc);
     std::shared_ptr<const LiveImage> latest() const;  // null before the first image
     std::string error() const;  // why the render of the last restart() failed ("" when it did not)

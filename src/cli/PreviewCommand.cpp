@@ -1,5 +1,5 @@
 // tetglow preview SCENE: a local web page that shows the render refining pass after pass and
-// tunes the media and the integrator while it runs (cpp-httplib). The server answers only its
+// tunes the media, lights, camera and integrator while it runs (cpp-httplib). The server answers only its
 // own page (compiled in from web/), the current image, the settings and two saves whose file
 // names it chooses itself; every other request gets 404. Who may ask: PreviewAccess.h.
 #include <atomic>
@@ -97,9 +97,9 @@ public:
         : scenePath_(fs::absolute(scenePath).string()),
           original_(jsonScene(scenePath)),
           saves_(fs::absolute(scenePath).parent_path(), fs::path(scenePath).stem().string(), kMaxSaves),
-          settings_(desc),
-          good_(desc),
-          before_(desc) {
+          settings_(desc, original_),
+          good_(settings_),
+          before_(settings_) {
         routes();
     }
 
@@ -210,6 +210,7 @@ private:
             followRender(live.get());
             j["settings"] = settings_.json();
             j["media_names"] = settings_.mediumNames();
+            j["light_names"] = settings_.lightNames();
             j["generation"] = generation_;
             j["render_error"] = renderError_.empty() ? live_->error() : renderError_;
         }
@@ -325,7 +326,7 @@ void run(const Options& o) {
 
 void addPreviewCommand(CLI::App& app) {
     auto o = std::make_shared<Options>();
-    auto* cmd = app.add_subcommand("preview", "Serve a local web page that renders the scene live while its media and integrator are tuned");
+    auto* cmd = app.add_subcommand("preview", "Serve a local web page that renders the scene live while its media, lights, camera and integrator are tuned");
     cmd->add_option("scene", o->scene, "Scene file: JSON, or pbrt-v3 (.pbrt)")->required()->check(CLI::ExistingFile);
     cmd->add_option("--port", o->port, "TCP port (0: any free one; the URL printed says which)")->check(CLI::Range(0, 65535));
     cmd->add_option("--host", o->host, "Address to listen on (default 127.0.0.1: this machine only)");

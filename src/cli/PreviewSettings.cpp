@@ -2,7 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
+#include <initializer_list>
 
 #include "scene/SceneLoader.h"
 #include "scene/SceneWriter.h"
@@ -14,6 +14,37 @@ const std::string kSource = "request";  // errors name the request as the loader
 constexpr Range kResolutionScale{.lo = 0, .hi = 1, .loOpen = true};
 
 nlohmann::json unordered(const nlohmann::ordered_json& j) { return nlohmann::json::parse(j.dump()); }
+nlohmann::json triple(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
+
+bool changed(const nlohmann::json& now, const nlohmann::json& was, const char* key) {
+    return now.contains(key) && (!was.contains(key) || now[key] != was[key]);
+}
+
+// A light's values as the scene file has them (the emitted quantity, "scale" and "on"), so that
+// the preview computes them as the loader does and a save writes them back in the file's units;
+// from the loaded light when there is no file (a pbrt scene).
+nlohmann::json lightSettings(const LightDesc& l, const nlohmann::ordered_json& entry) {
+    const char* key = emissionKey(l.type);
+    if (!entry.is_object()) return {{key, triple(emissionOf(l))}, {"scale", 1}, {"on", l.on}};
+    const nlohmann::json value = unordered(entry[key]);
+    return {{key, value.is_number() ? nlohmann::json{value, value, value} : value},
+            {"scale", entry.contains("scale") ? unordered(entry["scale"]) : nlohmann::json(1)},
+            {"on", l.on}};
+}
+
+// "spot", "environment"; "spot 1", "spot 2" where a type comes more than once.
+std::vector<std::string> lightNames(const std::vector<LightDesc>& lights) {
+    static const NameTable<LightType, 6> kNames{{{"point", LightType::Point}, {"spot", LightType::Spot}, {"distant", LightType::Distant},
+                                                 {"quad", LightType::Quad}, {"mesh light", LightType::Mesh}, {"environment", LightType::Environment}}};
+    std::vector<std::string> names;
+    for (const LightDesc& l : lights) {
+        const auto same = [&](const LightDesc& o) { return o.type == l.type; };
+        const size_t before = size_t(std::count_if(lights.data(), &l, same));
+        names.emplace_back(nameOf(kNames, l.type));
+        if (std::count_if(lights.begin(), lights.end(), same) > 1) names.back().append(" ").append(std::to_string(before + 1));
+    }
+    return names;
+}
 
 // RFC 7386's merge, except that null replaces a value instead of removing it: a number the page
 // could not read arrives as null and must be an error, not a silent return to the loaded value.
@@ -27,7 +58,7 @@ void merge(nlohmann::json& target, const nlohmann::json& patch) {
 
 }  // namespace
 
-PreviewSettings::PreviewSettings(const SceneDesc& loaded) : loaded_(loaded), scene_(loaded) {
+PreviewSettings::PreviewSettings(const SceneDesc& loaded, const nlohmann::ordered_json& file) : loaded_(loaded), scene_(loaded) {
     settings_["integrator"] = unordered(integratorJson(loaded.integrator));
     settings_["media"] = nlohmann::json::array();
     for (const MediumDesc& m : loaded.media) {
@@ -35,6 +66,11 @@ PreviewSettings::PreviewSettings(const SceneDesc& loaded) : loaded_(loaded), sce
         medium["scale"] = 1;  // sigma_a and sigma_s are the loaded ones, "scale" already applied
         settings_["media"].push_back(medium);
     }
+    const CameraDesc& c = loaded.camera;
+    settings_["camera"] = {{"position", triple(c.position)}, {"look_at", triple(c.lookAt)}, {"up", triple(c.up)}, {"fov", c.fov}};
+    settings_["lights"] = nlohmann::json::array();
+    for (size_t i = 0; i < loaded.lights.size(); ++i)
+        settings_["lights"].push_back(lightSettings(loaded.lights[i], file.is_object() && file.contains("lights") ? file["lights"][i] : nullptr));
     settings_["resolution_scale"] = 1;
     initial_ = settings_;
 }
@@ -45,7 +81,7 @@ void PreviewSettings::apply(const std::string& text) {
     nlohmann::json next = settings_;
     for (const auto& [key, value] : patch.items()) {
         nlohmann::json& target = next[key];
-        if (key == "media" && value.is_array() && target.is_array() && value.size() <= target.size())
+        if ((key == "media" || key == "lights") && value.is_array() && target.is_array() && value.size() <= target.size())
             for (size_t i = 0; i < value.size(); ++i) merge(target[i], value[i]);
         else
             merge(target, value);  // an unknown key lands here and read() names it
@@ -63,10 +99,13 @@ std::string PreviewSettings::changesFrom(const PreviewSettings& before) const {
         for (const auto& [key, value] : now.items())
             if (!was.contains(key) || was[key] != value) out += (out.empty() ? "" : ", ") + owner + key + " " + value.dump();
     };
+    const std::vector<std::string> lights = lightNames();
     for (const auto& [key, value] : settings_.items()) {
         const nlohmann::json& was = before.settings_[key];
         if (key == "media")
             for (size_t i = 0; i < value.size(); ++i) compare(scene_.media[i].name + " ", value[i], was[i]);
+        else if (key == "lights")
+            for (size_t i = 0; i < value.size(); ++i) compare("light " + lights[i] + " ", value[i], was[i]);
         else if (value.is_object())
             compare(key + " ", value, was);
         else if (value != was)
@@ -77,26 +116,31 @@ std::string PreviewSettings::changesFrom(const PreviewSettings& before) const {
 
 std::vector<std::string> PreviewSettings::mediumNames() const {
     std::vector<std::string> names;
-    for (const MediumDesc& m : loaded_.media) {
-        // The loader's name: "/media/0 (meshes/fish.obj)", or "/media/0" for a built-in shape.
-        const size_t open = m.name.find(" (");
-        names.push_back(open == std::string::npos ? m.name
-                                                  : std::filesystem::path(m.name.substr(open + 2, m.name.size() - open - 3)).filename().string());
-    }
+    for (const MediumDesc& m : loaded_.media) names.push_back(m.label.empty() ? m.name : m.label);
     return names;
 }
 
+std::vector<std::string> PreviewSettings::lightNames() const { return cli::lightNames(loaded_.lights); }
+
 nlohmann::ordered_json PreviewSettings::editedScene(nlohmann::ordered_json doc) const {
-    const auto changed = [](const nlohmann::json& now, const nlohmann::json& was, const char* key) {
-        return now.contains(key) && (!was.contains(key) || now[key] != was[key]);
-    };
     const nlohmann::json &integrator = settings_["integrator"], &wasIntegrator = initial_["integrator"];
     for (const auto& [key, value] : integrator.items())
         if (changed(integrator, wasIntegrator, key.c_str())) doc["integrator"][key] = value;
     for (const auto& [key, value] : wasIntegrator.items())
         if (!integrator.contains(key) && doc.contains("integrator")) doc["integrator"].erase(key);  // "radius": back to k
+    for (const auto& [key, value] : settings_["camera"].items())
+        if (changed(settings_["camera"], initial_["camera"], key.c_str())) doc["camera"][key] = value;
     if (settings_["resolution_scale"] != initial_["resolution_scale"])
         doc["camera"]["resolution"] = {scene_.camera.width, scene_.camera.height};
+    for (size_t i = 0; i < loaded_.lights.size(); ++i) {
+        const nlohmann::json &now = settings_["lights"][i], &was = initial_["lights"][i];
+        nlohmann::ordered_json& l = doc["lights"][i];
+        for (const auto& [key, value] : now.items()) {
+            if (!changed(now, was, key.c_str())) continue;
+            const bool single = l.contains(key) && l[key].is_number() && value.is_array() && value[0] == value[1] && value[1] == value[2];
+            l[key] = single ? value[0] : value;  // a file's single number stays one where it can
+        }
+    }
     size_t entry = 0;  // in the file's "media" (the cavities follow them in the scene, apart in the file)
     for (size_t i = 0; i < loaded_.media.size(); ++i) {
         if (loaded_.media[i].cavity) continue;
@@ -136,13 +180,19 @@ SceneDesc PreviewSettings::read(const nlohmann::json& settings) const {
             if (m.cavity && (m.sigmaA != RGB(0) || m.sigmaS != RGB(0) || m.emission != RGB(0)))
                 items[i].error(m.name + " is a cavity: it holds no medium to tune (its coefficients stay 0)");
         }
+        o["camera"].readObject([&](JsonObject& c) { return readCameraView(c, s.camera), 0; });
+        const JsonValue lights = o["lights"];
+        const std::vector<JsonValue> lightItems = lights.array();
+        if (lightItems.size() != s.lights.size())
+            lights.fail("an array of at most " + std::to_string(s.lights.size()) + " lights, one per light of the scene");
+        for (size_t i = 0; i < lightItems.size(); ++i) lightItems[i].readObject([&](JsonObject& l) { return readLightEmission(l, s.lights[i]), 0; });
         const double scale = o["resolution_scale"].number(kResolutionScale);
         s.camera.width = std::max(1, int(std::lround(loaded_.camera.width * scale)));
         s.camera.height = std::max(1, int(std::lround(loaded_.camera.height * scale)));
         return 0;
     });
     if (!emitsLight(s))
-        throw InputError(kSource + ": nothing emits light: give a medium an \"emission\" (the scene has no other light)");
+        throw InputError(kSource + ": nothing emits light: turn a light on, or give it or a medium an emission");
     return s;
 }
 

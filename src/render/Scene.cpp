@@ -31,6 +31,10 @@ double sceneScale(const SceneDesc& desc) {
     return std::max(scale, 1.0);
 }
 
+// 64 float ulps at the scene's largest coordinate (the camera's included): beyond Embree's
+// rounding of hit points.
+double rayEpsilonOf(const SceneDesc& desc) { return 64 * 0x1.0p-23 * sceneScale(desc); }
+
 }  // namespace
 
 void Scene::setCoefficients(SceneVolume& volume) const {
@@ -85,14 +89,16 @@ void Scene::buildVolumes() {
     }
 }
 
-void Scene::classifyVolumes(const std::vector<TriangleMesh>& meshes, const std::vector<std::pair<HitKind, uint32_t>>& shapes) {
+void Scene::classifyVolumes() {
+    surfacesWithin_.clear();
+    sealed_.clear();
     for (const SceneVolume& v : volumes_) {
         const Bounds3& box = v.media->volume().bounds();
         bool within = false, lightWithin = false;
-        for (size_t k = 0; k < meshes.size(); ++k) {
-            const bool overlaps = bounds(meshes[k]).overlaps(box, 4 * epsilon_);
+        for (const auto& [shape, kind] : shapeBounds_) {
+            const bool overlaps = shape.overlaps(box, 4 * epsilon_);
             within = within || overlaps;
-            lightWithin = lightWithin || (overlaps && shapes[k].first == HitKind::Light);
+            lightWithin = lightWithin || (overlaps && kind == HitKind::Light);
         }
         for (const LightDesc& l : desc_.lights)
             if (l.type == LightType::Point || l.type == LightType::Spot) {
@@ -110,28 +116,15 @@ void Scene::classifyVolumes(const std::vector<TriangleMesh>& meshes, const std::
 }
 
 Scene::Scene(const SceneDesc& desc) : desc_(desc), camera_(desc.camera) {
-    // 64 float ulps at the scene's largest coordinate: beyond Embree's rounding of hit points.
-    epsilon_ = 64 * 0x1.0p-23 * sceneScale(desc);
+    epsilon_ = rayEpsilonOf(desc);
     const auto start = std::chrono::steady_clock::now();
     buildVolumes();
     tetSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    Bounds3 geometry;
-    for (const auto& surface : desc.surfaces) geometry.extend(bounds(surface.mesh));
-    for (const auto& v : volumes_) geometry.extend(v.media->volume().bounds());
-    if (geometry.empty()) geometry.extend(desc.camera.position);  // nothing but lights
-    // Constant environments add up: they become one light with the summed radiance, in the
-    // place of the first, so that rays escaping and light samples see the same sky.
-    LightDesc sky;
-    sky.type = LightType::Environment;
-    for (const auto& l : desc.lights)
-        if (l.type == LightType::Environment) sky.radiance += l.radiance;
-    for (const auto& l : desc.lights) {
-        if (l.type != LightType::Environment) lights_.push_back(makeLight(l, geometry));
-        else if (!environment_) {
-            lights_.push_back(makeLight(sky, geometry));
-            environment_ = lights_.back().get();
-        }
-    }
+    for (const auto& surface : desc.surfaces) geometry_.extend(bounds(surface.mesh));
+    for (const auto& v : volumes_) geometry_.extend(v.media->volume().bounds());
+    lightsAlone_ = geometry_.empty();
+    if (lightsAlone_) geometry_.extend(desc.camera.position);
+    makeLights();
 
     for (SceneVolume& v : volumes_) v.normals = unitNormals(v.media->mesh().vertices, v.media->mesh().surface);
     surfaces_ = rtcNewScene(embreeDevice());
@@ -158,7 +151,8 @@ Scene::Scene(const SceneDesc& desc) : desc_(desc), camera_(desc.camera) {
         }
     }
     for (const TriangleMesh& m : meshes) normals_.push_back(unitNormals(m.positions, m.triangles));
-    classifyVolumes(meshes, shapes);
+    for (size_t k = 0; k < meshes.size(); ++k) shapeBounds_.emplace_back(bounds(meshes[k]), shapes[k].first);
+    classifyVolumes();
     for (size_t k = 0; k < meshes.size(); ++k) {
         const Geometry g{shapes[k].first, shapes[k].second, uint32_t(k)};
         attach(surfaces_, surfaceGeometries_, g, meshes[k].positions, meshes[k].triangles);
@@ -191,9 +185,50 @@ void Scene::retuneMedia(const std::vector<MediumDesc>& media) {
     for (SceneVolume& v : volumes_) setCoefficients(v);
 }
 
+void Scene::makeLights() {
+    lights_.clear();
+    environment_ = nullptr;
+    // A light that is off emits nothing, where it is (its shape still blocks rays).
+    const auto lit = [](LightDesc l) {
+        if (!l.on) l.intensity = l.radiance = l.irradiance = RGB(0);
+        return l;
+    };
+    // Constant environments add up: they become one light with the summed radiance, in the
+    // place of the first, so that rays escaping and light samples see the same sky.
+    LightDesc sky;
+    sky.type = LightType::Environment;
+    for (const auto& l : desc_.lights)
+        if (l.type == LightType::Environment) sky.radiance += lit(l).radiance;
+    for (const auto& l : desc_.lights) {
+        if (l.type != LightType::Environment) lights_.push_back(makeLight(lit(l), geometry_));
+        else if (!environment_) lights_.push_back(makeLight(sky, geometry_)), environment_ = lights_.back().get();
+    }
+}
+
+void Scene::retuneLights(const std::vector<LightDesc>& lights) {
+    if (lights.size() != desc_.lights.size()) throw std::invalid_argument("Scene::retuneLights: a different number of lights");
+    for (size_t i = 0; i < lights.size(); ++i) {
+        LightDesc& l = desc_.lights[i];
+        if (lights[i].type != l.type) throw std::invalid_argument("Scene::retuneLights: light " + std::to_string(i) + " has another type");
+        emissionOf(l) = emissionOf(lights[i]);
+        l.on = lights[i].on;
+    }
+    makeLights();
+}
+
 void Scene::setCamera(const CameraDesc& camera) {
     desc_.camera = camera;
     camera_ = Camera(camera);
+    // What a scene built with this camera has: the ray epsilon (the camera's distance from the
+    // origin may set it), the volumes' classification that uses it, and in a scene of lights
+    // alone, the bounds that lights at infinity aim their photons at.
+    epsilon_ = rayEpsilonOf(desc_);
+    classifyVolumes();
+    if (lightsAlone_) {
+        geometry_ = Bounds3();
+        geometry_.extend(camera.position);
+        makeLights();
+    }
 }
 
 std::optional<Intersection> Scene::intersect(RTCScene scene, const std::vector<Geometry>& geometries, const Ray& ray, double tMax) const {

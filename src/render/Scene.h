@@ -69,7 +69,11 @@ public:
     // New coefficients and densities for every medium, on the tets it has (the boundary meshes
     // and TetGen options must be the ones it was built with); integrators made before are stale.
     void retuneMedia(const std::vector<MediumDesc>& media);
-    // Another image size or view; the ray epsilon stays the one the scene was built with.
+    // New emission (the emitted quantity and whether each light is on) for every light; their
+    // types, places and shapes stay the scene's. Integrators made before are stale.
+    void retuneLights(const std::vector<LightDesc>& lights);
+    // Another image size or view: the scene is then as one built with this camera (its ray
+    // epsilon included), so that it renders bit for bit the same.
     void setCamera(const CameraDesc& camera);
     const Camera& camera() const { return camera_; }
     const std::vector<std::unique_ptr<Light>>& lights() const { return lights_; }
@@ -128,14 +132,18 @@ private:
     }
     std::optional<Intersection> intersect(RTCScene scene, const std::vector<Geometry>& geometries, const Ray& ray, double tMax) const;
     void buildVolumes();
-    // surfacesWithin_ and sealed_, from the surfaces' and area lights' meshes (by kind) and the lights.
-    void classifyVolumes(const std::vector<TriangleMesh>& meshes, const std::vector<std::pair<HitKind, uint32_t>>& shapes);
+    // surfacesWithin_ and sealed_, from the surfaces' and area lights' bounds and the lights.
+    void classifyVolumes();
     void setCoefficients(SceneVolume& volume) const;
+    void makeLights();  // lights_ and environment_ from desc_.lights
 
     SceneDesc desc_;
     Camera camera_;
     std::vector<std::unique_ptr<Light>> lights_;
     const Light* environment_ = nullptr;
+    Bounds3 geometry_;  // of the surfaces and media: where lights at infinity aim their photons
+    bool lightsAlone_ = false;  // no surface or medium: geometry_ is the camera's position
+    std::vector<std::pair<Bounds3, HitKind>> shapeBounds_;  // the surfaces' and area lights' meshes
     std::vector<SceneRegion> media_;
     std::vector<SceneVolume> volumes_;
     // By Embree geometry id in surfaces_ and in all_: kind and index, and per triangle the unit

@@ -54,7 +54,18 @@ struct LightDesc {
     glm::dvec3 corner{0}, edge0{1, 0, 0}, edge1{0, 0, 1};  // quad: emits along cross(edge0, edge1)
     TriangleMesh mesh;     // mesh: world space; each triangle emits along cross(p1 - p0, p2 - p0)
     bool twoSided = false;  // quad, mesh
+    bool on = true;         // false: the light is in the scene but emits nothing (its values kept)
 };
+
+// A light's emitted quantity and its key in scene files: "intensity" for point and spot lights,
+// "irradiance" for distant ones, "radiance" for the others.
+inline const char* emissionKey(LightType t) {
+    return t == LightType::Point || t == LightType::Spot ? "intensity" : t == LightType::Distant ? "irradiance" : "radiance";
+}
+inline RGB& emissionOf(LightDesc& l) {
+    return l.type == LightType::Point || l.type == LightType::Spot ? l.intensity : l.type == LightType::Distant ? l.irradiance : l.radiance;
+}
+inline const RGB& emissionOf(const LightDesc& l) { return emissionOf(const_cast<LightDesc&>(l)); }
 
 enum class MaterialType {
     Diffuse,     // Lambertian, reflectance per channel
@@ -86,6 +97,7 @@ struct DensityDesc {
 
 struct MediumDesc {
     std::string name;      // for messages
+    std::string label;     // what the user calls it: the file's "name", else its mesh's file name ("" from pbrt)
     TriangleMesh boundary; // world space, closed; tetrahedralized when the scene is built
     RGB sigmaA{0}, sigmaS{1};  // per unit length, already multiplied by `scale`
     double g = 0;              // Henyey-Greenstein asymmetry, in (-1, 1)

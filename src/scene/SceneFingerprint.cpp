@@ -21,6 +21,7 @@ std::string sceneFingerprint(const SceneDesc& scene) {
     copy.path.clear();
     copy.output.clear();
     copy.inputs.clear();
+    for (MediumDesc& m : copy.media) m.label.clear();  // a name changes no pixel
     uint64_t hash = kFnvOffset;
     try {
         const std::string json = (dir / "scene.json").string();

@@ -46,15 +46,7 @@ std::string nameOf(const JsonValue& v, const Shape& shape) {
 
 CameraDesc readCamera(JsonObject& o) {
     CameraDesc c;
-    c.position = o["position"].vec3();
-    const JsonValue lookAt = o["look_at"];
-    c.lookAt = lookAt.vec3();
-    checkDirection(lookAt, c.lookAt - c.position, "a point at least 1e-12 from \"position\"");
-    const JsonValue up = o["up"];
-    if (up) c.up = up.vec3();
-    if (parallel(c.up, c.lookAt - c.position))
-        up.error("the up direction must not be zero or parallel to the view direction (look_at - position)");
-    if (auto f = o["fov"]) c.fov = f.number({.lo = 0, .hi = 180, .loOpen = true, .hiOpen = true});
+    readCameraView(o, c);
     if (auto f = o["resolution"]) {
         const auto size = f.array();
         if (size.size() != 2) f.fail("[width, height]");
@@ -95,17 +87,12 @@ LightDesc readLight(JsonObject& o, const fs::path& dir) {
                                            {"quad", LightType::Quad},
                                            {"mesh", LightType::Mesh},
                                            {"environment", LightType::Environment}});
-    const double scale = scaleOf(o);
-    if (l.type == LightType::Point || l.type == LightType::Spot) {
-        l.position = o["position"].vec3();
-        l.intensity = scale * rgb(o["intensity"]);
-    }
+    if (l.type == LightType::Point || l.type == LightType::Spot) l.position = o["position"].vec3();
     if (l.type == LightType::Spot) readSpotCone(o, l);
     if (l.type == LightType::Distant) {
         const JsonValue direction = o["direction"];
         l.direction = direction.vec3();
         checkDirection(direction, l.direction, "a vector of length >= 1e-12");
-        l.irradiance = scale * rgb(o["irradiance"]);
     }
     if (l.type == LightType::Quad) {
         const Parallelogram p = readParallelogram(o);
@@ -116,8 +103,7 @@ LightDesc readLight(JsonObject& o, const fs::path& dir) {
     if (l.type == LightType::Mesh) l.mesh = o["shape"].readObject([&](JsonObject& s) { return readShape(s, dir, false); }).mesh;
     if (l.type == LightType::Quad || l.type == LightType::Mesh)
         if (auto f = o["two_sided"]) l.twoSided = f.boolean();
-    if (l.type == LightType::Quad || l.type == LightType::Mesh || l.type == LightType::Environment)
-        l.radiance = scale * rgb(o["radiance"]);
+    readLightEmission(o, l);
     return l;
 }
 
@@ -181,11 +167,26 @@ TetOptions readTetOptions(JsonObject& o) {
     return t;
 }
 
-// The shape and boundary a medium and a cavity both have.
+// What a page or a report may show as a medium's name: one line of a bounded length.
+std::string readLabel(const JsonValue& v) {
+    const std::string label = v.string();
+    const auto control = [&](size_t i) {
+        const auto c = static_cast<unsigned char>(label[i]);  // C0 and DEL, or C1 (U+0080..U+009F) in UTF-8
+        return c < 0x20 || c == 0x7f || (c == 0xc2 && i + 1 < label.size() && static_cast<unsigned char>(label[i + 1]) < 0xa0);
+    };
+    bool clean = label.size() <= kMaxLabelBytes;
+    for (size_t i = 0; i < label.size() && clean; ++i) clean = !control(i);
+    if (!clean) v.fail("a name of 1 to " + std::to_string(kMaxLabelBytes) + " bytes without control characters");
+    return label;
+}
+
+// The shape, name and boundary a medium and a cavity both have.
 MediumDesc readRegion(JsonObject& o, const fs::path& dir) {
     Shape shape = o["shape"].readObject([&](JsonObject& s) { return readShape(s, dir, true); });
     MediumDesc m;
     m.name = nameOf(o.self(), shape);
+    const JsonValue label = o["name"];
+    m.label = label ? readLabel(label) : shape.file.empty() ? o.self().path() : fs::path(shape.file).filename().string();
     m.boundary = std::move(shape.mesh);
     if (auto f = o["boundary"])
         m.boundaryMaterial = f.readObject([](JsonObject& b) {
@@ -274,6 +275,24 @@ void checkLimits(const SceneDesc& s) {
 
 }  // namespace
 
+void readCameraView(JsonObject& o, CameraDesc& c) {
+    c.position = o["position"].vec3();
+    const JsonValue lookAt = o["look_at"];
+    c.lookAt = lookAt.vec3();
+    checkDirection(lookAt, c.lookAt - c.position, "a point at least 1e-12 from \"position\"");
+    const JsonValue up = o["up"];
+    if (up) c.up = up.vec3();
+    if (parallel(c.up, c.lookAt - c.position))
+        up.error("the up direction must not be zero or parallel to the view direction (look_at - position)");
+    if (auto f = o["fov"]) c.fov = f.number({.lo = 0, .hi = 180, .loOpen = true, .hiOpen = true});
+}
+
+void readLightEmission(JsonObject& o, LightDesc& l) {
+    const double scale = scaleOf(o);
+    emissionOf(l) = scale * rgb(o[emissionKey(l.type)]);
+    if (auto f = o["on"]) l.on = f.boolean();
+}
+
 IntegratorDesc readIntegrator(JsonObject& o) {
     IntegratorDesc d;
     if (auto f = o["type"])
@@ -313,7 +332,7 @@ void readMediumCoefficients(JsonObject& o, MediumDesc& m) {
 
 bool emitsLight(const SceneDesc& s) {
     for (const LightDesc& l : s.lights)
-        if (l.intensity != RGB(0) || l.radiance != RGB(0) || l.irradiance != RGB(0)) return true;
+        if (l.on && (l.intensity != RGB(0) || l.radiance != RGB(0) || l.irradiance != RGB(0))) return true;
     for (const MediumDesc& m : s.media)
         if (m.emission != RGB(0)) return true;
     return false;

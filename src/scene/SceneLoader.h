@@ -7,6 +7,8 @@
 
 namespace tetglow {
 
+inline constexpr size_t kMaxLabelBytes = 64;  // a medium's "name", in UTF-8
+
 // Reads, validates and places everything the file names: meshes are loaded (paths relative to
 // the scene file's directory), transformed to world space and rounded to float; colours are
 // multiplied by their "scale". Throws InputError, one line naming the file and the JSON pointer
@@ -16,6 +18,10 @@ namespace tetglow {
 SceneDesc loadScene(const std::string& path);
 
 // The parts of a scene file the preview re-tunes, with the loader's own checks and errors.
+// A camera's "position", "look_at", "up" and "fov" (up and fov, when absent, keep c's).
+void readCameraView(JsonObject& o, CameraDesc& c);
+// A light's "scale", its emitted quantity (emissionKey(l.type), times the scale) and "on".
+void readLightEmission(JsonObject& o, LightDesc& l);
 // An "integrator" object (absent keys keep their defaults).
 IntegratorDesc readIntegrator(JsonObject& o);
 // A medium's "scale", "sigma_a", "sigma_s", "g", "emission" and "density": the keys present

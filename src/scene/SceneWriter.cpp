@@ -102,6 +102,13 @@ private:
     }
 
     Json light(const LightDesc& l, size_t index) {
+        Json j = lightShape(l, index);
+        if (!l.on) j["on"] = false;
+        return j;
+    }
+
+    // Its type, place and emission.
+    Json lightShape(const LightDesc& l, size_t index) {
         switch (l.type) {
             case LightType::Point: return {{"type", "point"}, {"position", vec(l.position)}, {"intensity", vec(l.intensity)}};
             case LightType::Spot:
@@ -123,9 +130,11 @@ private:
     Json region(const MediumDesc& m, size_t index) {
         Json tetgen = {{"quality", m.tetOptions.radiusEdgeRatio}, {"max_volume", m.tetOptions.maxVolume}};
         if (m.tetOptions.strict) tetgen["strict"] = true;
-        return {{"shape", mesh(m.boundary, m.cavity ? "cavity" : "medium", index)},
-                {"boundary", material(m.boundaryMaterial)},
-                {"tetgen", tetgen}};
+        Json j = m.label.empty() ? Json::object() : Json{{"name", m.label}};
+        j.update(Json{{"shape", mesh(m.boundary, m.cavity ? "cavity" : "medium", index)},
+                      {"boundary", material(m.boundaryMaterial)},
+                      {"tetgen", tetgen}});
+        return j;
     }
 
     Json medium(const MediumDesc& m, size_t index) {
