@@ -134,6 +134,9 @@ TEST(FishGenerator, ShapeKnobsAtTheirLimitsStayValid) {
     plain.tailFork = 0;
     plain.lureRadius = 0;
     expectValidMedium(makeFish(plain));
+    FishParams smallLure;
+    smallLure.lureRadius = 0.02;
+    expectValidMedium(makeFish(smallLure));
 }
 
 // Why it cannot self-intersect at any resolution: mirror-symmetric about z = 0, with the half
@@ -151,28 +154,44 @@ TEST(FishGenerator, LeftHalfProjectsWithoutFolds) {
     }
 }
 
-TEST(FishGenerator, BodyAndLureAreSeparateShells) {
+FishParams withoutLure(FishParams p = {}) {
+    p.lureRadius = 0;
+    return p;
+}
+
+// The lure is a shell of its own: a bulb ahead of the nose on a stalk that rises from the head,
+// behind the nose, wholly outside the body (the whole mesh's self-intersection test above holds
+// for the two shells together).
+TEST(FishGenerator, LureOnAStalkFromTheHeadIsAShellOutsideTheBody) {
     const TriangleMesh m = makeFish();
     uint32_t count = 0;
     const std::vector<uint32_t> shell = shells(m, count);
     ASSERT_EQ(count, 2u);
-    // Disjoint bounding boxes along x: the lure floats wholly ahead of the nose.
-    Bounds3 box[2];
-    for (uint32_t v = 0; v < m.positions.size(); ++v) box[shell[v]].extend(m.positions[v]);
-    EXPECT_TRUE(box[0].hi.x < box[1].lo.x || box[1].hi.x < box[0].lo.x);
+    const TriangleMesh body = makeFish(withoutLure());
+    Bounds3 lure;
+    for (uint32_t v = 0; v < m.positions.size(); ++v)
+        if (shell[v] != shell[0]) {
+            lure.extend(m.positions[v]);
+            ASSERT_EQ(classifyPoint(body, m.positions[v]), PointSide::Outside) << "lure vertex " << v << " inside the body";
+        }
+    const Bounds3 b = bounds(body);
+    EXPECT_GT(lure.hi.x, b.hi.x);               // the bulb hangs ahead of the nose,
+    EXPECT_LT(lure.lo.x, b.hi.x - 0.15);        // the stalk rises from the head behind it,
+    EXPECT_LT(lure.lo.y, b.hi.y);               // from below the top of the back,
+    EXPECT_GT(lure.hi.y - lure.lo.y, 0.1);      // and arches up to the bulb.
 
-    FishParams noLure;
-    noLure.lureRadius = 0;
-    shells(makeFish(noLure), count);
+    shells(makeFish(withoutLure()), count);
     EXPECT_EQ(count, 1u);
 }
 
-// Documented: about 1.1 * rings * segments triangles, growing with rings * segments.
+// Documented: about 1.1 * rings * segments triangles for the body, growing with rings * segments,
+// and a lure of at most a fifth as many.
 TEST(FishGenerator, TriangleCountScalesWithRingsTimesSegments) {
     size_t previous = 0;
     for (const auto& p : kResolutions) {
-        const size_t n = makeFish(p).triangles.size();
-        const double perCell = double(n) / (p.rings * p.segments);
+        const size_t n = makeFish(p).triangles.size(), bodyOnly = makeFish(withoutLure(p)).triangles.size();
+        EXPECT_LT(double(n - bodyOnly), 0.2 * double(bodyOnly)) << p.rings << " x " << p.segments;
+        const double perCell = double(bodyOnly) / (p.rings * p.segments);
         EXPECT_GT(perCell, 0.95) << p.rings << " x " << p.segments;
         EXPECT_LT(perCell, 1.25) << p.rings << " x " << p.segments;
         EXPECT_GT(n, previous);

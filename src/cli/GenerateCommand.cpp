@@ -95,8 +95,8 @@ void addGenerateCommand(CLI::App& app) {
         const char* description;
         TriangleMesh (*make)(const FishParams&);
     } fishParts[] = {
-        {"fish", "A deep-sea fish with fins and a glowing lure (two closed shells), about 2 units long, nose at +x. "
-                 "About 1.1 * rings * segments triangles.", makeFish},
+        {"fish", "A deep-sea fish with fins and a glowing lure on a stalk (two closed shells), about 2 units long, nose at +x. "
+                 "About 1.2 * rings * segments triangles.", makeFish},
         {"fish-photophores", "The fish's light organs: two rows of small spheres along the belly, inside the body", makeFishPhotophores},
         {"fish-eyes", "The fish's two eyes, inside the head", makeFishEyes},
         {"fish-lure-core", "The glowing core inside the fish's lure bulb", makeFishLureCore},

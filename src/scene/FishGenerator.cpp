@@ -304,29 +304,28 @@ double fork(double s, const FishParams& p) {
     return p.tailFork / caudalHeight(1) * u * u;
 }
 
-// Ring positions along s, evenly spaced by arc length of the profiles of the back, the belly and
-// the widest point, so that the round nose and the fins' edges get the rings they need.
-std::vector<double> ringStations(const FishParams& p) {
+// Stations t in (0, 1] evenly spaced by arc length of a loft's profile (x, top, bottom, widest
+// at t), with the lateral extents weighted down, so that round ends and fins' edges get the rings
+// they need. `count` stations, the last at t = 1; or, for count 0, as many as keep them about
+// `edge` apart.
+template <class Profile>
+std::vector<double> evenStations(const Profile& profile, int count, double edge = 0) {
     constexpr int kSamples = 4096;
     std::vector<double> arc(kSamples + 1, 0.0);
     glm::dvec4 previous{};
     for (int k = 0; k <= kSamples; ++k) {
-        const double s = double(k) / kSamples;
-        const Section section = fishSection(s, p);
-        double widest = 0;
-        for (const auto& l : section.lobes) widest = std::max(widest, l.halfWidth);
-        const glm::dvec4 profile = section.lobes.empty() ? glm::dvec4(fishX(s), 0, 0, 0)
-                                                         : glm::dvec4(fishX(s), section.top(), section.bottom(), widest);
+        const glm::dvec4 q = profile(double(k) / kSamples);
         if (k > 0) {
-            const glm::dvec4 d = profile - previous;
+            const glm::dvec4 d = q - previous;
             arc[k] = arc[k - 1] + std::sqrt(d.x * d.x + (d.y * d.y + d.z * d.z + d.w * d.w) / 3);
         }
-        previous = profile;
+        previous = q;
     }
+    if (count == 0) count = std::max(4, static_cast<int>(std::lround(arc.back() / edge)));
     std::vector<double> stations;
     int k = 0;
-    for (int i = 1; i <= p.rings; ++i) {
-        const double a = arc.back() * i / p.rings;
+    for (int i = 1; i <= count; ++i) {
+        const double a = arc.back() * i / count;
         while (k < kSamples - 1 && arc[k + 1] < a) ++k;
         stations.push_back((k + (a - arc[k]) / (arc[k + 1] - arc[k])) / kSamples);
     }
@@ -334,8 +333,90 @@ std::vector<double> ringStations(const FishParams& p) {
     return stations;
 }
 
+// A section's profile for evenStations: (x, top, bottom, widest), or the point `y` where it is empty.
+glm::dvec4 profileOf(const Section& section, double x, double y) {
+    if (section.lobes.empty()) return {x, y, y, 0};
+    double widest = 0;
+    for (const auto& l : section.lobes) widest = std::max(widest, l.halfWidth);
+    return {x, section.top(), section.bottom(), widest};
+}
+
+std::vector<double> ringStations(const FishParams& p) {
+    return evenStations([&](double s) { return profileOf(fishSection(s, p), fishX(s), 0); }, p.rings);
+}
+
+// The lure: a bulb hanging ahead of and above the nose on a stalk (the illicium) that rises
+// steeply from the top of the head and arches forward into the back of the bulb, one shell lofted
+// along x like the body. The stalk's base is a slender point just clear of the head, so that the
+// two shells never meet. Each ring of the stalk is its tilted round cross-section cut by the plane
+// x = const, an ellipse centred on the mirror plane, so the loft's argument above holds for it
+// too; the stalk ends level, at the bulb's centre height, so that near the bulb every ring's
+// stalk and bulb overlap (a ring of two separate lobes would pinch the shell).
+constexpr double kStalkBaseS = 0.12;                             // where on the head the stalk rises
+constexpr double kStalkClearance = 0.006;                        // between the stalk's base and the head
+constexpr double kStalkRise = 2;                                 // the stalk's slope dy/dx at its base
+constexpr double kStalkRadius = 0.011, kStalkTipRadius = 0.007;  // at its base and where it enters the bulb
+
 // The lure bulb's centre: just ahead of and above the nose.
 glm::dvec3 lureCentre(const FishParams& p) { return {kNoseX + 0.06 + p.lureRadius, 0.3, 0}; }
+
+struct Stalk {
+    glm::dvec2 base, end;  // (x, y) of the base's point and of the stalk's end, inside the bulb
+
+    explicit Stalk(const FishParams& p)
+        : base(fishX(kStalkBaseS), fishSection(kStalkBaseS, p).top() + kStalkClearance),
+          end(lureCentre(p).x - 0.5 * p.lureRadius, lureCentre(p).y) {}
+
+    double length() const { return end.x - base.x; }
+    double u(double x) const { return std::clamp((x - base.x) / length(), 0.0, 1.0); }
+    // The centre line: a cubic Hermite curve, slope kStalkRise at the base and level at the end.
+    double centre(double x) const {
+        const double t = u(x);
+        return base.y + (end.y - base.y) * t * t * (3 - 2 * t) + kStalkRise * length() * t * (1 - t) * (1 - t);
+    }
+    double slope(double x) const {
+        const double t = u(x);
+        return (end.y - base.y) * 6 * t * (1 - t) / length() + kStalkRise * (1 - t) * (1 - 3 * t);
+    }
+    // Tapering from base to tip, with a pointed end over the first three base radii.
+    double radius(double x) const {
+        return glm::mix(kStalkRadius, kStalkTipRadius, u(x)) * rounded(x - base.x, 3 * kStalkRadius);
+    }
+};
+
+Section lureSection(double x, const Stalk& stalk, const FishParams& p) {
+    Section section;
+    const double r = p.lureRadius, dx = x - lureCentre(p).x;
+    if (std::abs(dx) < r) {
+        const double h = std::sqrt(r * r - dx * dx);
+        section.lobes.push_back({lureCentre(p).y, h, h, h});
+    }
+    if (x > stalk.base.x && x < stalk.end.x) {
+        const double w = stalk.radius(x), h = w * std::sqrt(1 + stalk.slope(x) * stalk.slope(x));
+        section.lobes.push_back({stalk.centre(x), h, h, w});
+    }
+    return section;
+}
+
+void appendLure(TriangleMesh& mesh, const FishParams& p, double edge) {
+    const Stalk stalk(p);
+    const glm::dvec3 centre = lureCentre(p);
+    const double front = centre.x + p.lureRadius;
+    auto xAt = [&](double t) { return glm::mix(front, stalk.base.x, t); };
+    // The rings split into upper and lower parts at the stalk's centre line, level with the
+    // bulb's centre where the two meet.
+    auto equator = [&](double x) { return stalk.centre(x); };
+    const std::vector<double> stations = evenStations(
+        [&](double t) { return profileOf(lureSection(xAt(t), stalk, p), xAt(t), equator(xAt(t))); }, 0, edge);
+
+    std::vector<Ring> lure{pole({front, centre.y, 0})};
+    for (size_t i = 0; i + 1 < stations.size(); ++i) {
+        const double x = xAt(stations[i]);
+        lure.push_back(sampleRing(lureSection(x, stalk, p), x, equator(x), edge));
+    }
+    lure.push_back(pole({stalk.base.x, stalk.base.y, 0}));
+    appendLoft(mesh, lure);
+}
 
 void check(bool ok, const std::string& what) {
     if (!ok) throw InputError("fish: " + what);
@@ -386,20 +467,8 @@ TriangleMesh makeFish(const FishParams& p) {
     TriangleMesh mesh;
     appendLoft(mesh, body);
 
-    if (p.lureRadius > 0) {
-        // The lure: a sphere just ahead of and above the nose, a shell of its own.
-        const double r = p.lureRadius;
-        const glm::dvec3 centre = lureCentre(p);
-        const int n = std::max(4, static_cast<int>(std::lround(kPi * r / edge)));
-        std::vector<Ring> lure{pole(centre + glm::dvec3(r, 0, 0))};
-        for (int i = 1; i < n; ++i) {
-            const double phi = kPi * i / n, radius = r * std::sin(phi);
-            lure.push_back(sampleRing(Section{{{centre.y, radius, radius, radius}}}, centre.x + r * std::cos(phi),
-                                      centre.y, edge));
-        }
-        lure.push_back(pole(centre - glm::dvec3(r, 0, 0)));
-        appendLoft(mesh, lure);
-    }
+    // Finer than the body's triangles: the stalk's rings get about eight edges around.
+    if (p.lureRadius > 0) appendLure(mesh, p, edge / 2);
     return mesh;
 }
 

@@ -1,12 +1,12 @@
 // The project's own demo medium: a procedural deep-sea fish (anglerfish-like head, dorsal, anal,
-// pectoral and forked caudal fins) with a glowing lure bulb floating in front of it.
+// pectoral and forked caudal fins) with a glowing lure bulb on a stalk (the illicium) from its head.
 #pragma once
 #include "tet/TriangleMesh.h"
 
 namespace tetglow {
 
 // Resolution knobs scale the triangle count smoothly: about 1.1 * rings * segments triangles
-// (plus a small lure), from about a hundred at 8 x 8 to millions. Rings and segments must stay
+// for the body (the lure adds at most a fifth), from about a hundred at 8 x 8 to millions. Rings and segments must stay
 // within a factor of 4 of each other; similar values give the best-shaped triangles.
 struct FishParams {
     int rings = 112;             // cross-sections from nose to tail, 8 to 2048
@@ -17,7 +17,8 @@ struct FishParams {
 };
 
 // About 2 units long with the nose at +x, back at +y, mirror-symmetric about z = 0; the lure
-// is a second closed shell just ahead of and above the nose. Every resolution is closed,
+// is a second closed shell, a bulb just ahead of and above the nose on a stalk that rises from
+// just clear of the top of the head. Every resolution is closed,
 // 2-manifold, outward-wound, free of degenerate triangles and of self-intersections, with
 // positions rounded to float. Throws InputError for parameters outside the ranges above.
 TriangleMesh makeFish(const FishParams& params = {});
