@@ -17,7 +17,9 @@ namespace {
 SceneDesc denseSphere(int resolution) {
     SceneDesc s = sceneWith(sphereMedium(RGB(0), RGB(1e4), 0, 3), resolution);
     LightDesc point;
-    point.type = LightType::Point, point.position = {2, 3, 2}, point.intensity = RGB(20);
+    point.type = LightType::Point;
+    point.position = {2, 3, 2};
+    point.intensity = RGB(20);
     s.lights.push_back(point);
     return s;
 }
@@ -46,7 +48,8 @@ TEST(DensePhoton, WalksLoseNoPower) {
         EXPECT_GT(e.cut[0], 0);
         EXPECT_LE(e.cut[0], cut);
         EXPECT_GT(power[0], stored);
-        cut = e.cut[0], stored = power[0];
+        cut = e.cut[0];
+        stored = power[0];
     }
 }
 
@@ -71,7 +74,8 @@ TEST(DensePhoton, AgreesWithVolpath) {
 // up to the core and walks the core from where it enters it.
 TEST(DensePhoton, DenseCoreInAThinMediumAgreesWithVolpath) {
     SceneDesc s = denseSphere(24);
-    s.media[0].sigmaA = RGB(0.2), s.media[0].sigmaS = RGB(0.8);
+    s.media[0].sigmaA = RGB(0.2);
+    s.media[0].sigmaS = RGB(0.8);
     MediumDesc core = sphereMedium(RGB(0), RGB(1e4), 0, 2);
     for (auto& p : core.boundary.positions) p *= 0.5f;
     core.name = "core";

@@ -31,8 +31,12 @@ bool sameBits(const Image& a, const Image& b) {
 // photons come from the lights and media as retuned).
 std::vector<IntegratorDesc> integrators() {
     std::vector<IntegratorDesc> all(2);
-    all[0].type = IntegratorType::VolPath, all[1].type = IntegratorType::Photon;
-    for (IntegratorDesc& integ : all) integ.photons = 5000, integ.seed = 7;
+    all[0].type = IntegratorType::VolPath;
+    all[1].type = IntegratorType::Photon;
+    for (IntegratorDesc& integ : all) {
+        integ.photons = 5000;
+        integ.seed = 7;
+    }
     return all;
 }
 
@@ -85,7 +89,9 @@ TEST(Retune, AMovedCameraRendersAsInAFreshScene) {
 TEST(Retune, LightsRenderAsInAFreshScene) {
     SceneDesc before = glowingSphereUnderQuad(16);
     LightDesc point;
-    point.type = LightType::Point, point.position = {2, 2, 2}, point.intensity = RGB(4, 2, 1);
+    point.type = LightType::Point;
+    point.position = {2, 2, 2};
+    point.intensity = RGB(4, 2, 1);
     before.lights.push_back(point);
     SceneDesc after = before;
     after.lights[0].radiance = RGB(0.1, 0.2, 0.6);  // the environment
@@ -100,7 +106,8 @@ TEST(Retune, LightsRenderAsInAFreshScene) {
         EXPECT_TRUE(sameBits(image, renderPasses(Scene(after), integ, 2)));
         // An off light is a light of no emission, where it was.
         SceneDesc dark = after;
-        dark.lights[1].on = true, dark.lights[1].radiance = RGB(0);
+        dark.lights[1].on = true;
+        dark.lights[1].radiance = RGB(0);
         EXPECT_TRUE(sameBits(image, renderPasses(Scene(dark), integ, 2)));
         EXPECT_FALSE(sameBits(image, renderPasses(Scene(before), integ, 2))) << "the lights changed nothing";
         EXPECT_FALSE(retuned.desc().lights[1].on);

@@ -53,7 +53,8 @@ void writeAll(int fd, const char* data, size_t n) {
         const ssize_t w = ::write(fd, data, n);
         if (w < 0 && errno == EINTR) continue;
         if (w <= 0) ::_exit(71);
-        data += w, n -= size_t(w);
+        data += w;
+        n -= size_t(w);
     }
 }
 
@@ -103,13 +104,17 @@ ChildFailure outOfMemory(double limit) {
     try {
         answer = work();
     } catch (const std::bad_alloc&) {
-        answer.clear(), tag = kOutOfMemory;
+        answer.clear();
+        tag = kOutOfMemory;
     } catch (const InputError& e) {
-        answer = e.what(), tag = kInputError;
+        answer = e.what();
+        tag = kInputError;
     } catch (const std::exception& e) {
-        answer = e.what(), tag = kException;
+        answer = e.what();
+        tag = kException;
     } catch (...) {
-        answer = "an exception that is not a std::exception", tag = kException;
+        answer = "an exception that is not a std::exception";
+        tag = kException;
     }
     writeAll(fd, answer.data(), answer.size());
     writeAll(fd, &tag, 1);
@@ -142,7 +147,8 @@ std::string runInChild(const std::function<std::string()>& work, ChildLimits lim
     const auto start = std::chrono::steady_clock::now();
     const pid_t pid = ::fork();
     if (pid < 0) {
-        ::close(fds[0]), ::close(fds[1]);
+        ::close(fds[0]);
+        ::close(fds[1]);
         throw std::runtime_error(std::string("cannot fork a process: ") + std::strerror(errno));
     }
     if (pid == 0) {

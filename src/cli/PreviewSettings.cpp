@@ -180,12 +180,20 @@ SceneDesc PreviewSettings::read(const nlohmann::json& settings) const {
             if (m.cavity && (m.sigmaA != RGB(0) || m.sigmaS != RGB(0) || m.emission != RGB(0)))
                 items[i].error(m.name + " is a cavity: it holds no medium to tune (its coefficients stay 0)");
         }
-        o["camera"].readObject([&](JsonObject& c) { return readCameraView(c, s.camera), 0; });
+        o["camera"].readObject([&](JsonObject& c) {
+            readCameraView(c, s.camera);
+            return 0;
+        });
         const JsonValue lights = o["lights"];
         const std::vector<JsonValue> lightItems = lights.array();
         if (lightItems.size() != s.lights.size())
             lights.fail("an array of at most " + std::to_string(s.lights.size()) + " lights, one per light of the scene");
-        for (size_t i = 0; i < lightItems.size(); ++i) lightItems[i].readObject([&](JsonObject& l) { return readLightEmission(l, s.lights[i]), 0; });
+        for (size_t i = 0; i < lightItems.size(); ++i) {
+            lightItems[i].readObject([&](JsonObject& l) {
+                readLightEmission(l, s.lights[i]);
+                return 0;
+            });
+        }
         const double scale = o["resolution_scale"].number(kResolutionScale);
         s.camera.width = std::max(1, int(std::lround(loaded_.camera.width * scale)));
         s.camera.height = std::max(1, int(std::lround(loaded_.camera.height * scale)));

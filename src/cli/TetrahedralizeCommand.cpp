@@ -76,6 +76,7 @@ nlohmann::json repairJson(const RepairReport& r) {
             {"non_manifold_edges", r.nonManifoldEdges},
             {"crossing_pairs", r.crossingPairs},
             {"crossings_at", positions(r.crossingAt)},
+            {"unsplit_triangles", r.unsplitTriangles},
             {"parts_unioned", r.partsUnioned},
             {"flipped_faces", r.flippedTriangles},
             {"flipped_at", positions(r.flippedAt)},

@@ -201,7 +201,10 @@ void Scene::makeLights() {
         if (l.type == LightType::Environment) sky.radiance += lit(l).radiance;
     for (const auto& l : desc_.lights) {
         if (l.type != LightType::Environment) lights_.push_back(makeLight(lit(l), geometry_));
-        else if (!environment_) lights_.push_back(makeLight(sky, geometry_)), environment_ = lights_.back().get();
+        else if (!environment_) {
+            lights_.push_back(makeLight(sky, geometry_));
+            environment_ = lights_.back().get();
+        }
     }
 }
 

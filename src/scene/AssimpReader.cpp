@@ -257,7 +257,9 @@ TriangleMesh parseSceneMeshes(std::string data, const std::string& path, SceneMe
             [&] {
                 Imported r = import(std::move(data), path, format, node);
                 ByteWriter m;
-                m.addStrings(r.warnings), m.addStrings(r.files), addMesh(m, r.mesh);
+                m.addStrings(r.warnings);
+                m.addStrings(r.files);
+                addMesh(m, r.mesh);
                 return std::move(m.bytes());
             },
             limits);

@@ -177,7 +177,10 @@ std::vector<glm::dvec3> holeLattice(const TriangleMesh& soup, const EdgeMap& edg
     for (uint64_t e : rim) {
         Ball& b = balls[loops.find(uint32_t(e))];
         const glm::dvec3 p = soup.positions[uint32_t(e >> 32)], q = soup.positions[uint32_t(e)];
-        b.centre += p + q, b.edgeLength += glm::length(q - p), b.edges += 1, b.rim.push_back(e);
+        b.centre += p + q;
+        b.edgeLength += glm::length(q - p);
+        b.edges += 1;
+        b.rim.push_back(e);
     }
     for (uint64_t e : rim) {
         Ball& b = balls[loops.find(uint32_t(e))];
@@ -351,6 +354,9 @@ std::string RepairReport::summary() const {
                     plural(duplicatesDropped, "duplicate face", "duplicate faces") + " and " +
                     plural(degenerateDropped, "zero-area triangle", "zero-area triangles") + " dropped";
     if (nonManifoldEdges) s += ", " + plural(nonManifoldEdges, "non-manifold edge", "non-manifold edges") + " kept as constraints";
+    if (unsplitTriangles)
+        s += ", " + plural(unsplitTriangles, "crossing triangle", "crossing triangles") + " left unsplit (" + unsplitReason +
+             "; the boundary near them follows the tets)";
     return s + " (inside: winding number above 1/2)";
 }
 
@@ -381,7 +387,10 @@ RepairReport repairInterior(TriangleMesh& mesh) {
     // around each hole. Their vertices come first in TetGen's output, then the box's, the
     // lattice's, then Steiner points.
     RegionComplex plc;
-    plc.surface = resolveIntersections(soup);
+    ResolvedSurface resolved = resolveIntersections(soup);
+    plc.surface = std::move(resolved.surface);
+    report.unsplitTriangles = resolved.unsplit;
+    report.unsplitReason = resolved.unsplitReason;
     std::set<std::array<uint32_t, 3>> constraints;
     for (auto f : plc.surface.triangles) {
         std::sort(f.begin(), f.end());

@@ -103,19 +103,38 @@ SoupCleaning dropDegenerateAndDuplicates(TriangleMesh& soup) {
     return c;
 }
 
-TriangleMesh resolveIntersections(const TriangleMesh& soup) {
-    TriangleMesh current = soup;
+ResolvedSurface resolveIntersections(const TriangleMesh& soup) {
+    ResolvedSurface r;
+    r.surface = soup;
     for (int round = 0; round < kMaxRounds; ++round) {
-        if (findSelfIntersections(current).empty()) return current;
-        current = autorefineIsolated(current);
-        weldVertices(current);  // rounds the constructed points to float
-        dropDegenerateAndDuplicates(current);
+        if (findSelfIntersections(r.surface).empty()) return r;
+        try {
+            TriangleMesh split = autorefineIsolated(r.surface);
+            weldVertices(split);  // rounds the constructed points to float
+            dropDegenerateAndDuplicates(split);
+            r.surface = std::move(split);
+        } catch (const InputError& e) {
+            r.unsplitReason = e.what();
+            break;
+        }
     }
-    const auto left = findSelfIntersections(current);
-    if (left.empty()) return current;
-    throw InputError(std::to_string(left.size()) + " crossing pairs of triangles remain after splitting them " +
-                     std::to_string(kMaxRounds) + " times at float precision, first near " +
-                     formatPosition(current.corner(left[0].first, 0)));
+    const auto left = findSelfIntersections(r.surface);
+    if (left.empty()) return r;
+    if (r.unsplitReason.empty())
+        r.unsplitReason = std::to_string(left.size()) + " crossing pairs remained after splitting them " + std::to_string(kMaxRounds) +
+                          " times at float precision";
+    std::vector<char> crossing(r.surface.triangles.size(), 0);
+    for (const auto& [i, j] : left) {
+        crossing[i] = 1;
+        crossing[j] = 1;
+    }
+    std::vector<std::array<uint32_t, 3>> kept;
+    for (size_t t = 0; t < crossing.size(); ++t)
+        if (crossing[t]) ++r.unsplit;
+        else kept.push_back(r.surface.triangles[t]);
+    r.surface.triangles = std::move(kept);
+    weldVertices(r.surface);  // their corners no kept triangle uses must not reach TetGen
+    return r;
 }
 
 }  // namespace tetglow

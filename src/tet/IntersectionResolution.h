@@ -1,6 +1,8 @@
 // Triangles that cross each other, split along their intersections, so that they meet only at
 // shared edges and vertices: a valid constraint set for TetGen.
 #pragma once
+#include <string>
+
 #include "tet/TriangleMesh.h"
 
 namespace tetglow {
@@ -14,11 +16,21 @@ struct SoupCleaning {
 };
 SoupCleaning dropDegenerateAndDuplicates(TriangleMesh& soup);
 
+// The constraint surface of a repair: no two of its triangles cross.
+struct ResolvedSurface {
+    TriangleMesh surface;
+    // Crossing triangles that could not be split and were left out of `surface` (the boundary
+    // near them then follows the tets the winding number labels), and why.
+    size_t unsplit = 0;
+    std::string unsplitReason;
+};
+
 // `soup`: float vertices, welded and cleaned as above. Splits every intersecting pair with CGAL's
 // autorefinement (exact predicates; intersection points constructed exactly, then rounded to
 // double), rounds the new vertices to float for Embree, welds and cleans, and checks again
-// with exact predicates: rounding can make new crossings, which the next round splits, until
-// none is left. Throws InputError, with a position, if crossings remain after a few rounds.
-TriangleMesh resolveIntersections(const TriangleMesh& soup);
+// with exact predicates: rounding can make new crossings, which the next round splits. Where
+// CGAL fails (it crashes on some coplanar overlaps) or crossings remain after a few rounds, the
+// triangles still crossing are left out, so that the rest stays exact.
+ResolvedSurface resolveIntersections(const TriangleMesh& soup);
 
 }  // namespace tetglow

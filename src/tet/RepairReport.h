@@ -15,6 +15,8 @@ struct RepairReport {
     std::string reason;    // the validation failure that started the repair
     size_t degenerateDropped = 0, duplicatesDropped = 0, flippedTriangles = 0;
     size_t holeEdges = 0, nonManifoldEdges = 0, crossingPairs = 0, partsUnioned = 0;
+    size_t unsplitTriangles = 0;  // crossing triangles CGAL could not split, left out of the constraints
+    std::string unsplitReason;
     struct Hole {
         glm::dvec3 centre{0};  // area-weighted centroid of the faces spanning it
         double area = 0;
