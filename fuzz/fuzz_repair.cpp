@@ -5,6 +5,7 @@
 // kMaxVertices), n corners of three signed bytes each, then triangles as three bytes each (indices
 // modulo n, at most kMaxTriangles); bytes left over are ignored.
 #include "FuzzInput.h"
+#include "base/ChildProcess.h"
 #include "tet/InteriorRepair.h"
 
 namespace {
@@ -12,6 +13,14 @@ namespace {
 constexpr size_t kMaxVertices = 32, kMaxTriangles = 48;
 
 }  // namespace
+
+// CGAL's autorefinement and TetGen run in child processes, capped below libFuzzer's own limits
+// (fuzz/run.sh: -timeout=10, -rss_limit_mb=2048), so that a child that never finishes is its
+// error, not a hang of the target.
+extern "C" int LLVMFuzzerInitialize(int*, char***) {
+    tetglow::capChildLimits({512.0 * (1 << 20), 3});
+    return 0;
+}
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     if (size < 1) return 0;
@@ -26,7 +35,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         mesh.triangles.push_back({uint32_t(data[at] % n), uint32_t(data[at + 1] % n), uint32_t(data[at + 2] % n)});
     try {
         tetglow::prepareSurface(mesh, false);
-    } catch (const tetglow::InputError&) {
-    }
+    } catch (const tetglow::InputError&) {}
     return 0;
 }
