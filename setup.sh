@@ -14,7 +14,7 @@ packages=(g++ cmake make pkg-config libtet1.5-dev libcgal-dev libembree-dev libo
           libcli11-dev libnanoflann-dev libpng-dev libassimp-dev libcpp-httplib-dev libgtest-dev libbenchmark-dev gnuplot-nox pngquant python3)
 # Only the tests need these: tetglow preview's page is tested in headless Chromium, tetglow farm
 # through a real Slurm on localhost (tests/slurm); the sanitized suite and the fuzzers need clang.
-test_packages=(chromium chromium-driver python3-selenium slurmctld slurmd slurm-client munge)
+test_packages=(chromium chromium-driver python3-selenium slurmctld slurmd slurm-client munge clang-format)
 case "$job" in test) packages+=("${test_packages[@]}") ;; sanitizers) packages+=("${test_packages[@]}" clang libclang-rt-14-dev) ;; esac
 missing=()
 for p in "${packages[@]}"; do

@@ -1,8 +1,8 @@
 #include "FuzzInput.h"
 
+#include <unistd.h>
 #include <filesystem>
 #include <fstream>
-#include <unistd.h>
 
 namespace tetglow::fuzz {
 namespace {

@@ -32,7 +32,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         app.parse(args);
     } catch (const CLI::ParseError&) {
     } catch (const Parsed&) {
-    } catch (const tetglow::InputError&) {
-    }
+    } catch (const tetglow::InputError&) {}
     return 0;
 }

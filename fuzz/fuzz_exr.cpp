@@ -6,7 +6,6 @@
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     try {
         tetglow::readExr(tetglow::fuzz::writeFile("image.exr", data, size));
-    } catch (const tetglow::InputError&) {
-    }
+    } catch (const tetglow::InputError&) {}
     return 0;
 }

@@ -7,8 +7,8 @@
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     std::vector<std::string> warnings;
     try {
-        tetglow::parseObj(std::string(reinterpret_cast<const char*>(data), size), tetglow::fuzz::folder() + "/mesh.obj", &warnings);
-    } catch (const tetglow::InputError&) {
-    }
+        tetglow::parseObj(std::string(reinterpret_cast<const char*>(data), size), tetglow::fuzz::folder() + "/mesh.obj",
+                          &warnings);
+    } catch (const tetglow::InputError&) {}
     return 0;
 }

@@ -24,7 +24,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     std::vector<std::string> warnings;
     try {
         tetglow::loadPbrtScene(tetglow::fuzz::writeFile("scene.pbrt", data, size), &warnings);
-    } catch (const tetglow::InputError&) {
-    }
+    } catch (const tetglow::InputError&) {}
     return 0;
 }

@@ -6,9 +6,7 @@
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     try {
         tetglow::PbrtTokenizer tokens(tetglow::fuzz::writeFile("scene.pbrt", data, size));
-        while (tokens.next()) {
-        }
-    } catch (const tetglow::InputError&) {
-    }
+        while (tokens.next()) {}
+    } catch (const tetglow::InputError&) {}
     return 0;
 }

@@ -12,7 +12,6 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     try {
         tetglow::loadScene(tetglow::fuzz::writeFile("scene.json", data, size));
-    } catch (const tetglow::InputError&) {
-    }
+    } catch (const tetglow::InputError&) {}
     return 0;
 }

@@ -16,9 +16,11 @@ void put(std::string& out, T v, bool little = true) {
     out.append(b, sizeof b);
 }
 
-std::string plyHeader(const PolygonMesh& m, const std::string& format, const std::string& vertexType, const std::string& faceElement) {
+std::string plyHeader(const PolygonMesh& m, const std::string& format, const std::string& vertexType,
+                      const std::string& faceElement) {
     std::ostringstream s;
-    s << "ply\nformat " << format << " 1.0\ncomment written by the tests\nelement vertex " << m.positions.size() << "\n";
+    s << "ply\nformat " << format << " 1.0\ncomment written by the tests\nelement vertex " << m.positions.size()
+      << "\n";
     for (const char* axis : {"x", "y", "z"}) s << "property " << vertexType << ' ' << axis << "\n";
     s << faceElement << "end_header\n";
     return s.str();
@@ -64,17 +66,20 @@ std::string objText(const PolygonMesh& m) {
 }
 
 std::string offText(const PolygonMesh& m) {
-    return "OFF\n" + std::to_string(m.positions.size()) + ' ' + std::to_string(m.faces.size()) + " 0\n" + countedFaceLines(m);
+    return "OFF\n" + std::to_string(m.positions.size()) + ' ' + std::to_string(m.faces.size()) + " 0\n" +
+           countedFaceLines(m);
 }
 
 std::string plyAscii(const PolygonMesh& m) {
-    return plyHeader(m, "ascii", "float", "element face " + std::to_string(m.faces.size()) + "\nproperty list uchar int vertex_indices\n") +
+    return plyHeader(m, "ascii", "float",
+                     "element face " + std::to_string(m.faces.size()) + "\nproperty list uchar int vertex_indices\n") +
            countedFaceLines(m);
 }
 
 std::string plyBinary(const PolygonMesh& m, bool little) {
     std::string s = plyHeader(m, little ? "binary_little_endian" : "binary_big_endian", "double",
-                              "element face " + std::to_string(m.faces.size()) + "\nproperty uchar flags\nproperty list uchar uint vertex_indices\n");
+                              "element face " + std::to_string(m.faces.size()) +
+                                  "\nproperty uchar flags\nproperty list uchar uint vertex_indices\n");
     for (const auto& p : m.positions)
         for (int k = 0; k < 3; ++k) put<double>(s, p[k], little);
     for (const auto& f : m.faces) {
@@ -102,7 +107,8 @@ std::string stlAscii(const TriangleMesh& m) {
     s << "solid box\n";
     for (uint32_t t = 0; t < m.triangles.size(); ++t) {
         s << "  facet normal 0 0 0\n    outer loop\n";
-        for (int k = 0; k < 3; ++k) s << "      vertex " << m.corner(t, k).x << ' ' << m.corner(t, k).y << ' ' << m.corner(t, k).z << '\n';
+        for (int k = 0; k < 3; ++k)
+            s << "      vertex " << m.corner(t, k).x << ' ' << m.corner(t, k).y << ' ' << m.corner(t, k).z << '\n';
         s << "    endloop\n  endfacet\n";
     }
     return s.str() + "endsolid box\n";
@@ -121,7 +127,8 @@ std::string stlBinary(const TriangleMesh& m, const std::string& header) {
     return s;
 }
 
-Gltf gltf(const std::vector<TriangleMesh>& meshes, const std::vector<GltfNode>& nodes, const std::vector<int>& roots, const std::string& binUri) {
+Gltf gltf(const std::vector<TriangleMesh>& meshes, const std::vector<GltfNode>& nodes, const std::vector<int>& roots,
+          const std::string& binUri) {
     Gltf g;
     std::ostringstream views, accessors, meshList, nodeList;
     for (size_t i = 0; i < meshes.size(); ++i) {
@@ -134,13 +141,15 @@ Gltf gltf(const std::vector<TriangleMesh>& meshes, const std::vector<GltfNode>& 
         for (const auto& t : m.triangles)
             for (uint32_t v : t) put<uint32_t>(g.bin, v);
         const std::string sep = i ? ", " : "";
-        views << sep << "{\"buffer\": 0, \"byteOffset\": " << positions << ", \"byteLength\": " << indices - positions << "}, "
+        views << sep << "{\"buffer\": 0, \"byteOffset\": " << positions << ", \"byteLength\": " << indices - positions
+              << "}, "
               << "{\"buffer\": 0, \"byteOffset\": " << indices << ", \"byteLength\": " << g.bin.size() - indices << "}";
-        accessors << sep << "{\"bufferView\": " << 2 * i << ", \"componentType\": 5126, \"count\": " << m.positions.size()
-                  << ", \"type\": \"VEC3\", \"min\": [" << b.lo.x << ", " << b.lo.y << ", " << b.lo.z << "], \"max\": [" << b.hi.x << ", "
-                  << b.hi.y << ", " << b.hi.z << "]}, "
-                  << "{\"bufferView\": " << 2 * i + 1 << ", \"componentType\": 5125, \"count\": " << 3 * m.triangles.size()
-                  << ", \"type\": \"SCALAR\"}";
+        accessors << sep << "{\"bufferView\": " << 2 * i
+                  << ", \"componentType\": 5126, \"count\": " << m.positions.size()
+                  << ", \"type\": \"VEC3\", \"min\": [" << b.lo.x << ", " << b.lo.y << ", " << b.lo.z << "], \"max\": ["
+                  << b.hi.x << ", " << b.hi.y << ", " << b.hi.z << "]}, "
+                  << "{\"bufferView\": " << 2 * i + 1
+                  << ", \"componentType\": 5125, \"count\": " << 3 * m.triangles.size() << ", \"type\": \"SCALAR\"}";
         meshList << sep << "{\"name\": \"mesh" << i << "\", \"primitives\": [{\"attributes\": {\"POSITION\": " << 2 * i
                  << "}, \"indices\": " << 2 * i + 1 << "}]}";
     }
@@ -158,10 +167,13 @@ Gltf gltf(const std::vector<TriangleMesh>& meshes, const std::vector<GltfNode>& 
     }
     std::ostringstream rootList;
     for (size_t r = 0; r < roots.size(); ++r) rootList << (r ? ", " : "") << roots[r];
-    g.json = "{\"asset\": {\"version\": \"2.0\", \"generator\": \"tetglow tests\"}, \"scene\": 0, \"scenes\": [{\"nodes\": [" +
-             rootList.str() + "]}], \"nodes\": [" + nodeList.str() + "], \"meshes\": [" + meshList.str() +
-             "], \"accessors\": [" + accessors.str() + "], \"bufferViews\": [" + views.str() + "], \"buffers\": [{" +
-             (binUri.empty() ? "" : "\"uri\": \"" + binUri + "\", ") + "\"byteLength\": " + std::to_string(g.bin.size()) + "}]}";
+    g.json =
+        "{\"asset\": {\"version\": \"2.0\", \"generator\": \"tetglow tests\"}, \"scene\": 0, \"scenes\": [{\"nodes\": "
+        "[" +
+        rootList.str() + "]}], \"nodes\": [" + nodeList.str() + "], \"meshes\": [" + meshList.str() +
+        "], \"accessors\": [" + accessors.str() + "], \"bufferViews\": [" + views.str() + "], \"buffers\": [{" +
+        (binUri.empty() ? "" : "\"uri\": \"" + binUri + "\", ") + "\"byteLength\": " + std::to_string(g.bin.size()) +
+        "}]}";
     return g;
 }
 
@@ -185,17 +197,22 @@ std::string collada(const TriangleMesh& m, const std::string& upAxis) {
       << "<COLLADA xmlns=\"http://www.collada.org/2005/11/COLLADASchema\" version=\"1.4.1\">\n"
       << "  <asset><unit name=\"meter\" meter=\"1\"/><up_axis>" << upAxis << "</up_axis></asset>\n"
       << "  <library_geometries><geometry id=\"box-mesh\" name=\"box\"><mesh>\n"
-      << "    <source id=\"box-positions\"><float_array id=\"box-positions-array\" count=\"" << 3 * m.positions.size() << "\">";
+      << "    <source id=\"box-positions\"><float_array id=\"box-positions-array\" count=\"" << 3 * m.positions.size()
+      << "\">";
     for (const auto& p : m.positions) s << p.x << ' ' << p.y << ' ' << p.z << ' ';
-    s << "</float_array>\n      <technique_common><accessor source=\"#box-positions-array\" count=\"" << m.positions.size()
-      << "\" stride=\"3\"><param name=\"X\" type=\"float\"/><param name=\"Y\" type=\"float\"/><param name=\"Z\" type=\"float\"/>"
+    s << "</float_array>\n      <technique_common><accessor source=\"#box-positions-array\" count=\""
+      << m.positions.size()
+      << "\" stride=\"3\"><param name=\"X\" type=\"float\"/><param name=\"Y\" type=\"float\"/><param name=\"Z\" "
+         "type=\"float\"/>"
       << "</accessor></technique_common></source>\n"
       << "    <vertices id=\"box-vertices\"><input semantic=\"POSITION\" source=\"#box-positions\"/></vertices>\n"
-      << "    <triangles count=\"" << m.triangles.size() << "\"><input semantic=\"VERTEX\" source=\"#box-vertices\" offset=\"0\"/><p>";
+      << "    <triangles count=\"" << m.triangles.size()
+      << "\"><input semantic=\"VERTEX\" source=\"#box-vertices\" offset=\"0\"/><p>";
     for (const auto& t : m.triangles) s << t[0] << ' ' << t[1] << ' ' << t[2] << ' ';
     s << "</p></triangles>\n  </mesh></geometry></library_geometries>\n"
       << "  <library_visual_scenes><visual_scene id=\"Scene\" name=\"Scene\">\n"
-      << "    <node id=\"Box\" name=\"Box\" type=\"NODE\"><matrix sid=\"transform\">1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1</matrix>"
+      << "    <node id=\"Box\" name=\"Box\" type=\"NODE\"><matrix sid=\"transform\">1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 "
+         "1</matrix>"
       << "<instance_geometry url=\"#box-mesh\" name=\"Box\"/></node>\n"
       << "  </visual_scene></library_visual_scenes>\n"
       << "  <scene><instance_visual_scene url=\"#Scene\"/></scene>\n</COLLADA>\n";
@@ -207,8 +224,10 @@ std::string fbxAscii(const PolygonMesh& m) {
     s << "; FBX 7.4.0 project file\n"
       << "FBXHeaderExtension:  {\n\tFBXHeaderVersion: 1003\n\tFBXVersion: 7400\n}\n"
       << "GlobalSettings:  {\n\tVersion: 1000\n\tProperties70:  {\n"
-      << "\t\tP: \"UpAxis\", \"int\", \"Integer\", \"\",1\n\t\tP: \"UnitScaleFactor\", \"double\", \"Number\", \"\",1\n\t}\n}\n"
-      << "Objects:  {\n\tGeometry: 1000, \"Geometry::Box\", \"Mesh\" {\n\t\tVertices: *" << 3 * m.positions.size() << " {\n\t\t\ta: ";
+      << "\t\tP: \"UpAxis\", \"int\", \"Integer\", \"\",1\n\t\tP: \"UnitScaleFactor\", \"double\", \"Number\", "
+         "\"\",1\n\t}\n}\n"
+      << "Objects:  {\n\tGeometry: 1000, \"Geometry::Box\", \"Mesh\" {\n\t\tVertices: *" << 3 * m.positions.size()
+      << " {\n\t\t\ta: ";
     for (size_t i = 0; i < m.positions.size(); ++i)
         s << (i ? "," : "") << m.positions[i].x << ',' << m.positions[i].y << ',' << m.positions[i].z;
     size_t corners = 0;
@@ -222,7 +241,8 @@ std::string fbxAscii(const PolygonMesh& m) {
             first = false;
         }
     s << "\n\t\t}\n\t\tGeometryVersion: 124\n\t}\n"
-      << "\tModel: 2000, \"Model::Box\", \"Mesh\" {\n\t\tVersion: 232\n\t\tProperties70:  {\n\t\t}\n\t\tShading: T\n\t\tCulling: \"CullingOff\"\n\t}\n}\n"
+      << "\tModel: 2000, \"Model::Box\", \"Mesh\" {\n\t\tVersion: 232\n\t\tProperties70:  {\n\t\t}\n\t\tShading: "
+         "T\n\t\tCulling: \"CullingOff\"\n\t}\n}\n"
       << "Connections:  {\n\tC: \"OO\",2000,0\n\tC: \"OO\",1000,2000\n}\n";
     return s.str();
 }

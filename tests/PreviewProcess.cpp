@@ -21,8 +21,10 @@ PreviewProcess::PreviewProcess(const std::string& args) {
     if (pipe(out) != 0) throw std::runtime_error("pipe");
     // TETGLOW_TEST_BINARY: another build, to see a test fail on the code before its fix.
     const char* binary = std::getenv("TETGLOW_TEST_BINARY") ? std::getenv("TETGLOW_TEST_BINARY") : TETGLOW_BINARY;
-    const std::string cache = std::filesystem::temp_directory_path() / ("tetglow-preview-cache-" + std::to_string(getpid()));
-    const std::string command = "TETGLOW_CACHE_DIR=" + cache + " exec " + binary + " preview " + args + " 2>/dev/null </dev/null";
+    const std::string cache =
+        std::filesystem::temp_directory_path() / ("tetglow-preview-cache-" + std::to_string(getpid()));
+    const std::string command =
+        "TETGLOW_CACHE_DIR=" + cache + " exec " + binary + " preview " + args + " 2>/dev/null </dev/null";
     pid_ = fork();
     if (pid_ == 0) {
         dup2(out[1], 1);
@@ -107,8 +109,8 @@ HttpReply rawHttp(int port, const std::string& request, double timeoutSeconds) {
     return reply;
 }
 
-std::string httpRequest(const std::string& method, const std::string& path, int port, const std::map<std::string, std::string>& headers,
-                        const std::string& body) {
+std::string httpRequest(const std::string& method, const std::string& path, int port,
+                        const std::map<std::string, std::string>& headers, const std::string& body) {
     std::string request = method + " " + path + " HTTP/1.1\r\n";
     if (!headers.count("Host")) request += "Host: 127.0.0.1:" + std::to_string(port) + "\r\n";
     for (const auto& [name, value] : headers) request += name + ": " + value + "\r\n";

@@ -3,8 +3,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
+#include <glm/geometric.hpp>
 
 #include "tet/Shapes.h"
 #include "tet/Tetrahedralizer.h"
@@ -54,7 +54,8 @@ std::vector<uint32_t> slivers(const TetMesh& mesh, double quality) {
                 shortest = std::min(shortest, l);
             }
         // A regular tet has volume / longest^3 = 1 / (6 sqrt 2).
-        if (mesh.tetVolume(t) / std::pow(longest, 3) * 6 * std::sqrt(2.0) < quality && shortest > longest / 3) found.push_back(t);
+        if (mesh.tetVolume(t) / std::pow(longest, 3) * 6 * std::sqrt(2.0) < quality && shortest > longest / 3)
+            found.push_back(t);
     }
     return found;
 }

@@ -1,17 +1,17 @@
 #include "TestMeshes.h"
 
+#include <sys/wait.h>
+#include <unistd.h>
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
-#include <numbers>
 #include <fstream>
+#include <numbers>
 #include <sstream>
-#include <sys/wait.h>
-#include <unistd.h>
 
-#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
+#include <glm/geometric.hpp>
 
 #include "tet/Predicates.h"
 
@@ -30,7 +30,8 @@ double minAngleDegrees(const TriangleMesh& m) {
 
 bool insideConvex(const TriangleMesh& convex, const glm::dvec3& p) {
     for (uint32_t t = 0; t < convex.triangles.size(); ++t)
-        if (orient3d(convex.corner(t, 0), convex.corner(t, 1), convex.corner(t, 2), p) < 0) return false;  // above: outside
+        if (orient3d(convex.corner(t, 0), convex.corner(t, 1), convex.corner(t, 2), p) < 0)
+            return false;  // above: outside
     return true;
 }
 
@@ -39,9 +40,12 @@ double convexChord(const TriangleMesh& convex, const Ray& ray) {
     for (uint32_t t = 0; t < convex.triangles.size(); ++t) {
         const glm::dvec3 a = convex.corner(t, 0), n = glm::cross(convex.corner(t, 1) - a, convex.corner(t, 2) - a);
         const double facing = glm::dot(n, ray.d), tPlane = glm::dot(n, a - ray.o) / facing;
-        if (facing > 0) t1 = std::min(t1, tPlane);
-        else if (facing < 0) t0 = std::max(t0, tPlane);
-        else if (glm::dot(n, a - ray.o) < 0) return 0;  // parallel, beyond the face
+        if (facing > 0)
+            t1 = std::min(t1, tPlane);
+        else if (facing < 0)
+            t0 = std::max(t0, tPlane);
+        else if (glm::dot(n, a - ray.o) < 0)
+            return 0;  // parallel, beyond the face
     }
     return std::max(0.0, t1 - t0);
 }
@@ -61,8 +65,8 @@ std::string tempDir() {
     // One directory per test, emptied the first time the test asks for it.
     static std::string current;
     const auto* info = testing::UnitTest::GetInstance()->current_test_info();
-    const auto dir = std::filesystem::temp_directory_path() /
-                     ("tetglow-test-" + std::to_string(::getpid()) + "-" + info->test_suite_name() + "." + info->name());
+    const auto dir = std::filesystem::temp_directory_path() / ("tetglow-test-" + std::to_string(::getpid()) + "-" +
+                                                               info->test_suite_name() + "." + info->name());
     if (current != dir.string()) {
         std::filesystem::remove_all(dir);
         std::filesystem::create_directories(dir);

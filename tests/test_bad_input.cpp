@@ -14,7 +14,8 @@ namespace {
 
 std::string objText(const TriangleMesh& m) {
     std::string s;
-    for (const auto& p : m.positions) s += "v " + std::to_string(p.x) + " " + std::to_string(p.y) + " " + std::to_string(p.z) + "\n";
+    for (const auto& p : m.positions)
+        s += "v " + std::to_string(p.x) + " " + std::to_string(p.y) + " " + std::to_string(p.z) + "\n";
     for (const auto& t : m.triangles)
         s += "f " + std::to_string(t[0] + 1) + " " + std::to_string(t[1] + 1) + " " + std::to_string(t[2] + 1) + "\n";
     return s;
@@ -36,7 +37,8 @@ TEST(BadInput, MeshWithHole) {
 }
 
 TEST(BadInput, SelfIntersectingMesh) {
-    expectRejected(objText(merge(box(), box(glm::dvec3(0.5), glm::dvec3(1.5)))), "intersects itself: triangle", "mesh.obj", " --strict");
+    expectRejected(objText(merge(box(), box(glm::dvec3(0.5), glm::dvec3(1.5)))), "intersects itself: triangle",
+                   "mesh.obj", " --strict");
 }
 
 TEST(BadInput, NonManifoldEdge) {
@@ -80,7 +82,9 @@ TEST(BadInput, NotAMesh) {
     expectRejected("OFF\n3 1 0\n0 0 0\n1 0 0\n", "OFF file ends early", "mesh.off");
 }
 
-TEST(BadInput, BadFaceIndex) { expectRejected("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n", "mesh.obj:4: face index 7 out of range"); }
+TEST(BadInput, BadFaceIndex) {
+    expectRejected("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n", "mesh.obj:4: face index 7 out of range");
+}
 
 TEST(BadInput, BadArgumentsAreUsageErrors) {
     const std::string path = test::writeTemp("box.obj", objText(box()));

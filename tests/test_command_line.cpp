@@ -27,7 +27,8 @@ std::string tinyScene() {
 
 std::string boxObj() {
     return "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
-           "f 1 4 3\nf 1 3 2\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\nf 4 8 7\nf 4 7 3\nf 1 5 8\nf 1 8 4\nf 2 3 7\nf 2 7 6\n";
+           "f 1 4 3\nf 1 3 2\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\nf 4 8 7\nf 4 7 3\nf 1 5 8\nf 1 8 4\nf 2 3 7\nf 2 7 "
+           "6\n";
 }
 
 std::string slurp(const std::string& path) {
@@ -41,7 +42,9 @@ TEST(CommandLine, UnknownSubcommandIsNamed) {
     const auto r = runTetglow("frobnicate");
     expectOneLineError(r, 2, "unknown subcommand 'frobnicate'");
     EXPECT_NE(r.err.find("render"), std::string::npos) << "lists the subcommands: " << r.err;
-    expectOneLineError(runTetglow("generate squid"), 2, "unknown subcommand 'squid' of 'tetglow generate'; one of: fish, fish-photophores, fish-eyes, fish-lure-core, cloud");
+    expectOneLineError(runTetglow("generate squid"), 2,
+                       "unknown subcommand 'squid' of 'tetglow generate'; one of: fish, fish-photophores, fish-eyes, "
+                       "fish-lure-core, cloud");
     expectOneLineError(runTetglow(""), 2, "needs a subcommand: one of");
 }
 
@@ -62,7 +65,8 @@ TEST(CommandLine, RangeErrorsArePlainNumbers) {
 
 TEST(CommandLine, EmptyValueIsAnErrorNotIgnored) {
     const std::string scene = writeTemp("scene.json", tinyScene());
-    for (const char* arg : {"-o ''", "--resolution ''"}) expectOneLineError(runTetglow("render " + scene + " " + arg), 2, "expected a value, got ''");
+    for (const char* arg : {"-o ''", "--resolution ''"})
+        expectOneLineError(runTetglow("render " + scene + " " + arg), 2, "expected a value, got ''");
     expectOneLineError(runTetglow("generate fish -o ''"), 2, "expected a value, got ''");
 }
 
@@ -75,7 +79,8 @@ TEST(CommandLine, ResolutionDoesNotWrap) {
 }
 
 TEST(CommandLine, NegativeSeedIsRefusedNotWrapped) {
-    expectOneLineError(runTetglow("validate slab --photons 2 --seed -1"), 2, "--seed: expected a finite non-negative number, got '-1'");
+    expectOneLineError(runTetglow("validate slab --photons 2 --seed -1"), 2,
+                       "--seed: expected a finite non-negative number, got '-1'");
     const std::string mesh = writeTemp("box.obj", boxObj());
     expectOneLineError(runTetglow("compare-boundary " + mesh + " --points 1 --rays 1 --seed -1"), 2, "got '-1'");
 }
@@ -104,13 +109,18 @@ TEST(Outputs, OutputThatNamesAnInputIsRefused) {
 TEST(Outputs, OutputThatNamesAFileTheSceneReadsIsRefused) {
     const std::string dir = tempDir();
     const std::string mesh = writeTemp("out-medium-0.obj", boxObj());
-    const std::string scene = writeTemp("mesh.json", R"({"camera": {"position": [0.5, 0.5, 4], "look_at": [0.5, 0.5, 0], "resolution": [4, 4]},
+    const std::string scene = writeTemp(
+        "mesh.json", R"({"camera": {"position": [0.5, 0.5, 4], "look_at": [0.5, 0.5, 0], "resolution": [4, 4]},
         "integrator": {"spp": 1}, "media": [{"shape": {"type": "mesh", "file": "out-medium-0.obj"}, "sigma_s": 1, "emission": 1}]})");
-    const std::string include = writeTemp("light.exr", "LightSource \"distant\" \"point from\" [0 0 1] \"point to\" [0 0 0]\n");
-    const std::string pbrt = writeTemp("inc.pbrt", "LookAt 0 0 4 0 0 0 0 1 0\nCamera \"perspective\"\nFilm \"image\" \"integer xresolution\" [4] "
-                                                   "\"integer yresolution\" [4]\nWorldBegin\nInclude \"light.exr\"\nWorldEnd\n");
+    const std::string include =
+        writeTemp("light.exr", "LightSource \"distant\" \"point from\" [0 0 1] \"point to\" [0 0 0]\n");
+    const std::string pbrt =
+        writeTemp("inc.pbrt",
+                  "LookAt 0 0 4 0 0 0 0 1 0\nCamera \"perspective\"\nFilm \"image\" \"integer xresolution\" [4] "
+                  "\"integer yresolution\" [4]\nWorldBegin\nInclude \"light.exr\"\nWorldEnd\n");
     fs::create_symlink(mesh, dir + "/mesh-link.exr");
-    const std::string commands[] = {"render " + scene + " -o " + dir + "/mesh-link.exr", "render " + pbrt + " -o " + include,
+    const std::string commands[] = {"render " + scene + " -o " + dir + "/mesh-link.exr",
+                                    "render " + pbrt + " -o " + include,
                                     "convert " + scene + " -o " + dir + "/out.json"};
     for (const auto& command : commands) {
         SCOPED_TRACE(command);
@@ -125,7 +135,8 @@ TEST(Outputs, OutputThatIsAFolderIsAnError) {
     const std::string dir = tempDir() + "/folder";
     fs::create_directories(dir + "/x.exr");
     fs::create_directories(dir + "/x.json");
-    const std::string commands[] = {"render " + scene + " -o " + dir + "/x.exr", "convert " + scene + " -o " + dir + "/x.json",
+    const std::string commands[] = {"render " + scene + " -o " + dir + "/x.exr",
+                                    "convert " + scene + " -o " + dir + "/x.json",
                                     "tetrahedralize " + mesh + " -o " + dir, "generate fish -o " + dir,
                                     "compare-boundary " + mesh + " --points 1 --rays 1 --csv " + dir};
     for (const auto& command : commands) {
@@ -154,7 +165,8 @@ TEST(Outputs, MissingFoldersAreCreatedTheSameWayByEveryCommand) {
         const auto r = runTetglow(command + dir + "/" + output);
         EXPECT_EQ(r.exitCode, 0) << r.err;
         EXPECT_TRUE(fs::is_regular_file(dir + "/" + output));
-        expectOneLineError(runTetglow(command + dir + "/plain/" + output), 1, "cannot create the folder " + dir + "/plain/");
+        expectOneLineError(runTetglow(command + dir + "/plain/" + output), 1,
+                           "cannot create the folder " + dir + "/plain/");
     }
 }
 
@@ -174,15 +186,17 @@ TEST(Outputs, ConvertWithoutAFolderInTheOutputName) {
 TEST(Outputs, FailedWriteLeavesNothingBehind) {
     const std::string dir = tempDir() + "/out";
     fs::create_directories(dir);
-    EXPECT_THROW(writeStream(dir + "/x.txt", [](std::ostream& out) {
-                     out << "half a file";
-                     throw std::runtime_error("disk on fire");
-                 }),
+    EXPECT_THROW(writeStream(dir + "/x.txt",
+                             [](std::ostream& out) {
+                                 out << "half a file";
+                                 throw std::runtime_error("disk on fire");
+                             }),
                  InputError);
-    EXPECT_THROW(writeAtomically(dir + "/y.exr", [](const std::string& temporary) {
-                     std::ofstream(temporary) << "half an image";
-                     throw std::runtime_error("no");
-                 }),
+    EXPECT_THROW(writeAtomically(dir + "/y.exr",
+                                 [](const std::string& temporary) {
+                                     std::ofstream(temporary) << "half an image";
+                                     throw std::runtime_error("no");
+                                 }),
                  InputError);
     EXPECT_TRUE(fs::is_empty(dir));
     try {

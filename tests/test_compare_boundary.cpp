@@ -23,12 +23,15 @@ const std::string kFish = std::string(TETGLOW_SOURCE_DIR) + "/scenes/meshes/fish
 // The classification of every region, every method's errors printed. The tets' are asserted
 // zero down to 1e-8 diagonals: below 1e-9 their location falls back on a line shifted by 1e-9
 // diagonals (TetVolume::traverse) and is no longer exact (measured in docs/RESULTS.md).
-std::vector<ClassificationRow> expectTetsExact(const TetVolume& tets, const InsideTruth& truth, const std::string& shape) {
+std::vector<ClassificationRow> expectTetsExact(const TetVolume& tets, const InsideTruth& truth,
+                                               const std::string& shape) {
     const TriangleMesh surface = tets.mesh().surfaceMesh();
-    const auto rows = compareClassification(samplePoints(surface, {1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9}, 20000, 3),
-                                            insideTests(&tets, tets.bvh(), bounds(surface)), truth);
+    const auto rows =
+        compareClassification(samplePoints(surface, {1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9}, 20000, 3),
+                              insideTests(&tets, tets.bvh(), bounds(surface)), truth);
     for (const auto& row : rows) {
-        std::printf("%s, offset %.0e: %zu scored, %zu inside; errors:", shape.c_str(), row.offset, row.scored, row.inside);
+        std::printf("%s, offset %.0e: %zu scored, %zu inside; errors:", shape.c_str(), row.offset, row.scored,
+                    row.inside);
         for (const auto& m : row.methods) std::printf(" %s %zu", m.method.c_str(), m.errors);
         std::printf("\n");
         EXPECT_EQ(row.methods.front().method, "tets");
@@ -42,7 +45,8 @@ std::vector<ClassificationRow> expectTetsExact(const TetVolume& tets, const Insi
 TEST(CompareBoundary, TetsExactOnAConvexPolyhedron) {
     const TetVolume tets = tetsOf(tiltedPolyhedron());
     const TriangleMesh snapped = tets.mesh().surfaceMesh();  // the very vertices the tets have
-    const auto rows = expectTetsExact(tets, [&](const glm::dvec3& p) { return std::optional(insideConvex(snapped, p)); }, "convex polyhedron");
+    const auto rows = expectTetsExact(
+        tets, [&](const glm::dvec3& p) { return std::optional(insideConvex(snapped, p)); }, "convex polyhedron");
     for (const auto& row : rows) EXPECT_EQ(row.scored, 20000u);  // the plane tests score every point
     EXPECT_GT(rows.front().inside, 2000u);
     EXPECT_GT(rows.front().methods.back().errors, 2000u);  // bbox: the box's corners are not medium
@@ -59,7 +63,8 @@ TEST(CompareBoundary, TetsExactOnATessellatedSphereAwayFromTheFacetGap) {
     // the facets differ from the sphere and the point is not scored.
     double inner = INFINITY, outer = 0;
     for (uint32_t t = 0; t < surface.triangles.size(); ++t) {
-        const glm::dvec3 a = surface.corner(t, 0), n = glm::normalize(glm::cross(surface.corner(t, 1) - a, surface.corner(t, 2) - a));
+        const glm::dvec3 a = surface.corner(t, 0),
+                         n = glm::normalize(glm::cross(surface.corner(t, 1) - a, surface.corner(t, 2) - a));
         inner = std::min(inner, glm::dot(a, n));
     }
     for (const auto& p : surface.positions) outer = std::max(outer, glm::length(p));
@@ -82,15 +87,19 @@ TEST(CompareBoundary, ParityIsWrongOnAMeshWithAHole) {
     TriangleMesh closed = icosphere(3, 1.0);
     for (auto& p : closed.positions) p = {roundToFloat(p.x), roundToFloat(p.y), roundToFloat(p.z)};
     TriangleMesh holed = closed;
-    std::erase_if(holed.triangles, [&](const auto& t) { return closed.positions[t[0]].z + closed.positions[t[1]].z + closed.positions[t[2]].z > 2.7; });
+    std::erase_if(holed.triangles, [&](const auto& t) {
+        return closed.positions[t[0]].z + closed.positions[t[1]].z + closed.positions[t[2]].z > 2.7;
+    });
     ASSERT_LT(holed.triangles.size(), closed.triangles.size());
     expectTetsRefuse(holed, "not closed");
     const SurfaceBVH bvh(holed.positions, holed.triangles);
-    const auto rows = compareClassification(samplePoints(holed, {1e-2, 1e-4}, 20000, 5), insideTests(nullptr, bvh, bounds(holed)),
-                                            [&](const glm::dvec3& p) { return std::optional(insideConvex(closed, p)); });
+    const auto rows =
+        compareClassification(samplePoints(holed, {1e-2, 1e-4}, 20000, 5), insideTests(nullptr, bvh, bounds(holed)),
+                              [&](const glm::dvec3& p) { return std::optional(insideConvex(closed, p)); });
     for (const auto& row : rows) {
         std::printf("capless icosphere(3), offset %.0e:", row.offset);
-        for (const auto& m : row.methods) std::printf(" %s %.3f%%", m.method.c_str(), 100.0 * double(m.errors) / double(row.scored));
+        for (const auto& m : row.methods)
+            std::printf(" %s %.3f%%", m.method.c_str(), 100.0 * double(m.errors) / double(row.scored));
         std::printf("\n");
     }
     ASSERT_EQ(rows[0].methods.front().method, "parity 1");
@@ -98,10 +107,12 @@ TEST(CompareBoundary, ParityIsWrongOnAMeshWithAHole) {
     EXPECT_GT(rows[0].methods[2].errors, 0u);    // a majority of 5 is fooled too, only more rarely
     // Optical depth: the march loses the medium wherever its samples see through the hole.
     const double step = 0.01;
-    const auto chords = compareChords(sampleLines(bounds(holed), 2000, 5), chordTests(nullptr, bvh, {step}), [&](const Line& line) { return convexChord(closed, line.ray); });
+    const auto chords = compareChords(sampleLines(bounds(holed), 2000, 5), chordTests(nullptr, bvh, {step}),
+                                      [&](const Line& line) { return convexChord(closed, line.ray); });
     const ChordScore& march = chords.methods.front();
-    std::printf("capless icosphere(3), march step %g: mean |error| %.5f, bias %.5f, relative %.4f (exact mean length %.4f)\n", step,
-                march.meanAbsError, march.meanError, march.relativeError, chords.meanLength);
+    std::printf(
+        "capless icosphere(3), march step %g: mean |error| %.5f, bias %.5f, relative %.4f (exact mean length %.4f)\n",
+        step, march.meanAbsError, march.meanError, march.relativeError, chords.meanLength);
     EXPECT_LT(march.meanError, -0.01);  // biased low; the march alone is unbiased (random offset)
 }
 
@@ -112,7 +123,9 @@ TEST(CompareBoundary, RepairedTetsAgreeWithTheWindingNumberWhereParityFails) {
     TriangleMesh closed = icosphere(3, 1.0);
     for (auto& p : closed.positions) p = {roundToFloat(p.x), roundToFloat(p.y), roundToFloat(p.z)};
     TriangleMesh holed = closed;
-    std::erase_if(holed.triangles, [&](const auto& t) { return closed.positions[t[0]].z + closed.positions[t[1]].z + closed.positions[t[2]].z > 2.7; });
+    std::erase_if(holed.triangles, [&](const auto& t) {
+        return closed.positions[t[0]].z + closed.positions[t[1]].z + closed.positions[t[2]].z > 2.7;
+    });
     const TetVolume tets = tetsOf(holed);
     EXPECT_LE(tets.mesh().volume(), signedVolume(closed) * (1 + 1e-12));
     EXPECT_GT(tets.mesh().volume(), 0.97 * signedVolume(closed));
@@ -148,7 +161,8 @@ TEST(CompareBoundary, PictureShowsTheMediumAndAgreement) {
     desc.position = {0, 0, 4};
     desc.width = desc.height = 48;
     const BoundaryPicture picture = renderBoundaryPicture(Camera(desc), {&tets}, 0.02, 3);
-    const glm::vec3 centre = picture.image.at(24, 24), boxOnly = picture.image.at(39, 9), corner = picture.image.at(0, 0);
+    const glm::vec3 centre = picture.image.at(24, 24), boxOnly = picture.image.at(39, 9),
+                    corner = picture.image.at(0, 0);
     EXPECT_GT(centre.y, 0.9f);  // a full chord of medium: green
     EXPECT_EQ(centre.x, 0.0f);
     EXPECT_GT(boxOnly.x, 0.0f);  // through the box's corner, beside the sphere: dim red
@@ -195,10 +209,13 @@ TEST(CompareBoundaryCommand, QuickRunOnBlub) {
 
 TEST(CompareBoundaryCommand, SceneTablesAndPicture) {
     const std::string picture = tempDir() + "/fish.exr";
-    const auto r = runTetglow("compare-boundary " + std::string(TETGLOW_SOURCE_DIR) + "/scenes/fish.json --points 500 --rays 50 "
-                              "--picture " + picture + " --picture-width 40");
+    const auto r = runTetglow("compare-boundary " + std::string(TETGLOW_SOURCE_DIR) +
+                              "/scenes/fish.json --points 500 --rays 50 "
+                              "--picture " +
+                              picture + " --picture-width 40");
     ASSERT_EQ(r.exitCode, 0) << r.err;
-    for (const char* text : {"/media/0 (meshes/fish.obj)", "Inside/outside", "parity 5", "shell 1e-07", "Optical depth", "parity march"})
+    for (const char* text :
+         {"/media/0 (meshes/fish.obj)", "Inside/outside", "parity 5", "shell 1e-07", "Optical depth", "parity march"})
         EXPECT_NE(r.out.find(text), std::string::npos) << text << " in:\n" << r.out;
     EXPECT_GT(std::filesystem::file_size(picture), 0u);
     EXPECT_GT(std::filesystem::file_size(tempDir() + "/fish.png"), 0u);
@@ -219,7 +236,8 @@ TEST(CompareBoundaryCommand, BadInputGetsClearErrors) {
         EXPECT_NE(r.err.find(expected), std::string::npos) << r.err;
         EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
     }
-    for (const char* arg : {"--points -3", "--points nan", "--rays 0", "--steps nan", "--steps -0.1", "--picture-width 0"})
+    for (const char* arg :
+         {"--points -3", "--points nan", "--rays 0", "--steps nan", "--steps -0.1", "--picture-width 0"})
         EXPECT_EQ(runTetglow("compare-boundary " + kFish + " " + arg).exitCode, 2) << arg;
 }
 

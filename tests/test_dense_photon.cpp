@@ -37,13 +37,16 @@ TEST(DensePhoton, WalksLoseNoPower) {
         const EnergyBalance& e = traced.energy;
         RGB power(0);
         for (const Photon& p : traced.volume[0]) power += RGB(p.power);
-        std::printf("max depth %d: emitted %.4f, escaped %.4f, cut %.4f, absorbed %.4f, +- %.5f; %zu photons stored, power %.3f\n",
-                    maxDepth, e.emitted[0], e.escaped[0], e.cut[0], e.absorbedInMedia[0], std::sqrt(e.deficitSquares[0]),
-                    traced.volume[0].size(), power[0]);
+        std::printf(
+            "max depth %d: emitted %.4f, escaped %.4f, cut %.4f, absorbed %.4f, +- %.5f; %zu photons stored, power "
+            "%.3f\n",
+            maxDepth, e.emitted[0], e.escaped[0], e.cut[0], e.absorbedInMedia[0], std::sqrt(e.deficitSquares[0]),
+            traced.volume[0].size(), power[0]);
         for (int c = 0; c < 3; ++c) {
             EXPECT_EQ(e.absorbedInMedia[c], 0);
             EXPECT_EQ(e.absorbedOnSurfaces[c], 0);
-            EXPECT_NEAR(e.escaped[c] + e.cut[c], e.emitted[c], 3 * std::sqrt(e.deficitSquares[c]) + 1e-9 * e.emitted[c]);
+            EXPECT_NEAR(e.escaped[c] + e.cut[c], e.emitted[c],
+                        3 * std::sqrt(e.deficitSquares[c]) + 1e-9 * e.emitted[c]);
         }
         EXPECT_GT(e.cut[0], 0);
         EXPECT_LE(e.cut[0], cut);

@@ -18,19 +18,24 @@ bool contains(const std::string& text, const std::string& part) { return text.fi
 
 TEST(Farm, DryRunPrintsTheJobsItWouldSubmit) {
     const std::string dir = tempDir(), work = dir + "/s.farm";
-    const auto r = runTetglow("farm " + kSphere + " --parts 3 --spp 10 --seed 2 --cpus-per-task 2 --partition gpu,cpu --account proj-1" +
-                              " --time 1-02:00:00 --mem 8G --sbatch-arg=--qos=high --sbatch-arg=--comment='a \"b\" c' -o " + dir + "/s.exr --dry-run");
+    const auto r = runTetglow(
+        "farm " + kSphere + " --parts 3 --spp 10 --seed 2 --cpus-per-task 2 --partition gpu,cpu --account proj-1" +
+        " --time 1-02:00:00 --mem 8G --sbatch-arg=--qos=high --sbatch-arg=--comment='a \"b\" c' -o " + dir +
+        "/s.exr --dry-run");
     ASSERT_EQ(r.exitCode, 0) << r.err;
     for (const std::string& expected : std::vector<std::string>{
-             "--tetrahedralize-only", "#SBATCH --array=0-2", "ranges=( 0:3 3:6 6:10 )", "#SBATCH --cpus-per-task=\"2\"", "--threads 2 --frame",
-          "#SBATCH --partition=\"gpu,cpu\"", "#SBATCH --account=\"proj-1\"", "#SBATCH --time=\"1-02:00:00\"", "#SBATCH --mem=\"8G\"",
-          "#SBATCH \"--qos=high\"", "#SBATCH \"--comment=a \\\"b\\\" c\"", "'--spp' '10' '--seed' '2'", " merge ", "s.farm/merge.status",
-          // The commands, with the dependencies farm gives them.
-          "prepare=$(sbatch --parsable '" + work + "/prepare.sh')",
-          "render=$(sbatch --parsable --dependency=afterok:$prepare --kill-on-invalid-dep=yes '" + work + "/render.sh')",
-          "\nsbatch --parsable --dependency=afterany:$prepare:$render '" + work + "/merge.sh'\n"})
+             "--tetrahedralize-only", "#SBATCH --array=0-2", "ranges=( 0:3 3:6 6:10 )", "#SBATCH --cpus-per-task=\"2\"",
+             "--threads 2 --frame", "#SBATCH --partition=\"gpu,cpu\"", "#SBATCH --account=\"proj-1\"",
+             "#SBATCH --time=\"1-02:00:00\"", "#SBATCH --mem=\"8G\"", "#SBATCH \"--qos=high\"",
+             "#SBATCH \"--comment=a \\\"b\\\" c\"", "'--spp' '10' '--seed' '2'", " merge ", "s.farm/merge.status",
+             // The commands, with the dependencies farm gives them.
+             "prepare=$(sbatch --parsable '" + work + "/prepare.sh')",
+             "render=$(sbatch --parsable --dependency=afterok:$prepare --kill-on-invalid-dep=yes '" + work +
+                 "/render.sh')",
+             "\nsbatch --parsable --dependency=afterany:$prepare:$render '" + work + "/merge.sh'\n"})
         EXPECT_TRUE(contains(r.out, expected)) << expected << "\n" << r.out;
-    EXPECT_EQ(r.out.find("#SBATCH --cpus-per-task=\"2\""), r.out.find("#SBATCH --cpus-per-task=\"2\"", r.out.find("# " + work + "/render.sh")))
+    EXPECT_EQ(r.out.find("#SBATCH --cpus-per-task=\"2\""),
+              r.out.find("#SBATCH --cpus-per-task=\"2\"", r.out.find("# " + work + "/render.sh")))
         << "only the array's tasks take --cpus-per-task";
     EXPECT_FALSE(std::filesystem::exists(work)) << "a dry run writes nothing";
 }
@@ -38,7 +43,8 @@ TEST(Farm, DryRunPrintsTheJobsItWouldSubmit) {
 TEST(Farm, HelpSaysWhatEachTaskGets) {
     const auto r = runTetglow("farm --help");
     ASSERT_EQ(r.exitCode, 0) << r.err;
-    for (const char* expected : {"--cpus-per-task", "its render threads (default 1)", "--account", "--mem", "--sbatch-arg", "sbatch --time"})
+    for (const char* expected :
+         {"--cpus-per-task", "its render threads (default 1)", "--account", "--mem", "--sbatch-arg", "sbatch --time"})
         EXPECT_TRUE(contains(r.out, expected)) << expected << "\n" << r.out;
     EXPECT_FALSE(contains(r.out, "all cores")) << r.out;
 }
@@ -52,7 +58,8 @@ TEST(Farm, TakesTheOutputFromTheScene) {
     const std::string work = std::filesystem::path(path).parent_path().string() + "/renders/ball.farm";
     EXPECT_TRUE(contains(r.out, " -o '" + work.substr(0, work.size() - 5) + ".exr'")) << r.out;
     EXPECT_TRUE(contains(r.out, "'" + work + "/part-0000-001.exr'")) << r.out;
-    expectOneLineError(runTetglow("farm " + kSphere + " --parts 2 --dry-run"), 1, "names no \"output\": give -o OUT.exr");
+    expectOneLineError(runTetglow("farm " + kSphere + " --parts 2 --dry-run"), 1,
+                       "names no \"output\": give -o OUT.exr");
 }
 
 TEST(Farm, RefusesWhatCannotBeSplit) {
@@ -68,7 +75,8 @@ TEST(Farm, RefusesWhatCannotBeSplit) {
         {kSphere + " --parts 5 --spp 4 -o " + dir + "/a.exr", "--parts 5 is more than the 4 passes", 1},
         {timedScene + " --parts 2 -o " + dir + "/a.exr", "renders for a time (\"time\"), which cannot be split", 1},
         {kSphere + " --parts 2 -o " + dir + "/a.png", "the output must be an .exr file", 1},
-        {kSphere + " --parts 2 --frames 0:2 -o " + dir + "/a.exr", "--frames: expected A:B with 0 <= A < B <= 1 (the scene's frames)", 2},
+        {kSphere + " --parts 2 --frames 0:2 -o " + dir + "/a.exr",
+         "--frames: expected A:B with 0 <= A < B <= 1 (the scene's frames)", 2},
         {kSphere + " -o " + dir + "/a.exr", "--parts is required", 2},
     };
     for (const Case& c : cases) expectOneLineError(runTetglow("farm " + c.args + " --dry-run"), c.code, c.message);
@@ -92,19 +100,23 @@ TEST(Farm, RefusesValuesThatWouldBreakOutOfTheirLine) {
         {"--time " + shellQuote("10\nid") + out, "--time: expected a Slurm time limit", 2},
         {"--mem lots" + out, "--mem: expected memory per node", 2},
         {"--sbatch-arg=-pgpu" + out, "expected one long option of sbatch's", 2},
-        {"--sbatch-arg=" + shellQuote("--comment=a\nid") + out, "expected one long option of sbatch's, --NAME or --NAME=VALUE on one line", 2},
+        {"--sbatch-arg=" + shellQuote("--comment=a\nid") + out,
+         "expected one long option of sbatch's, --NAME or --NAME=VALUE on one line", 2},
         {"--sbatch-arg=--output=/tmp/x" + out, "farm sets --output itself", 2},
         {"--sbatch-arg=--out=/tmp/x" + out, "farm sets --output itself", 2},
         {"--sbatch-arg=--wrap=id" + out, "farm sets --wrap itself", 2},
         {"--sbatch-arg=--time=5" + out, "farm sets --time itself (give farm --time)", 2},
         // A backslash before a quote, a newline and a command: what sbatch's parser would unescape.
-        {"-o " + shellQuote(dir + "/x\\'\n" + command + "\n/a.exr"), "holds a control character: refusing to write it into a batch script", 1},
-        {"-o " + shellQuote(dir + "/back\\slash/a.exr"), "holds a backslash, which turns off Slurm's file name patterns", 1},
+        {"-o " + shellQuote(dir + "/x\\'\n" + command + "\n/a.exr"),
+         "holds a control character: refusing to write it into a batch script", 1},
+        {"-o " + shellQuote(dir + "/back\\slash/a.exr"),
+         "holds a backslash, which turns off Slurm's file name patterns", 1},
     };
     for (const Case& c : cases) {
         const auto r = runTetglow("farm " + kSphere + " --parts 2 --spp 2 " + c.args);
         expectOneLineError(r, c.code, c.message);
-        EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), {}), 0) << c.args << ": nothing may be written";
+        EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), {}), 0)
+            << c.args << ": nothing may be written";
     }
 }
 
@@ -112,13 +124,15 @@ TEST(Farm, RefusesValuesThatWouldBreakOutOfTheirLine) {
 // '%' is doubled where Slurm reads a file name pattern (--output). No path is a printf format.
 TEST(Farm, QuotesPathsForBashAndForSbatch) {
     const std::string dir = tempDir() + "/it's \"a\" #1 100%d %20";
-    const auto r = runTetglow("farm " + kSphere + " --parts 2 --spp 2 -o " + tetglow::cli::shellQuote(dir + "/s.exr") + " --dry-run");
+    const auto r = runTetglow("farm " + kSphere + " --parts 2 --spp 2 -o " + tetglow::cli::shellQuote(dir + "/s.exr") +
+                              " --dry-run");
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const std::string sbatchDir = tempDir() + "/it's \\\"a\\\" #1 100%%d %%20/s.farm";
     const std::string bashDir = tetglow::cli::shellQuote(dir + "/s.farm");
-    for (const std::string& expected : std::vector<std::string>{"#SBATCH --output=\"" + sbatchDir + "/task-%a.log\"", "#SBATCH --output=\"" + sbatchDir + "/merge.log\"",
-                                       "printf -v name 'part-%04d-%03d.exr' \"$frame\" \"$part\"\n",
-                                       "--pass-range \"${ranges[part]}\" -o " + bashDir + "/\"$name\"\n"})
+    for (const std::string& expected : std::vector<std::string>{
+             "#SBATCH --output=\"" + sbatchDir + "/task-%a.log\"", "#SBATCH --output=\"" + sbatchDir + "/merge.log\"",
+             "printf -v name 'part-%04d-%03d.exr' \"$frame\" \"$part\"\n",
+             "--pass-range \"${ranges[part]}\" -o " + bashDir + "/\"$name\"\n"})
         EXPECT_TRUE(contains(r.out, expected)) << expected << "\n" << r.out;
 }
 
@@ -134,13 +148,16 @@ TEST(Farm, SbatchQuotingEscapesWhatSbatchUnescapes) {
 TEST(Farm, WarnsAboutFoldersLocalToEachNode) {
     const auto tmp = runTetglow("farm " + kSphere + " --parts 2 --spp 2 -o /tmp/farm-warning-test/a.exr --dry-run");
     ASSERT_EQ(tmp.exitCode, 0) << tmp.err;
-    for (const char* expected : {"farm: warning: the output /tmp/farm-warning-test/a.exr lies in /tmp", "which is local to each node",
-                                 "farm: warning: the parts' folder /tmp/farm-warning-test/a.farm lies in /tmp"})
+    for (const char* expected :
+         {"farm: warning: the output /tmp/farm-warning-test/a.exr lies in /tmp", "which is local to each node",
+          "farm: warning: the parts' folder /tmp/farm-warning-test/a.farm lies in /tmp"})
         EXPECT_TRUE(contains(tmp.err, expected)) << expected << "\n" << tmp.err;
-    const auto shared = runTetglow("farm " + kSphere + " --parts 2 --spp 2 -o " + std::string(TETGLOW_SOURCE_DIR) + "/no-such-folder/a.exr --dry-run");
+    const auto shared = runTetglow("farm " + kSphere + " --parts 2 --spp 2 -o " + std::string(TETGLOW_SOURCE_DIR) +
+                                   "/no-such-folder/a.exr --dry-run");
     ASSERT_EQ(shared.exitCode, 0) << shared.err;
     EXPECT_FALSE(contains(shared.err, "the output")) << shared.err;
-    EXPECT_TRUE(contains(shared.err, "farm: warning: the tet cache ")) << "the tests' cache lies in /tmp: " << shared.err;
+    EXPECT_TRUE(contains(shared.err, "farm: warning: the tet cache "))
+        << "the tests' cache lies in /tmp: " << shared.err;
 }
 
 }  // namespace

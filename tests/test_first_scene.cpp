@@ -4,8 +4,8 @@
 #include <filesystem>
 #include <fstream>
 
-#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
+#include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
 
 #include "TestMeshes.h"
@@ -36,11 +36,14 @@ TEST(Init, SceneRendersFromAnyFolder) {
     const std::string file = scene["media"][0]["shape"]["file"];
     EXPECT_FALSE(std::filesystem::path(file).is_absolute()) << file;
     EXPECT_TRUE(std::filesystem::equivalent(dir + "/mine/" + file, mesh)) << file;
-    const auto render = runTetglow("render " + dir + "/mine/scene.json --resolution 16x12 --spp 2 -o " + dir + "/elsewhere/x.exr");
+    const auto render =
+        runTetglow("render " + dir + "/mine/scene.json --resolution 16x12 --spp 2 -o " + dir + "/elsewhere/x.exr");
     EXPECT_EQ(render.exitCode, 0) << render.err;
     // Does not overwrite a scene.
-    expectOneLineError(runTetglow("init " + mesh + " -o " + dir + "/mine/scene.json"), 1, "mine/scene.json: already exists");
-    expectOneLineError(runTetglow("init " + writeTemp("bad.obj", "v 0 0 0\nf 1 2 3\n") + " -o " + dir + "/bad.json"), 1, "bad.obj");
+    expectOneLineError(runTetglow("init " + mesh + " -o " + dir + "/mine/scene.json"), 1,
+                       "mine/scene.json: already exists");
+    expectOneLineError(runTetglow("init " + writeTemp("bad.obj", "v 0 0 0\nf 1 2 3\n") + " -o " + dir + "/bad.json"), 1,
+                       "bad.obj");
 }
 
 // Every corner of the mesh's bounding box lies inside the camera's view (a cone of half the
@@ -52,11 +55,13 @@ TEST(Init, CameraFramesTheMeshOnTheFloor) {
     writeObj(mesh, dir + "/blob.obj");
     ASSERT_EQ(runTetglow("init " + dir + "/blob.obj -o " + dir + "/scene.json").exitCode, 0);
     const nlohmann::json scene = readJson(dir + "/scene.json");
-    const glm::dvec3 eye = vec(scene["camera"]["position"]), axis = glm::normalize(vec(scene["camera"]["look_at"]) - eye);
+    const glm::dvec3 eye = vec(scene["camera"]["position"]),
+                     axis = glm::normalize(vec(scene["camera"]["look_at"]) - eye);
     const double halfFov = scene["camera"]["fov"].get<double>() / 2 * M_PI / 180;
     const Bounds3 box = bounds(mesh);
     for (int corner = 0; corner < 8; ++corner) {
-        const glm::dvec3 p(corner & 1 ? box.hi.x : box.lo.x, corner & 2 ? box.hi.y : box.lo.y, corner & 4 ? box.hi.z : box.lo.z);
+        const glm::dvec3 p(corner & 1 ? box.hi.x : box.lo.x, corner & 2 ? box.hi.y : box.lo.y,
+                           corner & 4 ? box.hi.z : box.lo.z);
         EXPECT_LT(std::acos(glm::dot(glm::normalize(p - eye), axis)), halfFov) << corner;
     }
     const nlohmann::json& floor = scene["surfaces"][0]["shape"];
@@ -69,7 +74,8 @@ TEST(Init, CameraFramesTheMeshOnTheFloor) {
 // error says how to model an open vessel.
 TEST(Init, OpenVesselAsCavityGetsAHint) {
     try {
-        tetrahedralize({box({0, 0, 0}, {2, 2, 2}), box({0.2, 0.2, 0.2}, {1.8, 2.5, 1.8})}, {"glass", "inside"}, noCache());
+        tetrahedralize({box({0, 0, 0}, {2, 2, 2}), box({0.2, 0.2, 0.2}, {1.8, 2.5, 1.8})}, {"glass", "inside"},
+                       noCache());
         FAIL() << "accepted";
     } catch (const InputError& e) {
         const std::string what = e.what();

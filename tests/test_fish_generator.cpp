@@ -8,8 +8,8 @@
 #include <set>
 #include <tuple>
 
-#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
+#include <glm/geometric.hpp>
 
 #include "TestMeshes.h"
 #include "scene/FishGenerator.h"
@@ -28,8 +28,8 @@ FishParams resolution(int rings, int segments) {
 }
 
 // Balanced resolutions from coarse to the ~200k triangles of the render-cost study.
-const std::vector<FishParams> kResolutions = {resolution(16, 16), resolution(32, 24), resolution(64, 48),
-                                              FishParams{}, resolution(200, 160), resolution(440, 420)};
+const std::vector<FishParams> kResolutions = {resolution(16, 16), resolution(32, 24),   resolution(64, 48),
+                                              FishParams{},       resolution(200, 160), resolution(440, 420)};
 
 // Every undirected edge is shared by exactly two triangles that run it in opposite directions.
 void expectClosedAndConsistent(const TriangleMesh& m) {
@@ -81,7 +81,8 @@ void expectValidMedium(const TriangleMesh& m) {
 TEST(FishGenerator, OrgansAreValidAndNestedInTheBody) {
     for (const FishParams& p : {FishParams{}, resolution(32, 24)}) {
         const TriangleMesh body = makeFish(p);
-        const std::pair<TriangleMesh, size_t> parts[] = {{makeFishPhotophores(p), 14}, {makeFishEyes(p), 2}, {makeFishLureCore(p), 1}};
+        const std::pair<TriangleMesh, size_t> parts[] = {
+            {makeFishPhotophores(p), 14}, {makeFishEyes(p), 2}, {makeFishLureCore(p), 1}};
         for (const auto& [organ, expectedShells] : parts) {
             expectValidMedium(organ);
             uint32_t count = 0;
@@ -99,7 +100,8 @@ TEST(FishGenerator, OrgansAreValidAndNestedInTheBody) {
         makeFishPhotophores(resolution(8, 8));
         FAIL() << "photophores placed in an 8 x 8 body";
     } catch (const InputError& e) {
-        EXPECT_EQ(std::string(e.what()), "fish: photophores do not fit inside the fish at 8 rings and 8 segments: use more of either");
+        EXPECT_EQ(std::string(e.what()),
+                  "fish: photophores do not fit inside the fish at 8 rings and 8 segments: use more of either");
     }
 }
 
@@ -172,13 +174,14 @@ TEST(FishGenerator, LureOnAStalkFromTheHeadIsAShellOutsideTheBody) {
     for (uint32_t v = 0; v < m.positions.size(); ++v)
         if (shell[v] != shell[0]) {
             lure.extend(m.positions[v]);
-            ASSERT_EQ(classifyPoint(body, m.positions[v]), PointSide::Outside) << "lure vertex " << v << " inside the body";
+            ASSERT_EQ(classifyPoint(body, m.positions[v]), PointSide::Outside)
+                << "lure vertex " << v << " inside the body";
         }
     const Bounds3 b = bounds(body);
-    EXPECT_GT(lure.hi.x, b.hi.x);               // the bulb hangs ahead of the nose,
-    EXPECT_LT(lure.lo.x, b.hi.x - 0.15);        // the stalk rises from the head behind it,
-    EXPECT_LT(lure.lo.y, b.hi.y);               // from below the top of the back,
-    EXPECT_GT(lure.hi.y - lure.lo.y, 0.1);      // and arches up to the bulb.
+    EXPECT_GT(lure.hi.x, b.hi.x);           // the bulb hangs ahead of the nose,
+    EXPECT_LT(lure.lo.x, b.hi.x - 0.15);    // the stalk rises from the head behind it,
+    EXPECT_LT(lure.lo.y, b.hi.y);           // from below the top of the back,
+    EXPECT_GT(lure.hi.y - lure.lo.y, 0.1);  // and arches up to the bulb.
 
     shells(makeFish(withoutLure()), count);
     EXPECT_EQ(count, 1u);
@@ -197,7 +200,7 @@ TEST(FishGenerator, TriangleCountScalesWithRingsTimesSegments) {
         EXPECT_GT(n, previous);
         previous = n;
     }
-    EXPECT_LT(makeFish(resolution(16, 16)).triangles.size(), 500u);      // a few hundred
+    EXPECT_LT(makeFish(resolution(16, 16)).triangles.size(), 500u);       // a few hundred
     EXPECT_GT(makeFish(resolution(440, 420)).triangles.size(), 180000u);  // ~200k
 }
 
@@ -217,19 +220,24 @@ TEST(FishGenerator, RejectsParametersOutOfRange) {
 // The committed meshes of the demo (scenes/meshes) are exactly what the generator makes by default.
 TEST(FishGenerator, CommittedObjsAreTheDefaultFishAndItsOrgans) {
     const std::pair<std::string, TriangleMesh (*)(const FishParams&)> parts[] = {
-        {"fish", makeFish}, {"fish-photophores", makeFishPhotophores}, {"fish-eyes", makeFishEyes}, {"fish-lure-core", makeFishLureCore}};
+        {"fish", makeFish},
+        {"fish-photophores", makeFishPhotophores},
+        {"fish-eyes", makeFishEyes},
+        {"fish-lure-core", makeFishLureCore}};
     for (const auto& [name, make] : parts) {
         SCOPED_TRACE(name);
         const TriangleMesh expected = make({});
         const std::string file = "scenes/meshes/" + name + ".obj";
         const TriangleMesh committed = readMesh(TETGLOW_SOURCE_DIR "/" + file);
-        ASSERT_EQ(committed.positions.size(), expected.positions.size()) << "regenerate: tetglow generate " << name << " -o " << file;
+        ASSERT_EQ(committed.positions.size(), expected.positions.size())
+            << "regenerate: tetglow generate " << name << " -o " << file;
         ASSERT_EQ(committed.triangles.size(), expected.triangles.size());
         // Nine digits bring float positions back exactly once snapped to float, as validation does.
         for (size_t v = 0; v < expected.positions.size(); ++v) {
             ASSERT_LT(glm::distance(committed.positions[v], expected.positions[v]), 1e-6) << "vertex " << v;
             const glm::dvec3& c = committed.positions[v];
-            ASSERT_EQ(glm::dvec3(roundToFloat(c.x), roundToFloat(c.y), roundToFloat(c.z)), expected.positions[v]) << "vertex " << v;
+            ASSERT_EQ(glm::dvec3(roundToFloat(c.x), roundToFloat(c.y), roundToFloat(c.z)), expected.positions[v])
+                << "vertex " << v;
         }
         EXPECT_EQ(committed.triangles, expected.triangles);
     }

@@ -17,10 +17,11 @@ namespace {
 // throw, and the command printed "filesystem error: ... File name too long" instead of going on.
 TEST(FuzzFindings, ObjWithAMaterialLibraryNameTooLongForTheSystem) {
     const std::string name(5000, 'm');
-    const std::string path = test::writeTemp("box.obj", "mtllib " + name + ".mtl\n" +
-                                                            "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
-                                                            "f 1 3 2\nf 1 4 3\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\n"
-                                                            "f 2 3 7\nf 2 7 6\nf 3 4 8\nf 3 8 7\nf 4 1 5\nf 4 5 8\n");
+    const std::string path =
+        test::writeTemp("box.obj", "mtllib " + name + ".mtl\n" +
+                                       "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+                                       "f 1 3 2\nf 1 4 3\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\n"
+                                       "f 2 3 7\nf 2 7 6\nf 3 4 8\nf 3 8 7\nf 4 1 5\nf 4 5 8\n");
     std::vector<std::string> warnings;
     const TriangleMesh mesh = readMesh(path, &warnings);
     EXPECT_EQ(mesh.triangles.size(), 12u);
@@ -32,8 +33,10 @@ TEST(FuzzFindings, ObjWithAMaterialLibraryNameTooLongForTheSystem) {
 // readMesh must refuse it with exactly `error` (after the file's path).
 void expectTriangleRefused(const std::string& faceList, const std::string& faceLine, const std::string& error) {
     const std::string path = test::writeTemp(
-        "tri.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
-                   "element face 1\nproperty list " + faceList + " vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n" + faceLine + "\n");
+        "tri.ply",
+        "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+        "element face 1\nproperty list " +
+            faceList + " vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n" + faceLine + "\n");
     try {
         readMesh(path);
         ADD_FAILURE() << "no error";
@@ -50,7 +53,8 @@ TEST(FuzzFindings, PlyListLengthBeyondTheFile) {
 
 // fuzz_ply: a vertex index of 3.3e32 was converted to int64_t for the error message (UB).
 TEST(FuzzFindings, PlyVertexIndexBeyondEveryIntegerType) {
-    expectTriangleRefused("uchar float", "3 0 1 3.33333e32", "face 0: vertex index 3.33333e+32 out of range (3 vertices)");
+    expectTriangleRefused("uchar float", "3 0 1 3.33333e32",
+                          "face 0: vertex index 3.33333e+32 out of range (3 vertices)");
 }
 
 // fuzz_off: a face size of 2e9 allocated 8 GB for its indices before reading any of them

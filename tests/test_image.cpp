@@ -8,8 +8,8 @@
 
 #include <OpenEXR/ImfRgbaFile.h>
 #include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
 #include <png.h>
+#include <nlohmann/json.hpp>
 
 #include "TestMeshes.h"
 #include "render/ImageIO.h"
@@ -53,13 +53,13 @@ Pair handPair() {
     Pair p;
     p.test.at(0, 0) = {0.5f, 0.5f, 0.5f};
     p.reference.at(0, 0) = {0, 0, 1};  // errors .5 .5 .5
-    p.test.at(1, 0) = {kNaN, 0, 0};                                        // non-finite
-    p.test.at(2, 0) = {0, kInf, 0};                                        // non-finite
+    p.test.at(1, 0) = {kNaN, 0, 0};    // non-finite
+    p.test.at(2, 0) = {0, kInf, 0};    // non-finite
     p.test.at(0, 1) = {1, 1, 1};
     p.reference.at(0, 1) = {1, 1, 1};  // errors 0 0 0
     p.test.at(1, 1) = {1, 2, 3};
     p.reference.at(1, 1) = {1, 1, 1};  // errors 0 1 2: the largest
-    p.test.at(2, 1) = {0, 0, 0};                                           // errors 0 0 0
+    p.test.at(2, 1) = {0, 0, 0};       // errors 0 0 0
     return p;
 }
 // Over the 4 finite pixels, 12 samples.
@@ -144,7 +144,9 @@ TEST(Image, CompareRejectsMismatchAndNanReference) {
 }
 
 // The sRGB OETF, to 8 bits, as the preview should apply it.
-int srgb8(double v) { return int(std::lround(255 * (v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1 / 2.4) - 0.055))); }
+int srgb8(double v) {
+    return int(std::lround(255 * (v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1 / 2.4) - 0.055)));
+}
 
 TEST(Image, PngPreview) {
     Image image(4, 2);
@@ -211,11 +213,11 @@ TEST(Image, DiffCommandBadInputExitsWithOne) {
     const std::string corrupt = test::writeTemp("x.exr", "Dear diary,\ntoday I saw a fish.\n");
     const std::string small = test::tempDir() + "/small.exr";
     writeExr(small, Image(2, 2));
-    for (const auto& [args, expected] : std::vector<std::pair<std::string, std::string>>{
-             {missing + " " + good, missing},
-             {good + " " + missing, missing},
-             {corrupt + " " + good, corrupt},
-             {small + " " + good, "2x2"}}) {
+    for (const auto& [args, expected] :
+         std::vector<std::pair<std::string, std::string>>{{missing + " " + good, missing},
+                                                          {good + " " + missing, missing},
+                                                          {corrupt + " " + good, corrupt},
+                                                          {small + " " + good, "2x2"}}) {
         const auto r = test::runTetglow("diff " + args);
         EXPECT_EQ(r.exitCode, 1) << args << ": " << r.err;
         EXPECT_NE(r.err.find(expected), std::string::npos) << r.err;

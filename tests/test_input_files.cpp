@@ -1,15 +1,15 @@
 // Every reader goes through readInputFile: special files are refused at once (a FIFO used to
 // block, /dev/zero to read for ever), sizes are limited, and nesting cannot crash an error path.
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
 #include <chrono>
 #include <cstring>
-#include <fcntl.h>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <future>
-#include <sys/stat.h>
 #include <thread>
-#include <unistd.h>
 
 #include <gtest/gtest.h>
 
@@ -78,7 +78,8 @@ TEST(InputFiles, ReadsTheBytesUpToTheLimitExactly) {
 // /proc files claim size 0: the limit holds while reading, not only against what stat says.
 TEST(InputFiles, AFileWithoutASizeIsStillLimited) {
     EXPECT_EQ(readInputFile("/proc/self/comm", 4096, "a test file").back(), '\n');
-    const std::string error = errorOf([](const std::string& p) { readInputFile(p, 2, "a test file"); }, "/proc/self/comm");
+    const std::string error =
+        errorOf([](const std::string& p) { readInputFile(p, 2, "a test file"); }, "/proc/self/comm");
     EXPECT_EQ(error, "/proc/self/comm: more than 2 bytes, larger than the 2 bytes limit for a test file");
 }
 
@@ -128,8 +129,10 @@ TEST(InputFiles, IncludeAndPlymeshGoThroughTheSameChecks) {
     const std::string include = test::writeTemp("include.pbrt", "WorldBegin\nInclude \"part.pbrt\"\nWorldEnd\n");
     EXPECT_EQ(errorOf([](const std::string& p) { loadPbrtScene(p); }, include),
               include + ":2: Include: " + dir + "/part.pbrt: is a FIFO, not a regular file");
-    const std::string ply = test::writeTemp("ply.pbrt", "WorldBegin\nShape \"plymesh\" \"string filename\" \"mesh.ply\"\nWorldEnd\n");
-    EXPECT_NE(errorOf([](const std::string& p) { loadPbrtScene(p); }, ply).find(dir + "/mesh.ply: is a FIFO, not a regular file"),
+    const std::string ply =
+        test::writeTemp("ply.pbrt", "WorldBegin\nShape \"plymesh\" \"string filename\" \"mesh.ply\"\nWorldEnd\n");
+    EXPECT_NE(errorOf([](const std::string& p) { loadPbrtScene(p); }, ply)
+                  .find(dir + "/mesh.ply: is a FIFO, not a regular file"),
               std::string::npos);
 }
 
@@ -152,16 +155,18 @@ TEST(InputFiles, AnExrHeaderClaimingAHugeImageIsRefusedBeforeAllocating) {
     };
     EXPECT_NO_THROW(readExr(claim(4, 4)));
     const std::string tooMany = claim(10000, 10000);
-    EXPECT_EQ(errorOf([](const std::string& p) { readExr(p); }, tooMany),
-              tooMany + ": the header claims 10000 x 10000 pixels; at most 67108864 pixels (and 16384 per side) are read");
+    EXPECT_EQ(
+        errorOf([](const std::string& p) { readExr(p); }, tooMany),
+        tooMany + ": the header claims 10000 x 10000 pixels; at most 67108864 pixels (and 16384 per side) are read");
     const std::string tooWide = claim(100000, 1);
-    EXPECT_NE(errorOf([](const std::string& p) { readExr(p); }, tooWide).find(tooWide + ": cannot read: "), std::string::npos);
+    EXPECT_NE(errorOf([](const std::string& p) { readExr(p); }, tooWide).find(tooWide + ": cannot read: "),
+              std::string::npos);
 }
 
 // Printing a value in an error message recursed once per level: 100000 levels overflowed the stack.
 TEST(InputFiles, DeeplyNestedJsonIsAnErrorNotACrash) {
-    const std::string path = test::writeTemp(
-        "deep.json", "{\"camera\": " + std::string(100000, '[') + std::string(100000, ']') + "}");
+    const std::string path =
+        test::writeTemp("deep.json", "{\"camera\": " + std::string(100000, '[') + std::string(100000, ']') + "}");
     const auto r = test::runTetglow("render " + path);
     EXPECT_EQ(r.exitCode, 1) << r.err.substr(0, 300);
     EXPECT_NE(r.err.find(": /camera/0/0/0/"), std::string::npos) << r.err.substr(0, 300);

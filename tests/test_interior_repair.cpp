@@ -7,8 +7,8 @@
 #include <set>
 
 #include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
 #include <glm/geometric.hpp>
+#include <nlohmann/json.hpp>
 
 #include "TestMeshes.h"
 #include "scene/MeshFile.h"
@@ -43,13 +43,15 @@ size_t inputTrianglesOnBoundary(const TriangleMesh& input, const TetMesh& mesh) 
         std::sort(k.begin(), k.end());
         return k;
     };
-    for (const auto& s : mesh.surface) boundary.insert(key(mesh.vertices[s[0]], mesh.vertices[s[1]], mesh.vertices[s[2]]));
+    for (const auto& s : mesh.surface)
+        boundary.insert(key(mesh.vertices[s[0]], mesh.vertices[s[1]], mesh.vertices[s[2]]));
     const auto corner = [&](uint32_t t, int k) {  // as the tets have it: float
         const glm::dvec3 p = input.corner(t, k);
         return glm::dvec3(roundToFloat(p.x), roundToFloat(p.y), roundToFloat(p.z));
     };
     size_t n = 0;
-    for (uint32_t t = 0; t < input.triangles.size(); ++t) n += boundary.count(key(corner(t, 0), corner(t, 1), corner(t, 2)));
+    for (uint32_t t = 0; t < input.triangles.size(); ++t)
+        n += boundary.count(key(corner(t, 0), corner(t, 1), corner(t, 2)));
     return n;
 }
 
@@ -57,8 +59,8 @@ TEST(WindingNumber, ExactVersusTree) {
     const TriangleMesh sphere = icosphere(4);
     const TriangleMesh open = punch(sphere, {0, 0, 1}, 0.5);
     const WindingNumber closed(sphere), holed(open);
-    for (const glm::dvec3 p : {glm::dvec3(0), glm::dvec3(0.3, -0.2, 0.5), glm::dvec3(0, 0, 0.95), glm::dvec3(1.5, 0.2, 0),
-                               glm::dvec3(0.1, 0.1, 1.05), glm::dvec3(-0.7, 0.6, 0.1)}) {
+    for (const glm::dvec3 p : {glm::dvec3(0), glm::dvec3(0.3, -0.2, 0.5), glm::dvec3(0, 0, 0.95),
+                               glm::dvec3(1.5, 0.2, 0), glm::dvec3(0.1, 0.1, 1.05), glm::dvec3(-0.7, 0.6, 0.1)}) {
         EXPECT_NEAR(closed.approximate(p), closed.exact(p), 2.5e-2) << p.x << " " << p.y << " " << p.z;
         EXPECT_NEAR(holed.approximate(p), holed.exact(p), 2.5e-2) << p.x << " " << p.y << " " << p.z;
     }
@@ -80,7 +82,7 @@ TEST(InteriorRepair, CleanMeshesTakeTheExactPath) {
 TEST(InteriorRepair, PunchedHolesLoseAtMostTheirCap) {
     const TriangleMesh sphere = icosphere(4);
     const double closed = signedVolume(sphere);
-    for (double angle : {0.05, 0.2, 0.5, 0.9}) {  // radians from +z
+    for (double angle : {0.05, 0.2, 0.5, 0.9}) {        // radians from +z
         const double radius = 2 * std::sin(angle / 2);  // chord from the pole to the hole's rim
         const TriangleMesh holed = punch(sphere, {0, 0, 1}, radius);
         ASSERT_LT(holed.triangles.size(), sphere.triangles.size()) << angle;
@@ -113,9 +115,9 @@ TEST(InteriorRepair, SharedMeshesWithHoles) {
         ASSERT_LT(holed.triangles.size(), closed.triangles.size()) << name;
         ValidationReport report;
         const TetMesh mesh = tets(holed, &report);
-        std::printf("%s, %zu of %zu triangles: volume closed %.9g, repaired %.9g (bound %.3g); %s\n", name, holed.triangles.size(),
-                    closed.triangles.size(), volume, mesh.volume(), 3 * 4.0 / 3 * M_PI * radius * radius * radius,
-                    report.repair.summary().c_str());
+        std::printf("%s, %zu of %zu triangles: volume closed %.9g, repaired %.9g (bound %.3g); %s\n", name,
+                    holed.triangles.size(), closed.triangles.size(), volume, mesh.volume(),
+                    3 * 4.0 / 3 * M_PI * radius * radius * radius, report.repair.summary().c_str());
         EXPECT_GE(report.repair.holes.size(), 3u) << name;
         EXPECT_NEAR(mesh.volume(), volume, 3 * 4.0 / 3 * M_PI * radius * radius * radius) << name;
         // All but the odd triangle that a punch leaves hanging by one edge (a fin: it encloses nothing).
@@ -160,7 +162,8 @@ TEST(InteriorRepair, CubesSharingOnlyAnEdgeKeepTheirVolume) {
 // of the constraints; the box beside them keeps its exact volume and triangles.
 TEST(InteriorRepair, TrianglesCgalCannotSplitLeaveTheRestExact) {
     TriangleMesh sheet;
-    sheet.positions = {{-2, 1, 0}, {3, 3, 0}, {3, -3, 0}, {-1, -3, 0}, {0, 3, 0}, {0, 0, 0}, {2, 0, 3}, {-2, -3, 0}, {-3, 3, 0}};
+    sheet.positions = {{-2, 1, 0}, {3, 3, 0}, {3, -3, 0},  {-1, -3, 0}, {0, 3, 0},
+                       {0, 0, 0},  {2, 0, 3}, {-2, -3, 0}, {-3, 3, 0}};
     sheet.triangles = {{0, 1, 2}, {3, 4, 5}, {1, 5, 6}, {6, 7, 8}};
     const TriangleMesh cube = box(glm::dvec3(10), glm::dvec3(20));
     ValidationReport report;
@@ -194,7 +197,7 @@ TEST(InteriorRepair, FlippedAndDuplicatedFaces) {
     TriangleMesh m = box();
     std::swap(m.triangles[0][1], m.triangles[0][2]);
     std::swap(m.triangles[5][1], m.triangles[5][2]);
-    m.triangles.push_back(m.triangles[7]);                                              // the same face again
+    m.triangles.push_back(m.triangles[7]);                                             // the same face again
     m.triangles.push_back({m.triangles[3][0], m.triangles[3][2], m.triangles[3][1]});  // and reversed
     ValidationReport report;
     const TetMesh mesh = tets(m, &report);
@@ -222,7 +225,8 @@ TEST(InteriorRepair, SheetsEncloseNoVolume) {
     TriangleMesh dome = sphere;  // the cap within 45 degrees of the pole, open
     dome.triangles.clear();
     for (uint32_t t = 0; t < sphere.triangles.size(); ++t)
-        if (sphere.corner(t, 0).z + sphere.corner(t, 1).z + sphere.corner(t, 2).z > 3 * std::cos(M_PI / 4)) dome.triangles.push_back(sphere.triangles[t]);
+        if (sphere.corner(t, 0).z + sphere.corner(t, 1).z + sphere.corner(t, 2).z > 3 * std::cos(M_PI / 4))
+            dome.triangles.push_back(sphere.triangles[t]);
     for (const TriangleMesh& m : {disk(glm::dvec3(0), {0, 0, 1}, 1, 32), quad({0, 0, 0}, {1, 0, 0}, {0, 1, 0}), dome}) {
         try {
             tets(m);

@@ -19,7 +19,9 @@ namespace {
 // Solid angle and form factor of the rectangle [0, a] x [0, b] in the plane z = h, seen from
 // the origin facing +z; both are odd in a and in b, so any rectangle in that plane is a sum
 // of four of them with signs.
-double cornerSolidAngle(double a, double b, double h) { return std::atan(a * b / (h * std::sqrt(a * a + b * b + h * h))); }
+double cornerSolidAngle(double a, double b, double h) {
+    return std::atan(a * b / (h * std::sqrt(a * a + b * b + h * h)));
+}
 double cornerFormFactor(double a, double b, double h) {
     const double A = a / h, B = b / h, sa = std::sqrt(1 + A * A), sb = std::sqrt(1 + B * B);
     return (A / sa * std::atan(B / sa) + B / sb * std::atan(A / sb)) / (2 * kPi);
@@ -31,7 +33,8 @@ double overRectangle(Corner&& f, double x0, double x1, double y0, double y1, dou
 
 // Receivers below the rectangle [-0.5, 0.5] x [-0.3, 0.3] at height h: (x, y, h).
 // The last is so far that the light samples by area.
-const glm::dvec3 kReceivers[] = {{0, 0, 1}, {0.5, 0.3, 0.4}, {2, -1, 0.7}, {0.1, 0.05, 0.05}, {0.2, 0.1, 1e-3}, {0.2, 0.1, 1e-8}, {30, 20, 1}, {100, 60, 1}};
+const glm::dvec3 kReceivers[] = {{0, 0, 1},        {0.5, 0.3, 0.4},  {2, -1, 0.7}, {0.1, 0.05, 0.05},
+                                 {0.2, 0.1, 1e-3}, {0.2, 0.1, 1e-8}, {30, 20, 1},  {100, 60, 1}};
 
 TEST(SphericalRectangle, SolidAngleMatchesClosedForm) {
     for (const glm::dvec3& r : kReceivers) {
@@ -65,7 +68,8 @@ TEST(SphericalRectangle, SamplesAreUniformInSolidAngle) {
         double chi2 = 0;
         for (int b = 0; b < n; ++b)
             for (int a = 0; a < n; ++a) {
-                const SphericalRectangle cell(o, corner + ex * (double(a) / n) + ey * (double(b) / n), ex / double(n), ey / double(n));
+                const SphericalRectangle cell(o, corner + ex * (double(a) / n) + ey * (double(b) / n), ex / double(n),
+                                              ey / double(n));
                 const double expected = samples * cell.solidAngle() / s.solidAngle();
                 chi2 += (count[b * n + a] - expected) * (count[b * n + a] - expected) / expected;
             }
@@ -103,7 +107,8 @@ TEST(SphericalRectangle, RectangleLightIrradianceMatchesClosedForm) {
             sum2 += e * e;
         }
         const double mean = sum / samples, se = std::sqrt(std::max(0.0, sum2 / samples - mean * mean) / samples);
-        const double exact = desc.radiance.x * kPi * overRectangle(cornerFormFactor, -0.3 - r.y, 0.3 - r.y, -0.5 - r.x, 0.5 - r.x, r.z);
+        const double exact =
+            desc.radiance.x * kPi * overRectangle(cornerFormFactor, -0.3 - r.y, 0.3 - r.y, -0.5 - r.x, 0.5 - r.x, r.z);
         EXPECT_NEAR(mean, exact, 4 * se + 1e-12) << r.x << " " << r.y << " " << r.z;
     }
 }
@@ -201,7 +206,8 @@ TEST(LightSelection, VolpathDirectLightOnAFloorMatchesClosedForm) {
         }
         const double F = overRectangle(cornerFormFactor, -0.5 - p.x, 0.5 - p.x, -0.3 - p.z, 0.3 - p.z, 1.0);
         for (int c = 0; c < 3; ++c) {
-            const double mean = sum[c] / samples, se = std::sqrt(std::max(0.0, sum2[c] / samples - mean * mean) / samples);
+            const double mean = sum[c] / samples,
+                         se = std::sqrt(std::max(0.0, sum2[c] / samples - mean * mean) / samples);
             const double exact = 0.5 * (quadLight.radiance[c] * F + sky.radiance[c] * (1 - F));
             EXPECT_NEAR(mean, exact, 4 * se) << p.x << " " << p.z << " channel " << c;
         }

@@ -27,11 +27,13 @@ TEST(LiveRender, AChangeInterruptsAPhotonPass) {
     live.restart(slow);
     std::this_thread::sleep_for(std::chrono::milliseconds(500));  // well into the first photon pass
     const uint64_t generation = live.restart(quick);
-    const double scale = std::getenv("TETGLOW_TEST_TIME_SCALE") ? std::atof(std::getenv("TETGLOW_TEST_TIME_SCALE")) : 1.0;
+    const double scale =
+        std::getenv("TETGLOW_TEST_TIME_SCALE") ? std::atof(std::getenv("TETGLOW_TEST_TIME_SCALE")) : 1.0;
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(20 * scale);
     while (std::chrono::steady_clock::now() < deadline && !(live.latest() && live.latest()->generation == generation))
         std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    ASSERT_TRUE(live.latest() && live.latest()->generation == generation) << "the change waited for the photon pass to finish";
+    ASSERT_TRUE(live.latest() && live.latest()->generation == generation)
+        << "the change waited for the photon pass to finish";
     EXPECT_EQ(live.error(), "");
 }
 

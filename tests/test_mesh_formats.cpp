@@ -7,8 +7,8 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
+#include <glm/geometric.hpp>
 
 #include "MeshWriters.h"
 #include "TestMeshes.h"
@@ -84,7 +84,9 @@ TEST(MeshFormats, BinaryStlIsToldBySize) {
     EXPECT_EQ(readMesh(test::writeTemp("a.stl", bytes)).triangles.size(), 12u);
     bytes.pop_back();
     const std::string path = test::writeTemp("b.stl", bytes);
-    EXPECT_EQ(readError(path), path + ": not an STL file: neither ASCII (text starting with 'solid') nor binary (84 + 50 n bytes for n triangles; this file has 683)");
+    EXPECT_EQ(readError(path), path +
+                                   ": not an STL file: neither ASCII (text starting with 'solid') nor binary (84 + 50 "
+                                   "n bytes for n triangles; this file has 683)");
 }
 
 // World positions of the corners of the unit cube [0, 1]^3 under a two-level glTF hierarchy,
@@ -104,13 +106,19 @@ std::string hierarchy(const std::string& name) {
     const std::string s = "0.70710678118654757";  // sin and cos of 45 degrees: a quaternion of 90
     const TriangleMesh cube = box(glm::dvec3(0), glm::dvec3(1));
     const TriangleMesh small = box(glm::dvec3(0), glm::dvec3(0.5));
-    const test::Gltf g = test::gltf(
-        {cube, small},
-        {{"Group", -1, {1, 2}, "\"translation\": [1, 2, 3], \"rotation\": [0, " + s + ", 0, " + s + "], \"scale\": [2, 2, 2]"},
-         {"Body", 0, {}, "\"translation\": [0, 1, 0], \"rotation\": [0, 0, " + s + ", " + s + "], \"scale\": [1, 0.5, 1]"},
-         // A mirror: its winding must be reversed so that it still faces out.
-         {"Fin", 1, {}, "\"matrix\": [-1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 5, 0, 0, 1]"}},
-        {0}, "");
+    const test::Gltf g =
+        test::gltf({cube, small},
+                   {{"Group",
+                     -1,
+                     {1, 2},
+                     "\"translation\": [1, 2, 3], \"rotation\": [0, " + s + ", 0, " + s + "], \"scale\": [2, 2, 2]"},
+                    {"Body",
+                     0,
+                     {},
+                     "\"translation\": [0, 1, 0], \"rotation\": [0, 0, " + s + ", " + s + "], \"scale\": [1, 0.5, 1]"},
+                    // A mirror: its winding must be reversed so that it still faces out.
+                    {"Fin", 1, {}, "\"matrix\": [-1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 5, 0, 0, 1]"}},
+                   {0}, "");
     return test::writeTemp(name, test::glb(g));
 }
 
@@ -153,7 +161,8 @@ TEST(MeshFormats, GltfNodesArePlacedWhereBlenderPlacesThem) {
         // A box's corners are every combination of its bounds.
         for (const auto& p : mesh.positions)
             for (int k = 0; k < 3; ++k)
-                EXPECT_LT(std::min(std::abs(p[k] - expected.lo[k]), std::abs(p[k] - expected.hi[k])), 2e-6) << node << " axis " << k;
+                EXPECT_LT(std::min(std::abs(p[k] - expected.lo[k]), std::abs(p[k] - expected.hi[k])), 2e-6)
+                    << node << " axis " << k;
         const Bounds3 b = bounds(mesh);
         for (int k = 0; k < 3; ++k) {
             EXPECT_NEAR(b.lo[k], expected.lo[k], 2e-6) << node << " axis " << k;
@@ -196,7 +205,8 @@ TEST(MeshFormats, ASceneMeshShapeReadsAnyFormatAndNamesANode) {
         loadScene(bad);
         ADD_FAILURE() << "no error";
     } catch (const InputError& e) {
-        EXPECT_EQ(std::string(e.what()), bad + ": /media/0/shape/file: " + glb + ": no node named 'Tail' (nodes with meshes: 'Body', 'Fin')");
+        EXPECT_EQ(std::string(e.what()),
+                  bad + ": /media/0/shape/file: " + glb + ": no node named 'Tail' (nodes with meshes: 'Body', 'Fin')");
     }
 }
 
@@ -226,7 +236,8 @@ TEST(MeshFormats, AGltfNestedTooDeepIsAnErrorNotACrash) {
     json.insert(json.size() - 1, ", \"extras\": " + std::string(depth, '[') + std::string(depth, ']'));
     test::writeTemp("deep/box.bin", g.bin);
     const std::string path = test::writeTemp("deep/box.gltf", json);
-    EXPECT_EQ(readError(path).rfind(path + ": the gltf importer (Assimp) crashed on this file (", 0), 0u) << readError(path);
+    EXPECT_EQ(readError(path).rfind(path + ": the gltf importer (Assimp) crashed on this file (", 0), 0u)
+        << readError(path);
 }
 
 // Broken files: one line that starts with the file's name, for every format.
@@ -250,12 +261,17 @@ TEST(MeshFormats, BrokenFilesAreOneLineErrors) {
         {{"bad.ply", plyOutOfRange}, ": face 5: vertex index 9 out of range (8 vertices)"},
         {{"strip.ply", stripOutOfRange}, ": strip 0: vertex index -2 out of range (8 vertices)"},
         {{"half.stl", stlTruncated}, ":44: the ASCII STL file ends inside a solid (no 'endsolid')"},
-        {{"nothing.stl", std::string(100, '\x01')}, ": not an STL file: neither ASCII (text starting with 'solid') nor binary (84 + 50 n bytes for n triangles; this file has 100)"},
+        {{"nothing.stl", std::string(100, '\x01')},
+         ": not an STL file: neither ASCII (text starting with 'solid') nor binary (84 + 50 n bytes for n triangles; "
+         "this file has 100)"},
         {{"nobin.gltf", g.json}, ": " + test::tempDir() + "/broken/missing.bin: no such file"},
-        {{"short.glb", glbTruncated}, ": cannot read the glb file: No suitable reader found for the file format of file \"" + test::tempDir() + "/broken/short.glb\""},
+        {{"short.glb", glbTruncated},
+         ": cannot read the glb file: No suitable reader found for the file format of file \"" + test::tempDir() +
+             "/broken/short.glb\""},
         {{"broken.dae", daeBroken}, ": cannot read the dae file: "},
         {{"broken.fbx", "; FBX 7.4.0 project file\nObjects:  {\n"}, ": cannot read the fbx file: "},
-        {{"random.bin", std::string("\x7f\x01\x02garbage", 10)}, ": binary file, not a mesh tetglow reads (OBJ, OFF, PLY, STL, glTF, GLB, FBX, Collada)"},
+        {{"random.bin", std::string("\x7f\x01\x02garbage", 10)},
+         ": binary file, not a mesh tetglow reads (OBJ, OFF, PLY, STL, glTF, GLB, FBX, Collada)"},
     };
     for (const auto& [sample, expected] : cases) {
         const std::string path = test::writeTemp("broken/" + sample.name, sample.bytes);
@@ -268,7 +284,8 @@ TEST(MeshFormats, BrokenFilesAreOneLineErrors) {
 // A node name for a format without nodes is an error, not ignored.
 TEST(MeshFormats, OnlySceneFormatsHaveNodes) {
     const std::string path = test::writeTemp("box.obj", test::objText(test::boxQuads()));
-    EXPECT_EQ(readError(path, "Body"), path + ": an OBJ file has no nodes to choose 'Body' from (only glTF, GLB, FBX and Collada files have)");
+    EXPECT_EQ(readError(path, "Body"),
+              path + ": an OBJ file has no nodes to choose 'Body' from (only glTF, GLB, FBX and Collada files have)");
 }
 
 // An element without properties takes no bytes, so its count bounds nothing: pbrt's plymesh
@@ -277,10 +294,12 @@ TEST(MeshFormats, APlyElementWithoutPropertiesIsNotCountedThrough) {
     std::string ply = test::plyAscii(test::boxQuads());
     ply.replace(ply.find("end_header"), 0, "element nothing 1000000000000000000\n");
     test::writeTemp("empty-element/box.ply", ply);
-    const std::string scene = test::writeTemp("empty-element/box.pbrt",
-                                              "LookAt 0 0 10 0 0 0 0 1 0\nCamera \"perspective\"\nWorldBegin\nLightSource \"infinite\"\n"
-                                              "Shape \"plymesh\" \"string filename\" \"box.ply\"\nWorldEnd\n");
-    const test::CommandResult r = test::runTetglow("convert '" + scene + "' -o '" + test::tempDir() + "/empty-element/out.json'", 20);
+    const std::string scene =
+        test::writeTemp("empty-element/box.pbrt",
+                        "LookAt 0 0 10 0 0 0 0 1 0\nCamera \"perspective\"\nWorldBegin\nLightSource \"infinite\"\n"
+                        "Shape \"plymesh\" \"string filename\" \"box.ply\"\nWorldEnd\n");
+    const test::CommandResult r =
+        test::runTetglow("convert '" + scene + "' -o '" + test::tempDir() + "/empty-element/out.json'", 20);
     EXPECT_EQ(r.exitCode, 0) << r.err;
 }
 

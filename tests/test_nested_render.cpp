@@ -90,7 +90,8 @@ TEST(NestedRender, TransmittanceThroughNestedSpheresAndACavityIsTheClosedForm) {
         through += exact > 0;
         worst = std::max(worst, std::abs(tr.x / std::exp(-exact) - 1));
     }
-    std::printf("worst relative transmittance error %.2e over %d lines (%d through the media)\n", worst, kLines, through);
+    std::printf("worst relative transmittance error %.2e over %d lines (%d through the media)\n", worst, kLines,
+                through);
     EXPECT_LE(worst, 1e-9);
     EXPECT_GT(through, kLines / 2);
 }
@@ -131,7 +132,8 @@ TEST(NestedRender, EachRegionHasItsOwnDensity) {
         const double z = u(gen), a = angle(gen);
         const glm::dvec3 d(std::cos(a), std::sin(a), 0), o = glm::dvec3(u(gen), u(gen), z) - 2.0 * d;
         const Ray ray{o, d};
-        const double core = convexChord(desc.media[1].boundary, ray), body = convexChord(desc.media[0].boundary, ray) - core;
+        const double core = convexChord(desc.media[1].boundary, ray),
+                     body = convexChord(desc.media[0].boundary, ray) - core;
         const double exact = std::exp(-(0.5 * body + 1.5 * (1 + 2 * z) * core));
         worst = std::max(worst, std::abs(transmittance(scene, ray, INFINITY, {}).x / exact - 1));
     }
@@ -152,7 +154,8 @@ TEST(NestedRender, TouchingBoxesShareAFaceExactly) {
         // Along x at a random height, and slanted across the shared face.
         const glm::dvec3 o(-3, u(gen), u(gen)), target(3, u(gen), u(gen));
         const Ray ray{o, glm::normalize(target - o)};
-        const double exact = std::exp(-(0.8 * convexChord(desc.media[0].boundary, ray) + 0.3 * convexChord(desc.media[1].boundary, ray)));
+        const double exact = std::exp(
+            -(0.8 * convexChord(desc.media[0].boundary, ray) + 0.3 * convexChord(desc.media[1].boundary, ray)));
         EXPECT_NEAR(transmittance(scene, ray, INFINITY, {}).x / exact, 1, 1e-12);
         EXPECT_NEAR(volpath.radiance(ray, rng).x / exact, 1, 1e-12);
     }
@@ -182,7 +185,8 @@ TEST(NestedRender, ACoreInADielectricSkinIsTheMultilayer) {
     desc.media[0].boundaryMaterial = {MaterialType::Dielectric, RGB(0.5), 1.5};
     desc.media.push_back(absorber("core", box(glm::dvec3(-0.5), glm::dvec3(0.5)), 0.6));
     desc.media[1].boundaryMaterial = {MaterialType::Dielectric, RGB(0.5), 2.0};
-    desc.media.push_back(absorber("heart", box(glm::dvec3(-0.25), glm::dvec3(0.25)), 1.5));  // index-matched to the core
+    desc.media.push_back(
+        absorber("heart", box(glm::dvec3(-0.25), glm::dvec3(0.25)), 1.5));  // index-matched to the core
     desc.lights.push_back(environment(1));
     const Scene scene(desc);
     const SceneVolume& v = scene.volumes()[0];
@@ -191,8 +195,9 @@ TEST(NestedRender, ACoreInADielectricSkinIsTheMultilayer) {
         const MaterialDesc& m = v.materials[v.triangleMaterial[s]];
         const auto [behind, front] = mesh.surfaceRegions[s];
         // The heart is index-matched to the core, the core's face a dielectric of 2 / 1.5.
-        const MaterialDesc expected = behind == 2 ? MaterialDesc{MaterialType::Interface}
-                                                  : MaterialDesc{MaterialType::Dielectric, RGB(0.5), behind == 1 ? 2.0 / 1.5 : 1.5};
+        const MaterialDesc expected =
+            behind == 2 ? MaterialDesc{MaterialType::Interface}
+                        : MaterialDesc{MaterialType::Dielectric, RGB(0.5), behind == 1 ? 2.0 / 1.5 : 1.5};
         EXPECT_EQ(m.type, expected.type) << "triangle " << s << " behind region " << behind << ", front " << front;
         if (m.type == MaterialType::Dielectric) {
             EXPECT_DOUBLE_EQ(m.ior, expected.ior);
@@ -222,8 +227,8 @@ TEST(NestedRender, ACoreInADielectricSkinIsTheMultilayer) {
             squares += L * L;
         }
         const double mean = sum / kSamples, error = std::sqrt((squares / kSamples - mean * mean) / kSamples);
-        std::printf("skin and cores, %s: %.5f +- %.5f, multilayer %.5f\n", std::string(nameOf(kIntegratorNames, type)).c_str(), mean,
-                    error, exact);
+        std::printf("skin and cores, %s: %.5f +- %.5f, multilayer %.5f\n",
+                    std::string(nameOf(kIntegratorNames, type)).c_str(), mean, error, exact);
         EXPECT_NEAR(mean, exact, 4 * error + 1e-12);
         EXPECT_GT(error, 0);  // the Fresnel choices are random: the test has noise to compare
     }
@@ -326,8 +331,8 @@ void expectEnergyBalance(const SceneDesc& desc) {
     const EnergyBalance& e = traced.energy;
     for (int c = 0; c < 3; ++c) {
         const double accounted = e.absorbedInMedia[c] + e.absorbedOnSurfaces[c] + e.escaped[c] + e.cut[c];
-        std::printf("channel %d: emitted %.5f, absorbed in media %.5f, escaped %.5f, cut %.5f, +- %.5f\n", c, e.emitted[c],
-                    e.absorbedInMedia[c], e.escaped[c], e.cut[c], std::sqrt(e.deficitSquares[c]));
+        std::printf("channel %d: emitted %.5f, absorbed in media %.5f, escaped %.5f, cut %.5f, +- %.5f\n", c,
+                    e.emitted[c], e.absorbedInMedia[c], e.escaped[c], e.cut[c], std::sqrt(e.deficitSquares[c]));
         EXPECT_NEAR(accounted, e.emitted[c], 3 * std::sqrt(e.deficitSquares[c]));
         EXPECT_NEAR(e.emitted[c], source.totalPower()[c], 0.02 * source.totalPower()[c]);
     }
@@ -361,13 +366,16 @@ TEST(NestedRender, OnlyVolumesNoShadowRayLeavesAreSealed) {
         bool sealed, reaches;
     };
     const glm::dvec3 above(0.3, 3, 0.2), within(0.2, 0.1, 0.7);
-    for (const Case& c : {Case{"dielectric", MaterialType::Dielectric, above, {}, true, false},
-                          Case{"index-matched", MaterialType::Interface, above, {}, false, true},
-                          Case{"light inside", MaterialType::Dielectric, within, {}, false, true},
-                          Case{"in a dielectric box", MaterialType::Interface, above, MaterialType::Dielectric, true, false},
-                          Case{"in an index-matched box", MaterialType::Dielectric, above, MaterialType::Interface, false, false}}) {
+    for (const Case& c :
+         {Case{"dielectric", MaterialType::Dielectric, above, {}, true, false},
+          Case{"index-matched", MaterialType::Interface, above, {}, false, true},
+          Case{"light inside", MaterialType::Dielectric, within, {}, false, true},
+          Case{"in a dielectric box", MaterialType::Interface, above, MaterialType::Dielectric, true, false},
+          Case{"in an index-matched box", MaterialType::Dielectric, above, MaterialType::Interface, false, false}}) {
         SceneDesc desc = sceneWith(sphereMedium(RGB(0.1), RGB(1)), 8);
-        const auto material = [](MaterialType t) { return MaterialDesc{t, RGB(0.5), t == MaterialType::Dielectric ? 1.5 : 1.0}; };
+        const auto material = [](MaterialType t) {
+            return MaterialDesc{t, RGB(0.5), t == MaterialType::Dielectric ? 1.5 : 1.0};
+        };
         desc.media[0].boundaryMaterial = material(c.sphere);
         if (c.outerBox) {
             desc.media.push_back(absorber("box", box(glm::dvec3(-2), glm::dvec3(2)), 0.1));

@@ -85,7 +85,8 @@ TEST(NoiseEstimate, NoiseTargetStopsAtTheSamePassOnAnyThreadCount) {
     EXPECT_LT(one.passes, 1000);
     EXPECT_LE(*one.noise, 0.01);
     EXPECT_EQ(one.passes, two.passes);
-    EXPECT_EQ(0, std::memcmp(one.image.pixels.data(), two.image.pixels.data(), one.image.pixels.size() * sizeof(one.image.pixels[0])));
+    EXPECT_EQ(0, std::memcmp(one.image.pixels.data(), two.image.pixels.data(),
+                             one.image.pixels.size() * sizeof(one.image.pixels[0])));
 }
 
 }  // namespace

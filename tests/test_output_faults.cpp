@@ -60,21 +60,24 @@ TEST(OutputFaults, DiskFullAfterTheExrLeavesBothOldOutputs) {
     ASSERT_EQ(runTetglow(common + " --resolution 160x160 --seed 2 -o " + dir + "/new.exr").exitCode, 0);
     ASSERT_GT(pages(dir + "/new.png"), 4u) << "the PNG must span pages for the disk to fill in its middle";
     // Room for the old outputs, the new EXR and half the new PNG.
-    const size_t room = pages(dir + "/old.exr") + pages(dir + "/old.png") + pages(dir + "/new.exr") + pages(dir + "/new.png") / 2;
+    const size_t room =
+        pages(dir + "/old.exr") + pages(dir + "/old.png") + pages(dir + "/new.exr") + pages(dir + "/new.png") / 2;
     const Tmpfs tmpfs(disk, "size=" + std::to_string(room * 4096));
     if (!tmpfs.mounted()) GTEST_SKIP() << "cannot mount a tmpfs here (needs root)";
     fs::copy_file(dir + "/old.exr", disk + "/out.exr");
     fs::copy_file(dir + "/old.png", disk + "/out.png");
     const auto r = runTetglow(common + " --resolution 160x160 --seed 2 -o " + disk + "/out.exr");
     expectOneLineError(r, 1, disk + "/out.png: cannot write: ");
-    EXPECT_TRUE(readFile(disk + "/out.exr") == readFile(dir + "/old.exr")) << "the new EXR replaced the old one although the command failed";
+    EXPECT_TRUE(readFile(disk + "/out.exr") == readFile(dir + "/old.exr"))
+        << "the new EXR replaced the old one although the command failed";
     EXPECT_TRUE(readFile(disk + "/out.png") == readFile(dir + "/old.png")) << "the PNG was replaced";
     EXPECT_EQ(temporaries(disk), std::vector<std::string>());
 }
 
 // Starts `tetglow args...` (the binary runTetglow runs), stderr to `log`; its pid.
 pid_t start(const std::vector<std::string>& args, const std::string& log) {
-    std::vector<std::string> argv = {std::getenv("TETGLOW_TEST_BINARY") ? std::getenv("TETGLOW_TEST_BINARY") : TETGLOW_BINARY};
+    std::vector<std::string> argv = {std::getenv("TETGLOW_TEST_BINARY") ? std::getenv("TETGLOW_TEST_BINARY")
+                                                                        : TETGLOW_BINARY};
     argv.insert(argv.end(), args.begin(), args.end());
     std::vector<char*> pointers;
     for (auto& a : argv) pointers.push_back(a.data());
@@ -100,9 +103,11 @@ TEST(OutputFaults, CtrlCWhileTheExrIsWrittenKeepsTheImageAndNoTemporary) {
     const std::string dir = tempDir(), out = dir + "/big.exr";
     ::setenv("TETGLOW_CACHE_DIR", (dir + "/cache").c_str(), 1);
     // A large image at one sample: the EXR takes long enough to write that the signal lands in it.
-    const pid_t pid = start({"render", kSphere, "--resolution", "2048x2048", "--spp", "1", "--max-depth", "1", "-o", out}, dir + "/log");
+    const pid_t pid = start(
+        {"render", kSphere, "--resolution", "2048x2048", "--spp", "1", "--max-depth", "1", "-o", out}, dir + "/log");
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(300);
-    while (temporaries(dir).empty() && std::chrono::steady_clock::now() < deadline) std::this_thread::sleep_for(std::chrono::microseconds(200));
+    while (temporaries(dir).empty() && std::chrono::steady_clock::now() < deadline)
+        std::this_thread::sleep_for(std::chrono::microseconds(200));
     ASSERT_FALSE(temporaries(dir).empty()) << "no temporary appeared: " << readFile(dir + "/log");
     ::kill(pid, SIGINT);
     EXPECT_EQ(finish(pid), 130) << readFile(dir + "/log");

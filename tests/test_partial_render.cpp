@@ -28,7 +28,22 @@ using Split = std::vector<std::pair<int, int>>;
 const std::vector<Split> kSplits = {
     {{0, 16}},
     {{0, 2}, {2, 11}, {11, 16}},
-    {{0, 1}, {1, 2}, {2, 3}, {3, 4}, {4, 5}, {5, 6}, {6, 7}, {7, 8}, {8, 9}, {9, 10}, {10, 11}, {11, 12}, {12, 13}, {13, 14}, {14, 15}, {15, 16}},
+    {{0, 1},
+     {1, 2},
+     {2, 3},
+     {3, 4},
+     {4, 5},
+     {5, 6},
+     {6, 7},
+     {7, 8},
+     {8, 9},
+     {9, 10},
+     {10, 11},
+     {11, 12},
+     {12, 13},
+     {13, 14},
+     {14, 15},
+     {15, 16}},
 };
 
 // The renderer itself: the films of the parts, merged in any order, are the single render's.
@@ -63,7 +78,8 @@ TEST(PartialRender, MergedFilmsAreTheSingleRenderBitForBit) {
                 }
                 ASSERT_TRUE(merged.merge(part.film));
             }
-            EXPECT_TRUE(sameBits(merged.image(), single.image)) << nameOf(kIntegratorNames, type) << ", " << split.size() << " parts";
+            EXPECT_TRUE(sameBits(merged.image(), single.image))
+                << nameOf(kIntegratorNames, type) << ", " << split.size() << " parts";
             for (size_t i = 0; i < merged.pixelCount(); ++i) ASSERT_EQ(merged.sum(i), single.film.sum(i)) << i;
         }
         float brightest = 0;
@@ -76,20 +92,23 @@ TEST(PartialRender, MergedFilmsAreTheSingleRenderBitForBit) {
 TEST(PartialRender, MergeOfAnySplitIsTheRenderedFile) {
     const std::string dir = tempDir();
     for (const char* integrator : {"volpath", "photon"}) {
-        const std::string common = "render " + kSphere + " --resolution 16x12 --spp 16 --seed 3 --photons 3000 --integrator " + integrator;
+        const std::string common =
+            "render " + kSphere + " --resolution 16x12 --spp 16 --seed 3 --photons 3000 --integrator " + integrator;
         const auto single = runTetglow(common + " -o " + dir + "/single.exr");
         ASSERT_EQ(single.exitCode, 0) << single.err;
         for (const Split& split : kSplits) {
             std::string parts;
             for (const auto& [a, b] : split) {
                 const std::string part = dir + "/part-" + std::to_string(a) + ".exr";
-                const auto r = runTetglow(common + " --threads 2 --pass-range " + std::to_string(a) + ":" + std::to_string(b) + " -o " + part);
+                const auto r = runTetglow(common + " --threads 2 --pass-range " + std::to_string(a) + ":" +
+                                          std::to_string(b) + " -o " + part);
                 ASSERT_EQ(r.exitCode, 0) << r.err;
                 parts += " " + part;
             }
             const auto m = runTetglow("merge" + parts + " -o " + dir + "/merged.exr");
             ASSERT_EQ(m.exitCode, 0) << m.err;
-            EXPECT_EQ(readFile(dir + "/merged.exr"), readFile(dir + "/single.exr")) << integrator << ", " << split.size() << " parts";
+            EXPECT_EQ(readFile(dir + "/merged.exr"), readFile(dir + "/single.exr"))
+                << integrator << ", " << split.size() << " parts";
             EXPECT_TRUE(std::filesystem::exists(dir + "/merged.png"));
         }
     }
@@ -104,7 +123,8 @@ TEST(PartialRender, MergeRefusesPartsThatAreNotOneRender) {
         EXPECT_EQ(r.exitCode, 0) << r.err;
         return path;
     };
-    const std::string a = part("a", "0:3"), b = part("b", "3:6"), overlap = part("overlap", "2:5"), tail = part("tail", "5:6");
+    const std::string a = part("a", "0:3"), b = part("b", "3:6"), overlap = part("overlap", "2:5"),
+                      tail = part("tail", "5:6");
     const std::string seed = part("seed", "3:6", " --spp 6 --seed 7"), spp = part("spp", "3:6", " --spp 7");
     ASSERT_EQ(runTetglow(common + " --spp 6 -o " + dir + "/whole.exr").exitCode, 0);
     struct Case {
@@ -140,7 +160,8 @@ TEST(PartialRender, MergeRefusesPartsThatAreNotOneRender) {
 
 TEST(PartialRender, RefusesTimeLimitsAndBadRanges) {
     const std::string dir = tempDir(), common = "render " + kSphere + " --resolution 8x6 --spp 6 -o " + dir + "/p.exr";
-    for (const char* bad : {" --pass-range 0:3 --time 1", " --pass-range 3:3", " --pass-range 0:7", " --pass-range 2", " --pass-range -1:2"}) {
+    for (const char* bad : {" --pass-range 0:3 --time 1", " --pass-range 3:3", " --pass-range 0:7", " --pass-range 2",
+                            " --pass-range -1:2"}) {
         const auto r = runTetglow(common + bad);
         EXPECT_EQ(r.exitCode, 2) << bad;
         EXPECT_NE(r.err.find("--"), std::string::npos) << r.err;
@@ -162,8 +183,9 @@ TEST(PartialRender, MergeRefusesPartsOfAnotherBuild) {
     part.info.build = std::string(40, '0');
     writePartial(other, part);
     expectOneLineError(runTetglow("merge " + a + " " + other + " -o " + dir + "/out.exr"), 1,
-                       other + ": made by another tetglow build than " + a + " (build 0000000000000000000000000000000000000000 vs " +
-                           readPartial(a).info.build + "): render every part with one binary");
+                       other + ": made by another tetglow build than " + a +
+                           " (build 0000000000000000000000000000000000000000 vs " + readPartial(a).info.build +
+                           "): render every part with one binary");
     EXPECT_FALSE(std::filesystem::exists(dir + "/out.exr"));
     EXPECT_EQ(runTetglow("merge " + a + " " + b + " -o " + dir + "/out.exr").exitCode, 0);
 }
@@ -172,9 +194,11 @@ TEST(PartialRender, MergeRefusesPartsOfAnotherBuild) {
 long mergePeakKiB(const std::string& args) {
     const std::string dir = tempDir(), report = dir + "/peak";
     const char* binary = std::getenv("TETGLOW_TEST_BINARY") ? std::getenv("TETGLOW_TEST_BINARY") : TETGLOW_BINARY;
-    const std::string command = "python3 -c 'import resource, subprocess, sys; subprocess.run(sys.argv[1:], stdout=subprocess.DEVNULL, check=True); "
-                                "print(resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss)' " +
-                                std::string(binary) + " merge " + args + " > " + report;
+    const std::string command =
+        "python3 -c 'import resource, subprocess, sys; subprocess.run(sys.argv[1:], stdout=subprocess.DEVNULL, "
+        "check=True); "
+        "print(resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss)' " +
+        std::string(binary) + " merge " + args + " > " + report;
     EXPECT_EQ(std::system(command.c_str()), 0) << command;
     const std::string peak = readFile(report);
     return peak.empty() ? 0 : std::stol(peak);
@@ -183,19 +207,25 @@ long mergePeakKiB(const std::string& args) {
 // 16 parts of a 256x256 frame (about 4 MB of film each): merge holds one film and one part at a
 // time, so its memory is that of merging one part, not 16 times as much.
 TEST(PartialRender, MergeMemoryDoesNotGrowWithTheParts) {
-    if (test::kAddressSanitizer) GTEST_SKIP() << "AddressSanitizer keeps freed films resident: the Release suite checks this bound";
-    const std::string dir = tempDir(), common = "render " + kSphere + " --resolution 256x256 --integrator single --step 0.2";
+    if (test::kAddressSanitizer)
+        GTEST_SKIP() << "AddressSanitizer keeps freed films resident: the Release suite checks this bound";
+    const std::string dir = tempDir(),
+                      common = "render " + kSphere + " --resolution 256x256 --integrator single --step 0.2";
     std::string parts;
     for (int p = 0; p < 16; ++p) {
         const std::string part = dir + "/p" + std::to_string(p) + ".exr";
-        ASSERT_EQ(runTetglow(common + " --spp 16 --pass-range " + std::to_string(p) + ":" + std::to_string(p + 1) + " -o " + part).exitCode, 0);
+        ASSERT_EQ(runTetglow(common + " --spp 16 --pass-range " + std::to_string(p) + ":" + std::to_string(p + 1) +
+                             " -o " + part)
+                      .exitCode,
+                  0);
         parts += " " + part;
     }
     ASSERT_EQ(runTetglow(common + " --spp 1 --pass-range 0:1 -o " + dir + "/one.exr").exitCode, 0);
     const long one = mergePeakKiB(dir + "/one.exr -o " + dir + "/one-merged.exr");
     const long sixteen = mergePeakKiB(parts + " -o " + dir + "/merged.exr");
     const long film = 256 * 256 * long(kFilmBytesPerPixel) / 1024;
-    EXPECT_LT(sixteen, one + 3 * film) << "merging 16 parts took " << sixteen << " KiB, one part " << one << " KiB; a film is " << film << " KiB";
+    EXPECT_LT(sixteen, one + 3 * film) << "merging 16 parts took " << sixteen << " KiB, one part " << one
+                                       << " KiB; a film is " << film << " KiB";
 }
 
 // A turntable: frames differ, frame 0 is the still, and each frame splits and merges alike.
@@ -211,8 +241,12 @@ TEST(PartialRender, TurntableFramesSplitAndMerge) {
     EXPECT_EQ(readFile(dir + "/f0.exr"), readFile(dir + "/still.exr"));
     EXPECT_NE(readFile(dir + "/f1.exr"), readFile(dir + "/f0.exr"));
     for (const char* range : {"0:1", "1:4"})
-        ASSERT_EQ(runTetglow("render " + path + common + " --frame 1 --pass-range " + range + " -o " + dir + "/p" + range[0] + ".exr").exitCode, 0);
-    ASSERT_EQ(runTetglow("render " + path + common + " --frame 2 --pass-range 1:4 -o " + dir + "/other.exr").exitCode, 0);
+        ASSERT_EQ(runTetglow("render " + path + common + " --frame 1 --pass-range " + range + " -o " + dir + "/p" +
+                             range[0] + ".exr")
+                      .exitCode,
+                  0);
+    ASSERT_EQ(runTetglow("render " + path + common + " --frame 2 --pass-range 1:4 -o " + dir + "/other.exr").exitCode,
+              0);
     ASSERT_EQ(runTetglow("merge " + dir + "/p0.exr " + dir + "/p1.exr -o " + dir + "/m1.exr").exitCode, 0);
     EXPECT_EQ(readFile(dir + "/m1.exr"), readFile(dir + "/f1.exr"));
     const auto mixed = runTetglow("merge " + dir + "/p0.exr " + dir + "/other.exr -o " + dir + "/bad.exr");

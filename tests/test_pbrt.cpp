@@ -13,18 +13,22 @@ namespace tetglow {
 namespace {
 
 // A closed unit cube around the origin, wound outward.
-const std::string kCube = R"("point P" [-0.5 -0.5 -0.5  0.5 -0.5 -0.5  0.5 0.5 -0.5  -0.5 0.5 -0.5  -0.5 -0.5 0.5  0.5 -0.5 0.5  0.5 0.5 0.5  -0.5 0.5 0.5]
+const std::string kCube =
+    R"("point P" [-0.5 -0.5 -0.5  0.5 -0.5 -0.5  0.5 0.5 -0.5  -0.5 0.5 -0.5  -0.5 -0.5 0.5  0.5 -0.5 0.5  0.5 0.5 0.5  -0.5 0.5 0.5]
     "integer indices" [0 2 1 0 3 2  4 5 6 4 6 7  0 1 5 0 5 4  2 3 7 2 7 6  1 2 6 1 6 5  0 4 7 0 7 3])";
 
 TEST(Pbrt, EveryDirectiveIsRead) {
-    test::writeTemp("parts/lights.pbrt", R"(# included by world.pbrt, named relative to scene.pbrt's folder (pbrt-v3's rule, the fallback)
+    test::writeTemp("parts/lights.pbrt",
+                    R"(# included by world.pbrt, named relative to scene.pbrt's folder (pbrt-v3's rule, the fallback)
 LightSource "spot" "color I" [5 5 5] "point from" [0 3 0] "point to" [0 0 0] "float coneangle" 40 "float conedeltaangle" 8
 )");
     test::writeTemp("parts/world.pbrt", R"(LightSource "point" "rgb I" [1 2 3]
 Include "parts/lights.pbrt"
 )");
-    test::writeTemp("meshes/tri.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
-                            "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+    test::writeTemp(
+        "meshes/tri.ply",
+        "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+        "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
     const std::string path = test::writeTemp("scene.pbrt", R"(# every directive tetglow reads
 Scale -1 1 1
 LookAt 0 1 6  0 0.5 0  0 1 0
@@ -87,8 +91,8 @@ WorldEnd
     EXPECT_EQ(s.camera.handedness, Handedness::Right);  // Scale -1 1 1 undoes pbrt's mirror
     EXPECT_EQ(s.output, "out/render.exr");              // pbrt-v3: relative to where it runs
     EXPECT_EQ(s.integrator.type, IntegratorType::VolPath);
-    EXPECT_EQ(s.integrator.spp, 16);       // sobol rounds 12 up to a power of two
-    EXPECT_EQ(s.integrator.maxDepth, 8);   // pbrt's 7 scattering events, and the one that ends the path
+    EXPECT_EQ(s.integrator.spp, 16);      // sobol rounds 12 up to a power of two
+    EXPECT_EQ(s.integrator.maxDepth, 8);  // pbrt's 7 scattering events, and the one that ends the path
 
     ASSERT_EQ(s.lights.size(), 5u);
     EXPECT_EQ(s.lights[0].type, LightType::Point);  // from the included file
@@ -131,7 +135,9 @@ WorldEnd
 }
 
 TEST(Pbrt, DefaultsArePbrtv3s) {
-    const std::string path = test::writeTemp("scene.pbrt", "WorldBegin\nLightSource \"point\"\nShape \"trianglemesh\" \"point P\" [0 0 1  1 0 1  0 1 1]\nWorldEnd\n");
+    const std::string path = test::writeTemp(
+        "scene.pbrt",
+        "WorldBegin\nLightSource \"point\"\nShape \"trianglemesh\" \"point P\" [0 0 1  1 0 1  0 1 1]\nWorldEnd\n");
     const SceneDesc s = loadPbrtScene(path);
     EXPECT_EQ(s.camera.width, 1280);
     EXPECT_EQ(s.camera.height, 720);
@@ -159,7 +165,9 @@ TEST(Pbrt, SamplersGiveTheirSampleCounts) {
         {R"(Sampler "maxmindist" "integer pixelsamples" 16)", 16},
     };
     for (const auto& [line, spp] : cases) {
-        const std::string path = test::writeTemp("scene.pbrt", line + "\nCamera \"perspective\" \"float halffov\" 20\nWorldBegin\nLightSource \"point\"\nWorldEnd\n");
+        const std::string path = test::writeTemp(
+            "scene.pbrt",
+            line + "\nCamera \"perspective\" \"float halffov\" 20\nWorldBegin\nLightSource \"point\"\nWorldEnd\n");
         std::vector<std::string> warnings;
         const SceneDesc s = loadPbrtScene(path, &warnings);
         EXPECT_EQ(s.integrator.spp, spp) << line;
@@ -192,11 +200,14 @@ WorldEnd
     ASSERT_EQ(s.surfaces.size(), 1u);
     EXPECT_EQ(s.surfaces[0].material.type, MaterialType::Dielectric);
     ASSERT_EQ(warnings.size(), 1u);
-    EXPECT_NE(warnings[0].find(path + ":1: warning: Integrator \"path\" ignores the 2 media"), std::string::npos) << warnings[0];
+    EXPECT_NE(warnings[0].find(path + ":1: warning: Integrator \"path\" ignores the 2 media"), std::string::npos)
+        << warnings[0];
 }
 
 TEST(Pbrt, LoadSceneKnowsPbrtByExtensionOrContent) {
-    const std::string text = "# no extension to go by\nLookAt 0 0 5 0 0 0 0 1 0\nCamera \"perspective\"\nWorldBegin\nLightSource \"point\"\nWorldEnd\n";
+    const std::string text =
+        "# no extension to go by\nLookAt 0 0 5 0 0 0 0 1 0\nCamera \"perspective\"\nWorldBegin\nLightSource "
+        "\"point\"\nWorldEnd\n";
     EXPECT_EQ(loadScene(test::writeTemp("scene.txt", text)).lights.size(), 1u);
     EXPECT_EQ(loadScene(test::writeTemp("scene.pbrt", "\n" + text)).lights.size(), 1u);
     EXPECT_TRUE(looksLikePbrt("  # comment\n\nWorldBegin"));
@@ -213,7 +224,8 @@ TEST(Pbrt, IncludesAreRelativeToTheIncludingFile) {
     EXPECT_EQ(loadPbrtScene(path, &warnings).lights.size(), 2u);
     EXPECT_TRUE(warnings.empty());
     // pbrt-v3's own rule, the first file's folder, is the fallback.
-    test::writeTemp("parts/a.pbrt", "LightSource \"point\"\nInclude \"parts/b.pbrt\"\nWorldEnd\n");  // WorldEnd in an included file
+    test::writeTemp("parts/a.pbrt",
+                    "LightSource \"point\"\nInclude \"parts/b.pbrt\"\nWorldEnd\n");  // WorldEnd in an included file
     test::writeTemp("scene.pbrt", "WorldBegin\nInclude \"parts/a.pbrt\"\n");
     EXPECT_EQ(loadPbrtScene(path, &warnings).lights.size(), 2u);
     // Where both exist and differ, the including file's folder wins, with a warning.
@@ -221,14 +233,15 @@ TEST(Pbrt, IncludesAreRelativeToTheIncludingFile) {
     test::writeTemp("parts/a.pbrt", "LightSource \"point\"\nInclude \"b.pbrt\"\nWorldEnd\n");
     EXPECT_EQ(loadPbrtScene(path, &warnings).lights.size(), 2u);
     ASSERT_EQ(warnings.size(), 1u);
-    EXPECT_EQ(warnings[0], test::tempDir() + "/parts/a.pbrt:2: warning: Include reads " + test::tempDir() + "/parts/b.pbrt; pbrt-v3 would read " +
-                               test::tempDir() + "/b.pbrt");
+    EXPECT_EQ(warnings[0], test::tempDir() + "/parts/a.pbrt:2: warning: Include reads " + test::tempDir() +
+                               "/parts/b.pbrt; pbrt-v3 would read " + test::tempDir() + "/b.pbrt");
     test::writeTemp("parts/a.pbrt", "Include \"none.pbrt\"\n");
     try {
         loadPbrtScene(path);
         FAIL() << "none.pbrt does not exist";
     } catch (const InputError& e) {
-        EXPECT_EQ(std::string(e.what()), test::tempDir() + "/parts/a.pbrt:1: Include: " + test::tempDir() + "/parts/none.pbrt: no such file");
+        EXPECT_EQ(std::string(e.what()),
+                  test::tempDir() + "/parts/a.pbrt:1: Include: " + test::tempDir() + "/parts/none.pbrt: no such file");
     }
 }
 
@@ -240,29 +253,45 @@ TEST(Pbrt, UnsupportedInputIsAnErrorNamingFileAndLine) {
     };
     const Case cases[] = {
         {R"(Shape "sphere" "float radius" 1)", "Shape \"sphere\" is not supported (supported: trianglemesh, plymesh)"},
-        {R"(Shape "trianglemesh" "point P" [0 0 0 1 0 0 0 1 0] "integer indices" [0 1 3])", "Shape \"trianglemesh\": parameter \"integer indices\": index 3 out of range (3 points)"},
-        {R"(Shape "trianglemesh" "point P" [0 0 0 1 0 0 0 1 0] "float alpha" 0)", "parameter \"float alpha\": only 1 (opaque) is supported"},
-        {R"(Shape "plymesh" "string filename" "none.ply")", "Shape \"plymesh\": " + test::tempDir() + "/none.ply: no such file"},
-        {R"(LightSource "goniometric")", "LightSource \"goniometric\" is not supported (supported: point, spot, distant, infinite)"},
+        {R"(Shape "trianglemesh" "point P" [0 0 0 1 0 0 0 1 0] "integer indices" [0 1 3])",
+         "Shape \"trianglemesh\": parameter \"integer indices\": index 3 out of range (3 points)"},
+        {R"(Shape "trianglemesh" "point P" [0 0 0 1 0 0 0 1 0] "float alpha" 0)",
+         "parameter \"float alpha\": only 1 (opaque) is supported"},
+        {R"(Shape "plymesh" "string filename" "none.ply")",
+         "Shape \"plymesh\": " + test::tempDir() + "/none.ply: no such file"},
+        {R"(LightSource "goniometric")",
+         "LightSource \"goniometric\" is not supported (supported: point, spot, distant, infinite)"},
         {R"(LightSource "infinite" "string mapname" "sky.exr")", "environment maps are not supported"},
-        {R"(LightSource "point" "blackbody I" [5500 1])", "LightSource \"point\": parameter \"blackbody I\": only RGB colours (\"rgb\" or \"color\") are supported, not \"blackbody\""},
+        {R"(LightSource "point" "blackbody I" [5500 1])",
+         "LightSource \"point\": parameter \"blackbody I\": only RGB colours (\"rgb\" or \"color\") are supported, not "
+         "\"blackbody\""},
         {R"(LightSource "point" "spectrum I" "spds/lamp.spd")", "parameter \"spectrum I\": only RGB colours"},
         {R"(LightSource "spot" "float coneangle" 120)", "LightSource \"spot\": \"coneangle\" must be in (0, 90]"},
         {"Scale 1 2 1\nLightSource \"spot\"", "LightSource \"spot\": under a non-uniform scale or shear"},
         {R"(AreaLightSource "blackbody")", "AreaLightSource \"blackbody\" is not supported (supported: diffuse)"},
-        {R"(Material "plastic")", "Material \"plastic\" is not supported (supported: matte, glass, \"\", none, interface)"},
-        {R"(Material "matte" "float sigma" 20)", "Material \"matte\": parameter \"float sigma\": Oren-Nayar roughness is not supported"},
-        {R"(Material "matte" "texture Kd" "checks")", "Material \"matte\": parameter \"texture Kd\": textures are not supported"},
-        {R"(Material "glass" "rgb Kr" [0.5 0.5 0.5])", "Material \"glass\": parameter \"rgb Kr\": only 1 (clear glass) is supported"},
+        {R"(Material "plastic")",
+         "Material \"plastic\" is not supported (supported: matte, glass, \"\", none, interface)"},
+        {R"(Material "matte" "float sigma" 20)",
+         "Material \"matte\": parameter \"float sigma\": Oren-Nayar roughness is not supported"},
+        {R"(Material "matte" "texture Kd" "checks")",
+         "Material \"matte\": parameter \"texture Kd\": textures are not supported"},
+        {R"(Material "glass" "rgb Kr" [0.5 0.5 0.5])",
+         "Material \"glass\": parameter \"rgb Kr\": only 1 (clear glass) is supported"},
         {R"(Material "glass" "float uroughness" 0.1)", "rough glass is not supported"},
         {R"(Texture "checks" "spectrum" "checkerboard")", "Texture is not supported"},
         {R"(ObjectBegin "tree")", "ObjectBegin is not supported"},
-        {R"(MakeNamedMedium "smoke" "string type" "heterogeneous")", "MakeNamedMedium \"smoke\": type \"heterogeneous\" is not supported (supported: homogeneous)"},
-        {"MediumInterface \"fog\" \"air\"\nShape \"trianglemesh\" \"point P\" [0 0 0 1 0 0 0 1 0]", "Shape: MediumInterface names medium \"air\", which no MakeNamedMedium made"},
-        {"MediumInterface \"fog\" \"fog\"\nMaterial \"\"\nShape \"trianglemesh\" " + kCube, "Shape: MediumInterface \"fog\" \"fog\" says the shape lies in medium \"fog\", but it lies in no medium"},
-        {"MediumInterface \"smoke\" \"\"\nShape \"trianglemesh\" \"point P\" [0 0 0 1 0 0 0 1 0]", "Shape: MediumInterface names medium \"smoke\", which no MakeNamedMedium made"},
-        {"MediumInterface \"fog\" \"\"\nMaterial \"\"\nReverseOrientation\nShape \"trianglemesh\" " + kCube, "the normals around medium \"fog\" point inwards"},
-        {"NamedMaterial \"velvet\"\nShape \"trianglemesh\" \"point P\" [0 0 0 1 0 0 0 1 0]", "Shape: NamedMaterial \"velvet\" was not made by MakeNamedMaterial"},
+        {R"(MakeNamedMedium "smoke" "string type" "heterogeneous")",
+         "MakeNamedMedium \"smoke\": type \"heterogeneous\" is not supported (supported: homogeneous)"},
+        {"MediumInterface \"fog\" \"air\"\nShape \"trianglemesh\" \"point P\" [0 0 0 1 0 0 0 1 0]",
+         "Shape: MediumInterface names medium \"air\", which no MakeNamedMedium made"},
+        {"MediumInterface \"fog\" \"fog\"\nMaterial \"\"\nShape \"trianglemesh\" " + kCube,
+         "Shape: MediumInterface \"fog\" \"fog\" says the shape lies in medium \"fog\", but it lies in no medium"},
+        {"MediumInterface \"smoke\" \"\"\nShape \"trianglemesh\" \"point P\" [0 0 0 1 0 0 0 1 0]",
+         "Shape: MediumInterface names medium \"smoke\", which no MakeNamedMedium made"},
+        {"MediumInterface \"fog\" \"\"\nMaterial \"\"\nReverseOrientation\nShape \"trianglemesh\" " + kCube,
+         "the normals around medium \"fog\" point inwards"},
+        {"NamedMaterial \"velvet\"\nShape \"trianglemesh\" \"point P\" [0 0 0 1 0 0 0 1 0]",
+         "Shape: NamedMaterial \"velvet\" was not made by MakeNamedMaterial"},
         {"Camera \"perspective\"", "Camera is only allowed before WorldBegin"},
         {"Rotate 30 0 0", "Rotate expects 4 numbers"},
         {"Rotate 30 0 0 0", "Rotate: the axis must not be zero"},
@@ -272,13 +301,17 @@ TEST(Pbrt, UnsupportedInputIsAnErrorNamingFileAndLine) {
         {"Sphere", "unknown directive \"Sphere\""},
         {"\"float radius\" 1", "expected a directive, got 'float radius'"},
         {R"(Shape "trianglemesh" "floaty P" [0 0 0])", "Shape \"trianglemesh\": unknown parameter type \"floaty\""},
-        {R"(Shape "trianglemesh" "point P" [0 0 0 1 0])", "parameter \"point P\": expected a multiple of 3 numbers, got 5"},
-        {R"(Shape "trianglemesh" "point P" [0 0 x])", "parameter \"point P\": expected a finite number of float range (|x| <= 3.40282e38), got 'x'"},
-        {R"(LightSource "point" "bool twosided" "yes")", "parameter \"bool twosided\": expected \"true\" or \"false\", got \"yes\""},
+        {R"(Shape "trianglemesh" "point P" [0 0 0 1 0])",
+         "parameter \"point P\": expected a multiple of 3 numbers, got 5"},
+        {R"(Shape "trianglemesh" "point P" [0 0 x])",
+         "parameter \"point P\": expected a finite number of float range (|x| <= 3.40282e38), got 'x'"},
+        {R"(LightSource "point" "bool twosided" "yes")",
+         "parameter \"bool twosided\": expected \"true\" or \"false\", got \"yes\""},
         {"LightSource \"point\" \"string name\" \"unterminated", "unterminated string"},
         {"WorldEnd\nWorldBegin", "WorldBegin after WorldEnd"},
     };
-    const std::string head = "Camera \"perspective\"\nMakeNamedMedium \"fog\" \"string type\" \"homogeneous\"\nWorldBegin\n";
+    const std::string head =
+        "Camera \"perspective\"\nMakeNamedMedium \"fog\" \"string type\" \"homogeneous\"\nWorldBegin\n";
     for (const Case& c : cases) {
         const std::string path = test::writeTemp("scene.pbrt", head + c.line + "\nLightSource \"point\"\nWorldEnd\n");
         try {
@@ -311,18 +344,22 @@ AttributeBegin
   MediumInterface "water" ""
   Material "glass"
   Scale 2 2 2
-  Shape "trianglemesh" )" + kCube + R"(
+  Shape "trianglemesh" )" +
+           kCube + R"(
 AttributeEnd
 AttributeBegin
-  MediumInterface )" + middleInterface + R"(
+  MediumInterface )" +
+           middleInterface + R"(
   Material "none"
-  Shape "trianglemesh" )" + kCube + R"(
+  Shape "trianglemesh" )" +
+           kCube + R"(
 AttributeEnd
 AttributeBegin
   MediumInterface "" "ink"
   Material "glass" "float index" 1
   Scale 0.3 0.3 0.3
-  Shape "trianglemesh" )" + kCube + R"(
+  Shape "trianglemesh" )" +
+           kCube + R"(
 AttributeEnd
 WorldEnd
 )";
@@ -353,8 +390,10 @@ TEST(Pbrt, AStatedOutsideMediumTheMeshesContradictIsAnErrorNamingTheShape) {
         loadPbrtScene(path);
         ADD_FAILURE() << "no error";
     } catch (const InputError& e) {
-        EXPECT_EQ(std::string(e.what()), path + ":17: Shape: MediumInterface \"ink\" \"\" says the shape lies in no medium, but it lies inside " + path +
-                                             ":11 (Shape \"trianglemesh\"), medium \"water\" (the nesting is found from the meshes)");
+        EXPECT_EQ(std::string(e.what()),
+                  path +
+                      ":17: Shape: MediumInterface \"ink\" \"\" says the shape lies in no medium, but it lies inside " +
+                      path + ":11 (Shape \"trianglemesh\"), medium \"water\" (the nesting is found from the meshes)");
     }
 }
 
@@ -372,8 +411,9 @@ TEST(Pbrt, BrokenFilesAreErrorsToo) {
     EXPECT_EQ(error("WorldBegin\nLightSource \"point\"\n"), path + ":2: the file ends without WorldEnd");
     EXPECT_EQ(error("WorldBegin\nShape \"trianglemesh\" \"point P\" [0 0 0 1 0 0 0 1 0]\nWorldEnd\n"),
               path + ":3: nothing emits light (pbrt-v3 would render a black image)");
-    EXPECT_EQ(error("Camera \"perspective\" \"float lensradius\" 0.1\nWorldBegin\nLightSource \"point\"\nWorldEnd\n"),
-              path + ":1: Camera \"perspective\": parameter \"float lensradius\": depth of field is not supported (only 0)");
+    EXPECT_EQ(
+        error("Camera \"perspective\" \"float lensradius\" 0.1\nWorldBegin\nLightSource \"point\"\nWorldEnd\n"),
+        path + ":1: Camera \"perspective\": parameter \"float lensradius\": depth of field is not supported (only 0)");
     EXPECT_EQ(error("Integrator \"bdpt\"\nWorldBegin\nLightSource \"point\"\nWorldEnd\n"),
               path + ":1: Integrator \"bdpt\" is not supported (supported: volpath, path)");
     EXPECT_EQ(error("Film \"image\" \"float cropwindow\" [0 0.5 0 1]\nWorldBegin\nLightSource \"point\"\nWorldEnd\n"),
@@ -393,8 +433,12 @@ WorldEnd
     const SceneDesc s = loadPbrtScene(path, &warnings);
     EXPECT_EQ(s.lights[0].intensity, RGB(1));  // pbrt-v3 reads "scale" only as a spectrum
     ASSERT_EQ(warnings.size(), 2u);
-    EXPECT_EQ(warnings[0], path + ":2: warning: LightSource \"point\": parameter \"float scale\" is not used (pbrt-v3 ignores it too)");
-    EXPECT_EQ(warnings[1], path + ":4: warning: Shape \"trianglemesh\": parameter \"float radius\" is not used (pbrt-v3 ignores it too)");
+    EXPECT_EQ(
+        warnings[0],
+        path + ":2: warning: LightSource \"point\": parameter \"float scale\" is not used (pbrt-v3 ignores it too)");
+    EXPECT_EQ(
+        warnings[1],
+        path + ":4: warning: Shape \"trianglemesh\": parameter \"float radius\" is not used (pbrt-v3 ignores it too)");
 }
 
 // A file of nothing but AttributeBegin (2 million of them) took 1.4 GB and printed a warning for
@@ -407,7 +451,9 @@ TEST(Pbrt, BlockDepthAndWarningsAreBounded) {
         loadPbrtScene(path);
         FAIL() << "1025 open blocks were accepted";
     } catch (const InputError& e) {
-        EXPECT_EQ(std::string(e.what()), path + ":1026: AttributeBegin nested more than 1024 deep (AttributeBegin and TransformBegin together)");
+        EXPECT_EQ(
+            std::string(e.what()),
+            path + ":1026: AttributeBegin nested more than 1024 deep (AttributeBegin and TransformBegin together)");
     }
     std::string open = "WorldBegin\nLightSource \"point\"\n";
     for (int i = 0; i < 300; ++i) open += "TransformBegin\n";

@@ -4,10 +4,10 @@
 #include <cmath>
 #include <numbers>
 
+#include <gtest/gtest.h>
 #include <glm/geometric.hpp>
 #include <glm/mat4x4.hpp>
 #include <glm/matrix.hpp>
-#include <gtest/gtest.h>
 
 #include "TestMeshes.h"
 #include "render/Camera.h"
@@ -26,7 +26,8 @@ struct M4 {
 M4 operator*(const M4& a, const M4& b) {
     M4 r;
     for (int i = 0; i < 4; ++i)
-        for (int j = 0; j < 4; ++j) r.m[i][j] = a.m[i][0] * b.m[0][j] + a.m[i][1] * b.m[1][j] + a.m[i][2] * b.m[2][j] + a.m[i][3] * b.m[3][j];
+        for (int j = 0; j < 4; ++j)
+            r.m[i][j] = a.m[i][0] * b.m[0][j] + a.m[i][1] * b.m[1][j] + a.m[i][2] * b.m[2][j] + a.m[i][3] * b.m[3][j];
     return r;
 }
 
@@ -109,7 +110,8 @@ glm::dvec3 vector(const M4& a, const glm::dvec3& v) {
 }
 
 double det3(const M4& a) {
-    return a.m[0][0] * (a.m[1][1] * a.m[2][2] - a.m[1][2] * a.m[2][1]) - a.m[0][1] * (a.m[1][0] * a.m[2][2] - a.m[1][2] * a.m[2][0]) +
+    return a.m[0][0] * (a.m[1][1] * a.m[2][2] - a.m[1][2] * a.m[2][1]) -
+           a.m[0][1] * (a.m[1][0] * a.m[2][2] - a.m[1][2] * a.m[2][0]) +
            a.m[0][2] * (a.m[1][0] * a.m[2][1] - a.m[1][1] * a.m[2][0]);
 }
 
@@ -125,8 +127,10 @@ glm::dvec2 raster(const M4& worldToCamera, double fov, int xres, int yres, const
 }
 
 void CoordinateSystem(const glm::dvec3& v1, glm::dvec3& v2, glm::dvec3& v3) {
-    if (std::abs(v1.x) > std::abs(v1.y)) v2 = glm::dvec3(-v1.z, 0, v1.x) / std::sqrt(v1.x * v1.x + v1.z * v1.z);
-    else v2 = glm::dvec3(0, v1.z, -v1.y) / std::sqrt(v1.y * v1.y + v1.z * v1.z);
+    if (std::abs(v1.x) > std::abs(v1.y))
+        v2 = glm::dvec3(-v1.z, 0, v1.x) / std::sqrt(v1.x * v1.x + v1.z * v1.z);
+    else
+        v2 = glm::dvec3(0, v1.z, -v1.y) / std::sqrt(v1.y * v1.y + v1.z * v1.z);
     v3 = glm::cross(v1, v2);
 }
 
@@ -184,7 +188,10 @@ void expectPlaced(const SurfaceDesc& s, const M4& ctm, const std::string& what) 
         EXPECT_LT(glm::length(s.mesh.positions[k] - w[k]), 1e-6 * (1 + glm::length(w[k]))) << what << " vertex " << k;
     }
     const glm::dvec3 pbrtNormal = glm::cross(w[1] - w[0], w[2] - w[0]) * (det3(ctm) < 0 ? -1.0 : 1.0);
-    EXPECT_GT(glm::dot(glm::cross(s.mesh.corner(0, 1) - s.mesh.corner(0, 0), s.mesh.corner(0, 2) - s.mesh.corner(0, 0)), pbrtNormal), 0) << what;
+    EXPECT_GT(glm::dot(glm::cross(s.mesh.corner(0, 1) - s.mesh.corner(0, 0), s.mesh.corner(0, 2) - s.mesh.corner(0, 0)),
+                       pbrtNormal),
+              0)
+        << what;
 }
 
 TEST(PbrtTransforms, NestedTransformsMatchPbrtsFormulas) {
@@ -222,7 +229,8 @@ WorldEnd
                            tr * FileMatrix(shift) * Rotate(-70, {1, 0, 0}),
                            LookAt({1, 2, 3}, {0, 0, 0}, {0, 1, 0})};
     ASSERT_EQ(s.surfaces.size(), std::size(expected));
-    for (size_t i = 0; i < std::size(expected); ++i) expectPlaced(s.surfaces[i], expected[i], "surface " + std::to_string(i));
+    for (size_t i = 0; i < std::size(expected); ++i)
+        expectPlaced(s.surfaces[i], expected[i], "surface " + std::to_string(i));
     // The file's translation is in elements 12, 13, 14 (pbrt transposes what it reads).
     EXPECT_NEAR(s.surfaces[4].mesh.positions[0].x, 1, 1e-6);
     EXPECT_NEAR(s.surfaces[4].mesh.positions[0].y, 1.3, 1e-6);
@@ -260,15 +268,17 @@ TEST(PbrtCamera, PointsLandOnThePixelsPbrtProjectsThemTo) {
         Handedness handedness;
     };
     const Case cases[] = {
-        {"", M4(), 64, 40, Handedness::Left},                    // wide: fov across y
-        {"", M4(), 30, 50, Handedness::Left},                    // tall: fov across x
+        {"", M4(), 64, 40, Handedness::Left},                            // wide: fov across y
+        {"", M4(), 30, 50, Handedness::Left},                            // tall: fov across x
         {"Scale -1 1 1\n", Scale(-1, 1, 1), 48, 48, Handedness::Right},  // the usual fix for pbrt's mirror
         {"Scale 3 3 3\nRotate 20 0 0 1\n", Scale(3, 3, 3) * Rotate(20, {0, 0, 1}), 40, 30, Handedness::Left},
     };
     const glm::dvec3 eye(1, 2, 5), look(0, 0.5, 0), up(0.2, 1, 0);
     const double fov = 50;
     for (const Case& c : cases) {
-        const SceneDesc s = load(c.prefix + "LookAt 1 2 5  0 0.5 0  0.2 1 0\nCamera \"perspective\" \"float fov\" 50\nFilm \"image\" \"integer xresolution\" " +
+        const SceneDesc s = load(c.prefix +
+                                 "LookAt 1 2 5  0 0.5 0  0.2 1 0\nCamera \"perspective\" \"float fov\" 50\nFilm "
+                                 "\"image\" \"integer xresolution\" " +
                                  std::to_string(c.xres) + " \"integer yresolution\" " + std::to_string(c.yres) +
                                  "\nWorldBegin\nLightSource \"point\"\nWorldEnd\n");
         EXPECT_EQ(s.camera.handedness, c.handedness) << c.prefix;
@@ -276,11 +286,14 @@ TEST(PbrtCamera, PointsLandOnThePixelsPbrtProjectsThemTo) {
         EXPECT_EQ(s.camera.fov, fov);
         const Camera camera(s.camera);
         const M4 worldToCamera = c.before * LookAt(eye, look, up);
-        for (const glm::dvec3 p : {glm::dvec3(0, 0.5, 0), glm::dvec3(0.6, 0.2, -0.3), glm::dvec3(-0.8, 1.1, 0.4), glm::dvec3(0.3, -0.4, 1)}) {
+        for (const glm::dvec3 p : {glm::dvec3(0, 0.5, 0), glm::dvec3(0.6, 0.2, -0.3), glm::dvec3(-0.8, 1.1, 0.4),
+                                   glm::dvec3(0.3, -0.4, 1)}) {
             const glm::dvec2 r = raster(worldToCamera, fov, c.xres, c.yres, p);
-            EXPECT_TRUE(r.x > 0 && r.x < c.xres && r.y > 0 && r.y < c.yres) << c.prefix << " raster " << r.x << ", " << r.y;
+            EXPECT_TRUE(r.x > 0 && r.x < c.xres && r.y > 0 && r.y < c.yres)
+                << c.prefix << " raster " << r.x << ", " << r.y;
             const glm::dvec3 d = camera.generateRay(r.x, r.y).d, expected = glm::normalize(p - eye);
-            EXPECT_LT(glm::length(d - expected), 1e-9) << c.prefix << c.xres << "x" << c.yres << " point " << p.x << ", " << p.y << ", " << p.z;
+            EXPECT_LT(glm::length(d - expected), 1e-9)
+                << c.prefix << c.xres << "x" << c.yres << " point " << p.x << ", " << p.y << ", " << p.z;
         }
     }
 }
@@ -291,14 +304,17 @@ TEST(PbrtLights, SpotFalloffIsPbrts) {
         std::string params;
     };
     const Case cases[] = {{30, 10, "\"float coneangle\" 30 \"float conedeltaangle\" 10"},
-                          {30, 5, ""},                          // pbrt-v3's defaults
-                          {3, 5, "\"float coneangle\" 3"},      // the default delta wider than the cone
+                          {30, 5, ""},                      // pbrt-v3's defaults
+                          {3, 5, "\"float coneangle\" 3"},  // the default delta wider than the cone
                           {20, 45, "\"float coneangle\" 20 \"float conedeltaangle\" 45"}};
     const M4 l2w = Translate(1, 2, 3) * Rotate(40, {1, 0.5, 0}) * Scale(2, 2, 2);
     const glm::dvec3 from(0.5, 1, 0), to(0.2, -1, 0.4);
     for (const Case& c : cases) {
-        const SceneDesc s = load(kHeader + "Translate 1 2 3\nRotate 40 1 0.5 0\nScale 2 2 2\nLightSource \"spot\" \"rgb I\" [1 2 3] \"rgb scale\" [2 2 2] "
-                                           "\"point from\" [0.5 1 0] \"point to\" [0.2 -1 0.4] " + c.params + "\nWorldEnd\n");
+        const SceneDesc s = load(kHeader +
+                                 "Translate 1 2 3\nRotate 40 1 0.5 0\nScale 2 2 2\nLightSource \"spot\" \"rgb I\" [1 2 "
+                                 "3] \"rgb scale\" [2 2 2] "
+                                 "\"point from\" [0.5 1 0] \"point to\" [0.2 -1 0.4] " +
+                                 c.params + "\nWorldEnd\n");
         ASSERT_EQ(s.lights.size(), 2u);
         const auto light = makeLight(s.lights[1], Bounds3());
         const PbrtSpot pbrt(l2w, from, to, c.coneangle, c.conedelta);
@@ -313,7 +329,8 @@ TEST(PbrtLights, SpotFalloffIsPbrts) {
             const double f = pbrt.falloff(q - pbrt.position());
             const RGB expected = RGB(2, 4, 6) * f / 9.0;
             const RGB L = light->sample(q, {0.5, 0.5}).L;
-            for (int k = 0; k < 3; ++k) EXPECT_NEAR(L[k], expected[k], 1e-9) << c.coneangle << "/" << c.conedelta << " at " << degrees;
+            for (int k = 0; k < 3; ++k)
+                EXPECT_NEAR(L[k], expected[k], 1e-9) << c.coneangle << "/" << c.conedelta << " at " << degrees;
             lit += f > 0;
             partial += f > 0 && f < 1;
         }
@@ -349,7 +366,8 @@ WorldEnd
     EXPECT_EQ(s.lights[0].intensity, RGB(2, 4, 6));
     EXPECT_EQ(s.lights[1].type, LightType::Distant);  // travels along CTM(to - from): +x turned to +y
     EXPECT_LT(glm::length(glm::normalize(s.lights[1].direction) - glm::dvec3(0, 1, 0)), 1e-12);
-    EXPECT_LT(glm::length(glm::normalize(s.lights[2].direction) - glm::dvec3(0, 0, 1)), 1e-12);  // default: from 0 0 0 to 0 0 1
+    EXPECT_LT(glm::length(glm::normalize(s.lights[2].direction) - glm::dvec3(0, 0, 1)),
+              1e-12);  // default: from 0 0 0 to 0 0 1
     EXPECT_EQ(s.lights[2].irradiance, RGB(1));
     EXPECT_EQ(s.lights[3].type, LightType::Environment);
     EXPECT_EQ(s.lights[3].radiance, RGB(0.1, 0.2, 0.3));

@@ -22,7 +22,8 @@ SceneDesc closedWorld() {
     m.emission = RGB(0.2, 0.4, 1.0);
     m.boundaryMaterial = {MaterialType::Dielectric, RGB(0), 1.4};
     SceneDesc s = sceneWith(m, 16);
-    s.surfaces.push_back({"floor", quad({-3, -1.2, -3}, {0, 0, 6}, {6, 0, 0}), {MaterialType::Diffuse, RGB(0.6, 0.5, 0.4)}});
+    s.surfaces.push_back(
+        {"floor", quad({-3, -1.2, -3}, {0, 0, 6}, {6, 0, 0}), {MaterialType::Diffuse, RGB(0.6, 0.5, 0.4)}});
     LightDesc point;
     point.type = LightType::Point;
     point.position = {1.5, 2, 1};
@@ -47,8 +48,9 @@ TEST(Photon, EnergyBalance) {
     const EnergyBalance& e = traced.energy;
     for (int c = 0; c < 3; ++c) {
         const double accounted = e.absorbedInMedia[c] + e.absorbedOnSurfaces[c] + e.escaped[c];
-        std::printf("channel %d: emitted %.5f, absorbed in media %.5f, on surfaces %.5f, escaped %.5f, +- %.5f\n", c, e.emitted[c],
-                    e.absorbedInMedia[c], e.absorbedOnSurfaces[c], e.escaped[c], std::sqrt(e.deficitSquares[c]));
+        std::printf("channel %d: emitted %.5f, absorbed in media %.5f, on surfaces %.5f, escaped %.5f, +- %.5f\n", c,
+                    e.emitted[c], e.absorbedInMedia[c], e.absorbedOnSurfaces[c], e.escaped[c],
+                    std::sqrt(e.deficitSquares[c]));
         EXPECT_NEAR(accounted, e.emitted[c], 3 * std::sqrt(e.deficitSquares[c]));
         EXPECT_EQ(e.cut[c], 0);
         EXPECT_GT(e.absorbedInMedia[c], 0.05 * e.emitted[c]);
@@ -78,8 +80,10 @@ TEST(Photon, StoredPhotonsAreBoundedNotOnePerPath) {
         tracePhotons(scene, source, options);
         ADD_FAILURE() << "stored more than maxStored";
     } catch (const InputError& e) {
-        EXPECT_EQ(std::string(e.what()), "photon tracing: 2000 photon paths per pass store more than " + std::to_string(stored - 1) +
-                                              " photons, more than this machine's memory holds: ask for fewer photons per pass or a lower max depth");
+        EXPECT_EQ(
+            std::string(e.what()),
+            "photon tracing: 2000 photon paths per pass store more than " + std::to_string(stored - 1) +
+                " photons, more than this machine's memory holds: ask for fewer photons per pass or a lower max depth");
     }
 }
 
@@ -157,8 +161,10 @@ TEST(Photon, EstimatesAgreeWithVolpathAndEachOther) {
     const Measured plain = measure(scene, renderPhoton(scene, PhotonEstimate::KnnMarch, false, 16));
     const Measured corrected = measure(scene, renderPhoton(scene, PhotonEstimate::KnnMarch, true, 16));
     const Measured beam = measure(scene, renderPhoton(scene, PhotonEstimate::Beam, true, 16));
-    std::printf("image mean: volpath %.4f, knn-march %.4f, corrected %.4f, beam %.4f\n", ref.mean, plain.mean, corrected.mean, beam.mean);
-    std::printf("rim mean:   volpath %.4f, knn-march %.4f, corrected %.4f, beam %.4f\n", ref.rim, plain.rim, corrected.rim, beam.rim);
+    std::printf("image mean: volpath %.4f, knn-march %.4f, corrected %.4f, beam %.4f\n", ref.mean, plain.mean,
+                corrected.mean, beam.mean);
+    std::printf("rim mean:   volpath %.4f, knn-march %.4f, corrected %.4f, beam %.4f\n", ref.rim, plain.rim,
+                corrected.rim, beam.rim);
     EXPECT_NEAR(beam.mean, ref.mean, 0.03 * ref.mean);
     EXPECT_NEAR(corrected.mean, ref.mean, 0.03 * ref.mean);
     EXPECT_NEAR(beam.mean, corrected.mean, 0.03 * ref.mean);
@@ -254,7 +260,8 @@ TEST(Photon, RadiusShrinksProgressively) {
     EXPECT_NEAR(std::pow(PhotonIntegrator::radiusScale(1, 0.7, 3), 3), 0.85, 1e-12);
     EXPECT_NEAR(std::pow(PhotonIntegrator::radiusScale(2, 0.5, 2), 2), 0.75 * (2.5 / 3), 1e-12);
     // The product of (i + alpha) / (i + 1) falls like n^(alpha - 1): slowly, but without end.
-    const double r1000 = PhotonIntegrator::radiusScale(1000, 0.7, 2), r2000 = PhotonIntegrator::radiusScale(2000, 0.7, 2);
+    const double r1000 = PhotonIntegrator::radiusScale(1000, 0.7, 2),
+                 r2000 = PhotonIntegrator::radiusScale(2000, 0.7, 2);
     EXPECT_LT(r2000, r1000);
     EXPECT_NEAR(r2000 / r1000, std::pow(2.0, -0.3 / 2), 1e-3);
 }

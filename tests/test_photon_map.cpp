@@ -6,9 +6,9 @@
 #include <random>
 #include <set>
 
-#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 #include <tbb/parallel_for.h>
+#include <glm/geometric.hpp>
 
 #include "integrators/photon/OctahedralDirection.h"
 #include "integrators/photon/PhotonBeams.h"
@@ -51,9 +51,10 @@ std::vector<Neighbour> bruteForce(const std::vector<Photon>& photons, const glm:
     for (uint32_t i = 0; i < photons.size(); ++i)
         if (const float d2 = distance2(q, photons[i].position); d2 < maxDistance2) all.push_back({i, d2});
     keep = std::min(keep, all.size());
-    std::partial_sort(all.begin(), all.begin() + ptrdiff_t(keep), all.end(), [](const Neighbour& a, const Neighbour& b) {
-        return a.distance2 != b.distance2 ? a.distance2 < b.distance2 : a.index < b.index;
-    });
+    std::partial_sort(all.begin(), all.begin() + ptrdiff_t(keep), all.end(),
+                      [](const Neighbour& a, const Neighbour& b) {
+                          return a.distance2 != b.distance2 ? a.distance2 < b.distance2 : a.index < b.index;
+                      });
     all.resize(keep);
     return all;
 }

@@ -16,11 +16,15 @@ namespace {
 
 const double kCorners[8][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}, {0, 0, 1}, {1, 0, 1}, {0, 1, 1}, {1, 1, 1}};
 // Counter-clockwise seen from outside; and a pentagon (pbrt-v3 skips it: tetglow fans it too).
-const std::vector<std::vector<int>> kFaces = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 3, 2, 6}};
+const std::vector<std::vector<int>> kFaces = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},   {2, 6, 7, 3},
+                                              {0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 3, 2, 6}};
 
 std::string asciiPly() {
-    std::string s = "ply\nformat ascii 1.0\ncomment a unit cube\nelement vertex 8\nproperty float x\nproperty float y\nproperty float z\n"
-                    "property float nx\nproperty float ny\nproperty float nz\nelement face 7\nproperty list uchar int vertex_indices\nend_header\n";
+    std::string s =
+        "ply\nformat ascii 1.0\ncomment a unit cube\nelement vertex 8\nproperty float x\nproperty float y\nproperty "
+        "float z\n"
+        "property float nx\nproperty float ny\nproperty float nz\nelement face 7\nproperty list uchar int "
+        "vertex_indices\nend_header\n";
     // A stream, not chained std::string +, which trips GCC 12's false -Wrestrict warning.
     std::ostringstream body;
     for (const auto& c : kCorners) body << c[0] << ' ' << c[1] << ' ' << c[2] << " 0 0 1\n";
@@ -44,10 +48,11 @@ void put(std::string& out, double x, bool little) {
 
 // Other types, an extra scalar before the list, and an element the reader must step over.
 std::string binaryPly(bool little) {
-    std::string s = std::string("ply\nformat ") + (little ? "binary_little_endian" : "binary_big_endian") +
-                    " 1.0\nelement vertex 8\nproperty double x\nproperty double y\nproperty double z\nproperty uchar red\n"
-                    "element face 7\nproperty uchar flags\nproperty list ushort uint vertex_index\n"
-                    "element edge 1\nproperty int vertex1\nproperty list uchar short more\nend_header\n";
+    std::string s =
+        std::string("ply\nformat ") + (little ? "binary_little_endian" : "binary_big_endian") +
+        " 1.0\nelement vertex 8\nproperty double x\nproperty double y\nproperty double z\nproperty uchar red\n"
+        "element face 7\nproperty uchar flags\nproperty list ushort uint vertex_index\n"
+        "element edge 1\nproperty int vertex1\nproperty list uchar short more\nend_header\n";
     for (const auto& c : kCorners) {
         for (double x : c) put<double>(s, x, little);
         put<uint8_t>(s, 200, little);
@@ -100,7 +105,8 @@ TEST(PbrtPly, BrokenFilesAreErrors) {
     EXPECT_EQ(error(asciiPly().substr(0, asciiPly().size() - 20)), ": ends early, in element 'face'");
     EXPECT_EQ(error(binaryPly(true).substr(0, 400)), ": ends early, in element 'vertex'");
     EXPECT_EQ(error("OFF\n"), ": not a PLY file (it must start with 'ply')");
-    EXPECT_EQ(error("ply\nformat ascii 1.0\nelement vertex 1\nproperty half x\nend_header\n"), ": PLY header: unknown property type 'half'");
+    EXPECT_EQ(error("ply\nformat ascii 1.0\nelement vertex 1\nproperty half x\nend_header\n"),
+              ": PLY header: unknown property type 'half'");
     EXPECT_EQ(error("ply\nformat ascii 1.0\nelement vertex 1\n"), ": PLY header without 'end_header'");
 }
 

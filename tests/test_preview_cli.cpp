@@ -20,12 +20,15 @@ TEST(PreviewCommand, ASecondPreviewOnTheSamePortIsRefused) {
     // Both would print their URL and split the requests between them, each page mixing two renders.
     test::PreviewProcess first(kScene + " --port 0 --threads 1");
     const std::string port = std::to_string(first.port());
-    expectRefused(test::runTetglow("preview " + kScene + " --port " + port, 30), 1, "cannot listen on 127.0.0.1:" + port);
-    EXPECT_EQ(test::rawHttp(first.port(), test::httpRequest("GET", "/", first.port())).status, 200) << "the first preview stopped serving";
+    expectRefused(test::runTetglow("preview " + kScene + " --port " + port, 30), 1,
+                  "cannot listen on 127.0.0.1:" + port);
+    EXPECT_EQ(test::rawHttp(first.port(), test::httpRequest("GET", "/", first.port())).status, 200)
+        << "the first preview stopped serving";
 }
 
 TEST(PreviewCommand, BadArguments) {
-    expectRefused(test::runTetglow("preview " + kScene + " --host no.such.host.invalid --port 0"), 1, "cannot listen on no.such.host.invalid:0");
+    expectRefused(test::runTetglow("preview " + kScene + " --host no.such.host.invalid --port 0"), 1,
+                  "cannot listen on no.such.host.invalid:0");
     expectRefused(test::runTetglow("preview " + kScene + " --port 70000"), 2, "--port");
     expectRefused(test::runTetglow("preview /nonexistent.json"), 2, "/nonexistent.json");
 }

@@ -23,7 +23,9 @@ namespace fs = std::filesystem;
 using Json = nlohmann::json;
 
 // The sanitizer build runs several times slower; waits are bounds for a stuck server.
-double timeScale() { return std::getenv("TETGLOW_TEST_TIME_SCALE") ? std::atof(std::getenv("TETGLOW_TEST_TIME_SCALE")) : 1.0; }
+double timeScale() {
+    return std::getenv("TETGLOW_TEST_TIME_SCALE") ? std::atof(std::getenv("TETGLOW_TEST_TIME_SCALE")) : 1.0;
+}
 
 // A small sphere scene in a folder of its own (saves go beside the scene).
 class PreviewServer : public ::testing::Test {
@@ -57,7 +59,8 @@ protected:
     // Polls the state until `condition` holds (true) or a bound for a stuck server passes (false).
     template <class Condition>
     bool waitFor(const Condition& condition) const {
-        for (int i = 0; i < 600 * timeScale() && !condition(state()); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+        for (int i = 0; i < 600 * timeScale() && !condition(state()); ++i)
+            std::this_thread::sleep_for(std::chrono::milliseconds(50));
         return condition(state());
     }
 
@@ -68,28 +71,28 @@ protected:
 // What Chromium sends for a fetch(url, {method: 'POST', mode: 'no-cors', body: '...'}) or a
 // form posted from a page at http://evil.example: a "simple" request, sent without a preflight.
 std::map<std::string, std::string> crossSite() {
-    return {{"Origin", "http://evil.example"},
-            {"Referer", "http://evil.example/"},
-            {"Sec-Fetch-Site", "cross-site"},
-            {"Sec-Fetch-Mode", "no-cors"},
-            {"Sec-Fetch-Dest", "empty"},
-            {"Content-Type", "text/plain;charset=UTF-8"}};
+    return {{"Origin", "http://evil.example"}, {"Referer", "http://evil.example/"},
+            {"Sec-Fetch-Site", "cross-site"},  {"Sec-Fetch-Mode", "no-cors"},
+            {"Sec-Fetch-Dest", "empty"},       {"Content-Type", "text/plain;charset=UTF-8"}};
 }
 
 TEST_F(PreviewServer, AnotherPageCannotChangeOrSave) {
     const Json before = state();
     for (const std::string path : {"/settings", "/save/scene", "/save/image"}) {
-        const HttpReply r = rawHttp(port(), httpRequest("POST", path, port(), crossSite(), R"({"media": [{"g": 0.5}]})"));
+        const HttpReply r =
+            rawHttp(port(), httpRequest("POST", path, port(), crossSite(), R"({"media": [{"g": 0.5}]})"));
         EXPECT_EQ(r.status, 403) << path << ": " << r.body;
         EXPECT_NE(r.body.find("from another page (http://evil.example)"), std::string::npos) << r.body;
     }
     // The same page's headers without an Origin (as some browsers send for a navigation).
     auto noOrigin = crossSite();
     noOrigin.erase("Origin");
-    EXPECT_EQ(rawHttp(port(), httpRequest("POST", "/settings", port(), noOrigin, R"({"media": [{"g": 0.5}]})")).status, 403);
+    EXPECT_EQ(rawHttp(port(), httpRequest("POST", "/settings", port(), noOrigin, R"({"media": [{"g": 0.5}]})")).status,
+              403);
     // The page's own origin, but a text/plain body: what a page elsewhere could send.
-    const HttpReply plain = rawHttp(port(), httpRequest("POST", "/settings", port(), {{"Origin", own()}, {"Content-Type", "text/plain"}},
-                                                        R"({"media": [{"g": 0.5}]})"));
+    const HttpReply plain =
+        rawHttp(port(), httpRequest("POST", "/settings", port(), {{"Origin", own()}, {"Content-Type", "text/plain"}},
+                                    R"({"media": [{"g": 0.5}]})"));
     EXPECT_EQ(plain.status, 415) << plain.body;
     const Json after = state();
     EXPECT_EQ(after["settings"], before["settings"]);
@@ -97,9 +100,11 @@ TEST_F(PreviewServer, AnotherPageCannotChangeOrSave) {
     EXPECT_EQ(files(), 1u) << "a refused save wrote a file";
 
     // The preview's own page: changed.
-    const HttpReply mine = rawHttp(port(), httpRequest("POST", "/settings", port(),
-                                                       {{"Origin", own()}, {"Sec-Fetch-Site", "same-origin"}, {"Content-Type", "application/json"}},
-                                                       R"({"media": [{"g": 0.5}]})"));
+    const HttpReply mine = rawHttp(
+        port(),
+        httpRequest("POST", "/settings", port(),
+                    {{"Origin", own()}, {"Sec-Fetch-Site", "same-origin"}, {"Content-Type", "application/json"}},
+                    R"({"media": [{"g": 0.5}]})"));
     EXPECT_EQ(mine.status, 200) << mine.body;
     EXPECT_EQ(state()["settings"]["media"][0]["g"], 0.5);
 }
@@ -109,13 +114,19 @@ TEST_F(PreviewServer, ARebindingHostCannotRead) {
     // browser, so it would read the reply; only the Host says where the request was meant to go.
     const std::string evil = "evil.example:" + std::to_string(port());
     for (const std::string path : {"/state", "/image.png", "/"}) {
-        const HttpReply r = rawHttp(port(), httpRequest("GET", path, port(), {{"Host", evil}, {"Sec-Fetch-Site", "same-origin"}}));
+        const HttpReply r =
+            rawHttp(port(), httpRequest("GET", path, port(), {{"Host", evil}, {"Sec-Fetch-Site", "same-origin"}}));
         EXPECT_EQ(r.status, 403) << path;
-        EXPECT_NE(r.body.find("refused: Host \\\"" + evil + "\\\" is not this preview's address"), std::string::npos) << r.body;
+        EXPECT_NE(r.body.find("refused: Host \\\"" + evil + "\\\" is not this preview's address"), std::string::npos)
+            << r.body;
     }
-    EXPECT_EQ(rawHttp(port(), httpRequest("GET", "/state", port(), {{"Host", "127.0.0.1:1"}})).status, 403) << "another port";
+    EXPECT_EQ(rawHttp(port(), httpRequest("GET", "/state", port(), {{"Host", "127.0.0.1:1"}})).status, 403)
+        << "another port";
     for (const std::string host : {"127.0.0.1", "localhost", "LocalHost"})
-        EXPECT_EQ(rawHttp(port(), httpRequest("GET", "/state", port(), {{"Host", host + ":" + std::to_string(port())}})).status, 200) << host;
+        EXPECT_EQ(rawHttp(port(), httpRequest("GET", "/state", port(), {{"Host", host + ":" + std::to_string(port())}}))
+                      .status,
+                  200)
+            << host;
 }
 
 TEST_F(PreviewServer, AChunkedBodyStopsAtTheLimit) {
@@ -138,24 +149,30 @@ TEST_F(PreviewServer, AChunkedBodyStopsAtTheLimit) {
     EXPECT_EQ(rawHttp(port(), httpRequest("GET", "/", port())).status, 200) << "the server stopped serving";
 
     // The reply, where the client reads it: the limit applied.
-    const HttpReply r = rawHttp(port(), httpRequest("POST", "/settings", port(), {{"Content-Type", "application/json"}, {"Transfer-Encoding", "chunked"}}) +
-                                            "10000\r\n" + std::string(65536, ' ') + "\r\n1\r\n \r\n0\r\n\r\n");
+    const HttpReply r =
+        rawHttp(port(), httpRequest("POST", "/settings", port(),
+                                    {{"Content-Type", "application/json"}, {"Transfer-Encoding", "chunked"}}) +
+                            "10000\r\n" + std::string(65536, ' ') + "\r\n1\r\n \r\n0\r\n\r\n");
     EXPECT_EQ(r.status, 413);
     EXPECT_EQ(Json::parse(r.body)["error"], "request too large: at most 65536 bytes");
 }
 
 TEST_F(PreviewServer, TheTooLargeMessageNamesTheLimitApplied) {
     // A form-encoded body: httplib's own 8 KiB limit used to refuse it, named as 65536 bytes.
-    const HttpReply form = rawHttp(port(), httpRequest("POST", "/settings", port(), {{"Content-Type", "application/x-www-form-urlencoded"}},
-                                                       "pad=" + std::string(9000, 'x')));
+    const HttpReply form = rawHttp(
+        port(), httpRequest("POST", "/settings", port(), {{"Content-Type", "application/x-www-form-urlencoded"}},
+                            "pad=" + std::string(9000, 'x')));
     EXPECT_EQ(form.status, 415) << form.body;
-    EXPECT_NE(form.body.find("must be declared \\\"Content-Type: application/json\\\""), std::string::npos) << form.body;
+    EXPECT_NE(form.body.find("must be declared \\\"Content-Type: application/json\\\""), std::string::npos)
+        << form.body;
     // A JSON body of 9000 bytes is within the limit; one of 70000 is not, and is refused unread.
-    const HttpReply within = rawHttp(port(), httpRequest("POST", "/settings", port(), {{"Content-Type", "application/json"}},
-                                                         R"({"media": [{"g": 0.25)" + std::string(9000, ' ') + "}]}"));
+    const HttpReply within =
+        rawHttp(port(), httpRequest("POST", "/settings", port(), {{"Content-Type", "application/json"}},
+                                    R"({"media": [{"g": 0.25)" + std::string(9000, ' ') + "}]}"));
     EXPECT_EQ(within.status, 200) << within.body;
-    const HttpReply over = rawHttp(port(), httpRequest("POST", "/settings", port(), {{"Content-Type", "application/json"}},
-                                                       R"({"media": [{"g": 0.25)" + std::string(70000, ' ') + "}]}"));
+    const HttpReply over =
+        rawHttp(port(), httpRequest("POST", "/settings", port(), {{"Content-Type", "application/json"}},
+                                    R"({"media": [{"g": 0.25)" + std::string(70000, ' ') + "}]}"));
     EXPECT_EQ(over.status, 413);
     EXPECT_EQ(Json::parse(over.body)["error"], "request too large: at most 65536 bytes");
 }
@@ -191,15 +208,19 @@ TEST_F(PreviewServer, AValueThatOverflowsTheFilmIsNamedAndUndone) {
     ASSERT_EQ(change(R"({"media": [{"emission": 1e30}]})").status, 200);
     ASSERT_TRUE(waitFor([](const Json& s) { return s["render_error"] != ""; }));
     const Json failed = state();
-    EXPECT_EQ(failed["render_error"].get<std::string>().rfind("/media/0 emission 1e+30: pixel (", 0), 0u) << failed["render_error"];
-    EXPECT_NE(failed["render_error"].get<std::string>().find("beyond the film's range"), std::string::npos) << failed["render_error"];
+    EXPECT_EQ(failed["render_error"].get<std::string>().rfind("/media/0 emission 1e+30: pixel (", 0), 0u)
+        << failed["render_error"];
+    EXPECT_NE(failed["render_error"].get<std::string>().find("beyond the film's range"), std::string::npos)
+        << failed["render_error"];
     EXPECT_EQ(failed["settings"], good) << "the settings stayed at the value that failed";
     // The render goes on with the good values, and shows them.
-    ASSERT_TRUE(waitFor([](const Json& s) { return s["image"]["generation"] == s["generation"] && s["image"]["passes"] == 4; }));
+    ASSERT_TRUE(waitFor(
+        [](const Json& s) { return s["image"]["generation"] == s["generation"] && s["image"]["passes"] == 4; }));
     // The next good change clears the error.
     ASSERT_EQ(change(R"({"media": [{"emission": 0.5}]})").status, 200);
     EXPECT_EQ(state()["render_error"], "");
-    ASSERT_TRUE(waitFor([](const Json& s) { return s["image"]["generation"] == s["generation"] && s["image"]["passes"] == 4; }));
+    ASSERT_TRUE(waitFor(
+        [](const Json& s) { return s["image"]["generation"] == s["generation"] && s["image"]["passes"] == 4; }));
     EXPECT_EQ(state()["render_error"], "");
 }
 
@@ -212,10 +233,12 @@ TEST_F(PreviewServer, AValueThatOverflowsUndoesOnlyItself) {
     ASSERT_EQ(change(R"({"media": [{"emission": 1e30}]})").status, 200);
     ASSERT_TRUE(waitFor([](const Json& s) { return s["render_error"] != ""; }));
     const Json failed = state();
-    EXPECT_EQ(failed["render_error"].get<std::string>().rfind("/media/0 emission 1e+30: pixel (", 0), 0u) << failed["render_error"];
+    EXPECT_EQ(failed["render_error"].get<std::string>().rfind("/media/0 emission 1e+30: pixel (", 0), 0u)
+        << failed["render_error"];
     EXPECT_EQ(failed["settings"]["media"][0]["g"], 0.5) << "the change before the one that failed was undone too";
     EXPECT_EQ(failed["settings"]["media"][0]["emission"], good["media"][0]["emission"]);
-    ASSERT_TRUE(waitFor([](const Json& s) { return s["image"]["generation"] == s["generation"] && s["image"]["passes"] == 4; }));
+    ASSERT_TRUE(waitFor(
+        [](const Json& s) { return s["image"]["generation"] == s["generation"] && s["image"]["passes"] == 4; }));
     EXPECT_EQ(state()["settings"]["media"][0]["g"], 0.5);
 }
 
@@ -228,7 +251,8 @@ TEST_F(PreviewServer, TheImageFollowsTheCameraAndTheLights) {
     const auto finished = [&] {
         for (int i = 0; i < 600 * timeScale(); ++i) {
             const Json s = state();
-            if (!s["image"].is_null() && s["image"]["generation"] == s["generation"] && s["image"]["passes"] == 4) return true;
+            if (!s["image"].is_null() && s["image"]["generation"] == s["generation"] && s["image"]["passes"] == 4)
+                return true;
             std::this_thread::sleep_for(std::chrono::milliseconds(50));
         }
         return false;
@@ -256,8 +280,11 @@ TEST_F(PreviewServer, TheImageFollowsTheCameraAndTheLights) {
         EXPECT_EQ(Json::parse(r.body)["error"], message) << patch;
     };
     refused(R"({"camera": {"fov": 0}})", "request: /camera/fov: expected a number in (0, 180), got 0");
-    refused(R"({"lights": [{"on": false}]})", "request: nothing emits light: turn a light on, or give it or a medium an emission");
-    refused(R"({"lights": [{"intensity": [1, 2]}]})", "request: /lights/0/intensity: expected an array of 3 numbers in [0, 3.40282e38] (or one for all 3), got [1,2]");
+    refused(R"({"lights": [{"on": false}]})",
+            "request: nothing emits light: turn a light on, or give it or a medium an emission");
+    refused(R"({"lights": [{"intensity": [1, 2]}]})",
+            "request: /lights/0/intensity: expected an array of 3 numbers in [0, 3.40282e38] (or one for all 3), got "
+            "[1,2]");
     EXPECT_EQ(state()["settings"], before["settings"]);
     EXPECT_EQ(state()["generation"], before["generation"]);
 }
@@ -295,7 +322,8 @@ TEST_F(PreviewServer, ASavedSceneChangesOnlyWhatWasChanged) {
 
 TEST_F(PreviewServer, SavesAreBounded) {
     const auto save = [&](const std::string& what) {
-        return rawHttp(port(), httpRequest("POST", "/save/" + what, port(), {{"Content-Type", "application/json"}}, "{}"));
+        return rawHttp(port(),
+                       httpRequest("POST", "/save/" + what, port(), {{"Content-Type", "application/json"}}, "{}"));
     };
     for (int i = 0; i < 200; ++i) {
         if (!state()["image"].is_null()) break;
@@ -307,7 +335,8 @@ TEST_F(PreviewServer, SavesAreBounded) {
     for (const std::string what : {"image", "scene"}) {
         const HttpReply r = save(what);
         EXPECT_EQ(r.status, 400) << what;
-        EXPECT_EQ(Json::parse(r.body)["error"], "not saved: this preview has saved 100 times, its limit (restart it to save more)");
+        EXPECT_EQ(Json::parse(r.body)["error"],
+                  "not saved: this preview has saved 100 times, its limit (restart it to save more)");
     }
     EXPECT_EQ(files(), before);
 }

@@ -29,7 +29,8 @@ TEST(PreviewSettings, ACavityHasNoCoefficientsToTune) {
         settings.apply(R"({"media": [{}, {"sigma_s": 1}]})");
         ADD_FAILURE() << "a cavity took a scattering coefficient";
     } catch (const InputError& e) {
-        EXPECT_NE(std::string(e.what()).find("/cavities/0 is a cavity: it holds no medium to tune"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("/cavities/0 is a cavity: it holds no medium to tune"), std::string::npos)
+            << e.what();
     }
     EXPECT_EQ(settings.scene().media[1].sigmaS, RGB(0));
 }
@@ -46,7 +47,9 @@ struct Loaded {
     SceneDesc desc;
     nlohmann::ordered_json file;
 };
-Loaded load(const std::string& text) { return {loadScene(test::writeTemp("scene.json", text)), nlohmann::ordered_json::parse(text)}; }
+Loaded load(const std::string& text) {
+    return {loadScene(test::writeTemp("scene.json", text)), nlohmann::ordered_json::parse(text)};
+}
 
 // The error a patch gets ("accepted" when none), checking that a refused one changes nothing.
 std::string refusal(cli::PreviewSettings& settings, const std::string& patch) {
@@ -63,20 +66,26 @@ std::string refusal(cli::PreviewSettings& settings, const std::string& patch) {
 TEST(PreviewSettings, TheCameraMovesWithinTheLoadersRanges) {
     const Loaded scene = load(kScene);
     cli::PreviewSettings settings(scene.desc, scene.file);
-    EXPECT_EQ(settings.json()["camera"], nlohmann::json::parse(R"({"position": [0, 0, 5], "look_at": [0, 0, 0], "up": [0, 1, 0], "fov": 40})"));
+    EXPECT_EQ(settings.json()["camera"],
+              nlohmann::json::parse(R"({"position": [0, 0, 5], "look_at": [0, 0, 0], "up": [0, 1, 0], "fov": 40})"));
     settings.apply(R"({"camera": {"position": [1, 2, 3], "look_at": [0, 0.5, 0], "fov": 60}})");
     const CameraDesc& c = settings.scene().camera;
     EXPECT_EQ(c.position, glm::dvec3(1, 2, 3));
     EXPECT_EQ(c.lookAt, glm::dvec3(0, 0.5, 0));
     EXPECT_EQ(c.fov, 60);
     EXPECT_EQ(c.width, 16) << "the view changed the resolution";
-    EXPECT_EQ(refusal(settings, R"({"camera": {"fov": 180}})"), "request: /camera/fov: expected a number in (0, 180), got 180");
-    EXPECT_EQ(refusal(settings, R"({"camera": {"fov": "wide"}})"), R"(request: /camera/fov: expected a number in (0, 180), got "wide")");
-    EXPECT_EQ(refusal(settings, R"({"camera": {"position": [1, 2, 3e12]}})").rfind("request: /camera/position: expected ", 0), 0u);
+    EXPECT_EQ(refusal(settings, R"({"camera": {"fov": 180}})"),
+              "request: /camera/fov: expected a number in (0, 180), got 180");
+    EXPECT_EQ(refusal(settings, R"({"camera": {"fov": "wide"}})"),
+              R"(request: /camera/fov: expected a number in (0, 180), got "wide")");
+    EXPECT_EQ(
+        refusal(settings, R"({"camera": {"position": [1, 2, 3e12]}})").rfind("request: /camera/position: expected ", 0),
+        0u);
     EXPECT_EQ(refusal(settings, R"({"camera": {"look_at": [1, 2, 3]}})"),
               R"(request: /camera/look_at: expected a point at least 1e-12 from "position", got [1,2,3])");
     EXPECT_EQ(refusal(settings, R"({"camera": {"position": [0, 5, 0], "look_at": [0, 0, 0]}})"),
-              "request: /camera/up: the up direction must not be zero or parallel to the view direction (look_at - position)");
+              "request: /camera/up: the up direction must not be zero or parallel to the view direction (look_at - "
+              "position)");
     EXPECT_EQ(refusal(settings, R"({"camera": {"resolution": [8, 8]}})"),
               "request: /camera/resolution: unknown key; allowed here: position, look_at, up, fov");
     EXPECT_EQ(refusal(settings, R"({"camera": null})"), "request: /camera: expected an object, got null");
@@ -87,15 +96,20 @@ TEST(PreviewSettings, LightsKeepTheFilesUnits) {
     const Loaded scene = load(kScene);
     cli::PreviewSettings settings(scene.desc, scene.file);
     EXPECT_EQ(settings.lightNames(), (std::vector<std::string>{"spot", "environment"}));
-    EXPECT_EQ(settings.json()["lights"], nlohmann::json::parse(R"([{"intensity": [1, 0.97, 0.9], "scale": 30, "on": true},
+    EXPECT_EQ(settings.json()["lights"],
+              nlohmann::json::parse(R"([{"intensity": [1, 0.97, 0.9], "scale": 30, "on": true},
                                                                      {"radiance": [0.5, 0.5, 0.5], "scale": 1, "on": true}])"));
     settings.apply(R"({"lights": [{"intensity": [2, 1, 0.5]}, {"on": false}]})");
     EXPECT_EQ(settings.scene().lights[0].intensity, 30.0 * RGB(2, 1, 0.5)) << "not the loader's product";
     EXPECT_FALSE(settings.scene().lights[1].on);
     EXPECT_EQ(settings.scene().lights[1].radiance, RGB(0.5)) << "an off light lost its value";
-    EXPECT_EQ(refusal(settings, R"({"lights": [{"intensity": -1}]})").rfind("request: /lights/0/intensity: expected ", 0), 0u);
-    EXPECT_EQ(refusal(settings, R"({"lights": [{"scale": 1e39}]})"), "request: /lights/0/scale: expected a number in [0, 3.40282e38], got 1e+39");
-    EXPECT_EQ(refusal(settings, R"({"lights": [{"on": "yes"}]})"), R"(request: /lights/0/on: expected true or false, got "yes")");
+    EXPECT_EQ(
+        refusal(settings, R"({"lights": [{"intensity": -1}]})").rfind("request: /lights/0/intensity: expected ", 0),
+        0u);
+    EXPECT_EQ(refusal(settings, R"({"lights": [{"scale": 1e39}]})"),
+              "request: /lights/0/scale: expected a number in [0, 3.40282e38], got 1e+39");
+    EXPECT_EQ(refusal(settings, R"({"lights": [{"on": "yes"}]})"),
+              R"(request: /lights/0/on: expected true or false, got "yes")");
     EXPECT_EQ(refusal(settings, R"({"lights": [{"position": [0, 9, 0]}]})"),
               "request: /lights/0/position: unknown key; allowed here: scale, intensity, on");
     EXPECT_EQ(refusal(settings, R"({"lights": [{}, {}, {}]})"),

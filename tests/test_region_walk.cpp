@@ -7,8 +7,8 @@
 
 #include "TestMeshes.h"
 #include "tet/Nesting.h"
-#include "tet/Tetrahedralizer.h"
 #include "tet/TetVolume.h"
+#include "tet/Tetrahedralizer.h"
 
 namespace tetglow {
 namespace {
@@ -89,7 +89,8 @@ TEST(RegionWalk, TransmittanceThroughNestedSpheresIsTheClosedForm) {
     // At most one Embree query per line, for the entry into the outer sphere (none for a line
     // that misses its box); none at the interfaces.
     EXPECT_LE(surfaceQueries() - queriesBefore, uint64_t(kLines));
-    std::printf("worst relative transmittance error %.2e over %d lines, %zu interfaces crossed\n", worst, kLines, interfaces);
+    std::printf("worst relative transmittance error %.2e over %d lines, %zu interfaces crossed\n", worst, kLines,
+                interfaces);
 }
 
 TEST(RegionWalk, RaysThroughVerticesAndEdgesOfTheInterfaces) {
@@ -107,7 +108,8 @@ TEST(RegionWalk, RaysThroughVerticesAndEdgesOfTheInterfaces) {
             const glm::dvec3 from = onSphere(rng, 1.3);
             const Ray ray{from, 2.0 * (target - from)};
             // The whole line beyond `from` (the closed form counts every t >= 0).
-            const double err = std::abs(scene.walkDepth(ray, INFINITY, TetVolume::kOutside, interfaces) - scene.exactDepth(ray));
+            const double err =
+                std::abs(scene.walkDepth(ray, INFINITY, TetVolume::kOutside, interfaces) - scene.exactDepth(ray));
             worst = std::max(worst, err);
             ++rays;
         }
@@ -128,12 +130,13 @@ TEST(RegionWalk, PointsAreLocatedInTheirRegionAcrossInterfaces) {
     int perRegion[4] = {};
     for (int i = 0; i < 20000; ++i) {
         // Half the points near the inner spheres, where the regions are small.
-        const glm::dvec3 p = i % 2 ? glm::dvec3(u(rng), u(rng), u(rng)) : glm::dvec3(0.2, 0.05, 0) + 0.35 * glm::dvec3(u(rng), u(rng), u(rng));
+        const glm::dvec3 p = i % 2 ? glm::dvec3(u(rng), u(rng), u(rng))
+                                   : glm::dvec3(0.2, 0.05, 0) + 0.35 * glm::dvec3(u(rng), u(rng), u(rng));
         int32_t expected = -1, depth = -1;
         for (int32_t m = 0; m < 4; ++m) {
             const PointSide side = classifyPoint(scene.meshes[m], p);
             ASSERT_NE(side, PointSide::OnSurface);
-            if (side == PointSide::Inside && m > depth) { // listed outermost first
+            if (side == PointSide::Inside && m > depth) {  // listed outermost first
                 expected = m;
                 depth = m;
             }
@@ -181,8 +184,8 @@ TEST(RegionWalk, TouchingBoxesThroughAnEdgeOfTheirInterface) {
     const double sigma[2] = {1.0, 3.0};
     // Through (1, 0.5, 0.5) and (1, 0.25, 0.25), on the diagonal that splits the shared face
     // (an edge of the interface), and off it by a tilt of 1e-9.
-    for (const Ray& ray : {Ray{{-1, 0.5, 0.5}, {4, 0, 0}}, Ray{{-1, 0.25, 0.25}, {4, 0, 0}},
-                           Ray{{-1, 0.5, 0.5}, {4, 1e-9, -1e-9}}}) {
+    for (const Ray& ray :
+         {Ray{{-1, 0.5, 0.5}, {4, 0, 0}}, Ray{{-1, 0.25, 0.25}, {4, 0, 0}}, Ray{{-1, 0.5, 0.5}, {4, 1e-9, -1e-9}}}) {
         double tau = 0;
         ASSERT_TRUE(volume.traverse(ray, 0.0, 1.0, [&](const WalkSegment& s) {
             tau += sigma[volume.mesh().region(s.tet)] * (s.tOut - s.tIn) * glm::length(ray.d);

@@ -35,7 +35,8 @@ TriangleMesh doubleBox() {
 }
 
 // The region whose space holds p, from the meshes alone: the innermost mesh around p.
-int32_t regionByNesting(const std::vector<TriangleMesh>& meshes, const std::vector<int32_t>& parent, const glm::dvec3& p) {
+int32_t regionByNesting(const std::vector<TriangleMesh>& meshes, const std::vector<int32_t>& parent,
+                        const glm::dvec3& p) {
     int32_t best = -1, bestDepth = -1;
     for (int32_t i = 0; i < int32_t(meshes.size()); ++i) {
         const PointSide side = classifyPoint(meshes[i], p);
@@ -71,7 +72,8 @@ void expectConsistent(const TetMesh& m, const std::vector<TriangleMesh>& meshes)
         const auto [mesh, index] = m.surfaceSource[s];
         ASSERT_LT(mesh, meshes.size());
         ASSERT_LT(index, meshes[mesh].triangles.size());
-        for (int k = 0; k < 3; ++k) EXPECT_EQ(m.vertices[m.surface[s][k]], meshes[mesh].corner(index, k)) << "triangle " << s;
+        for (int k = 0; k < 3; ++k)
+            EXPECT_EQ(m.vertices[m.surface[s][k]], meshes[mesh].corner(index, k)) << "triangle " << s;
         auto tri = m.surface[s];
         std::sort(tri.begin(), tri.end());
         for (int side = 0; side < 2; ++side) {
@@ -283,7 +285,8 @@ TEST(Regions, TheSameMeshTwiceIsRefused) {
 
 TEST(Regions, TheSameSphereTwiceIsRefusedAtEverySubdivision) {
     for (int subdivisions = 1; subdivisions <= 4; ++subdivisions)
-        EXPECT_EQ(errorOf({icosphere(subdivisions, 1.0), icosphere(subdivisions, 1.0)}, {"one", "two"}), "one and two have the same surface")
+        EXPECT_EQ(errorOf({icosphere(subdivisions, 1.0), icosphere(subdivisions, 1.0)}, {"one", "two"}),
+                  "one and two have the same surface")
             << subdivisions;
 }
 
@@ -327,7 +330,8 @@ TEST(RegionsCommand, ReportsEachRegion) {
 TEST(RegionsCommand, GeneratedSpheresNest) {
     const std::string dir = test::tempDir();
     ASSERT_EQ(test::runTetglow("generate sphere --radius 1 --subdivisions 2 -o " + dir + "/big.obj").exitCode, 0);
-    ASSERT_EQ(test::runTetglow("generate sphere --radius 0.3 --x 0.4 --subdivisions 1 -o " + dir + "/small.obj").exitCode, 0);
+    ASSERT_EQ(
+        test::runTetglow("generate sphere --radius 0.3 --x 0.4 --subdivisions 1 -o " + dir + "/small.obj").exitCode, 0);
     const auto r = test::runTetglow("tetrahedralize --no-cache --json " + dir + "/small.obj " + dir + "/big.obj");
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const auto j = nlohmann::json::parse(r.out);

@@ -87,7 +87,8 @@ TEST(Render, ShadowRayRouletteKeepsTheTransmittance) {
             sum2 += tr * tr;
             zeros += isBlack(tr);
         }
-        const RGB mean = sum / double(n), se = glm::sqrt(glm::max(RGB(0), sum2 / double(n) - mean * mean) / double(n - 1));
+        const RGB mean = sum / double(n),
+                  se = glm::sqrt(glm::max(RGB(0), sum2 / double(n) - mean * mean) / double(n - 1));
         if (sigmaA.z < 1) {
             EXPECT_EQ(zeros, 0);
             for (int c = 0; c < 3; ++c) EXPECT_NEAR(mean[c], exact[c], 1e-12 * exact[c]);
@@ -198,8 +199,10 @@ void expectFurnace(const MediumDesc& medium) {
     int pixels = 0;
     for (int y = 0; y < 12; ++y)
         for (int x = 0; x < 12; ++x) {
-            const Estimate e = samplePixel(*integrator, scene.camera().generateRay(x + 0.5, y + 0.5), uint64_t(y) * 12 + x, 256);
-            for (int c = 0; c < 3; ++c) EXPECT_NEAR(e.mean[c], 1.0, 5 * e.stdError[c] + 1e-12) << "pixel " << x << "," << y;
+            const Estimate e =
+                samplePixel(*integrator, scene.camera().generateRay(x + 0.5, y + 0.5), uint64_t(y) * 12 + x, 256);
+            for (int c = 0; c < 3; ++c)
+                EXPECT_NEAR(e.mean[c], 1.0, 5 * e.stdError[c] + 1e-12) << "pixel " << x << "," << y;
             total += e.mean;
             totalVar += e.stdError * e.stdError;
             ++pixels;
@@ -252,8 +255,8 @@ TEST(Render, SingleScatteringBoundaryModes) {
     const double parityFine = average(meanAbsDiff(renderWith(BoundaryMode::Parity, 0.01), tet));
     const double parityCoarse = average(meanAbsDiff(renderWith(BoundaryMode::Parity, 0.1), tet));
     const double bbox = average(meanAbsDiff(renderWith(BoundaryMode::Bbox, 0.01), tet));
-    std::printf("mean |difference| to tet: parity 0.01: %.5f, parity 0.1: %.5f, bbox: %.5f (brightness %.4f)\n", parityFine,
-                parityCoarse, bbox, brightness);
+    std::printf("mean |difference| to tet: parity 0.01: %.5f, parity 0.1: %.5f, bbox: %.5f (brightness %.4f)\n",
+                parityFine, parityCoarse, bbox, brightness);
     EXPECT_LT(parityFine, 0.05 * brightness);
     EXPECT_LT(parityFine, parityCoarse);  // the difference is the step-size error: it shrinks with the step
     EXPECT_GT(bbox, 5 * parityFine);
@@ -265,7 +268,9 @@ TEST(Render, SameSeedSameImageAnyThreadCount) {
     for (const PhotonEstimate estimate : {PhotonEstimate::Beam, PhotonEstimate::KnnMarch})
         for (const IntegratorType type : {IntegratorType::VolPath, IntegratorType::Photon}) {
             if (type == IntegratorType::VolPath && estimate == PhotonEstimate::KnnMarch) continue;
-            SCOPED_TRACE(type == IntegratorType::VolPath ? "volpath" : estimate == PhotonEstimate::Beam ? "photon, beam" : "photon, knn-march");
+            SCOPED_TRACE(type == IntegratorType::VolPath    ? "volpath"
+                         : estimate == PhotonEstimate::Beam ? "photon, beam"
+                                                            : "photon, knn-march");
             IntegratorDesc integ;
             integ.type = type;
             integ.estimate = estimate;
@@ -283,7 +288,8 @@ TEST(Render, SameSeedSameImageAnyThreadCount) {
             EXPECT_EQ(0, std::memcmp(one.pixels.data(), two.pixels.data(), one.pixels.size() * sizeof(one.pixels[0])));
             options.seed = 43;
             const Image other = render(scene, *integrator, options).image;
-            EXPECT_NE(0, std::memcmp(one.pixels.data(), other.pixels.data(), one.pixels.size() * sizeof(one.pixels[0])));
+            EXPECT_NE(0,
+                      std::memcmp(one.pixels.data(), other.pixels.data(), one.pixels.size() * sizeof(one.pixels[0])));
         }
 }
 

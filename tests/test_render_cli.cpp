@@ -34,7 +34,8 @@ TEST(RenderCommand, WritesExrAndPngAndReportsTimes) {
 TEST(RenderCommand, SameSeedSameFileAnyThreadCount) {
     const std::string dir = tempDir();
     for (const char* integrator : {"volpath", "single"}) {
-        const std::string common = "render " + kSphere + " --resolution 20x16 --spp 2 --seed 9 --integrator " + integrator;
+        const std::string common =
+            "render " + kSphere + " --resolution 20x16 --spp 2 --seed 9 --integrator " + integrator;
         ASSERT_EQ(runTetglow(common + " --threads 1 -o " + dir + "/one.exr").exitCode, 0);
         ASSERT_EQ(runTetglow(common + " --threads 2 -o " + dir + "/two.exr").exitCode, 0);
         EXPECT_EQ(slurp(dir + "/one.exr"), slurp(dir + "/two.exr")) << integrator;
@@ -47,8 +48,9 @@ TEST(RenderCommand, SameSeedSameFileAnyThreadCount) {
 TEST(RenderCommand, CtrlCStillWritesTheImage) {
     const std::string dir = tempDir(), out = dir + "/partial.exr";
     // A render far too long to finish; SIGINT after a second must stop it and write the image.
-    const std::string cmd = "( " + std::string(TETGLOW_BINARY) + " render " + kSphere + " --spp 100000 --resolution 64x64 -o " + out +
-                            " >" + dir + "/log 2>&1 & pid=$!; sleep 2; kill -INT $pid; wait $pid; echo $? >" + dir + "/code )";
+    const std::string cmd = "( " + std::string(TETGLOW_BINARY) + " render " + kSphere +
+                            " --spp 100000 --resolution 64x64 -o " + out + " >" + dir +
+                            "/log 2>&1 & pid=$!; sleep 2; kill -INT $pid; wait $pid; echo $? >" + dir + "/code )";
     ASSERT_EQ(std::system(cmd.c_str()), 0);
     EXPECT_EQ(slurp(dir + "/code"), "130\n") << slurp(dir + "/log");
     EXPECT_NE(slurp(dir + "/log").find("interrupted"), std::string::npos) << slurp(dir + "/log");
@@ -64,14 +66,19 @@ TEST(RenderCommand, DeltaLightsBehindGlassAreReported) {
                                   R"({"type": "spot", "position": [0, 3, 0], "look_at": [0, 0, 0], "intensity": 20})",
                                   R"({"type": "distant", "direction": [0, -1, 0], "irradiance": 2})"};
     for (const std::string& light : lights) {
-        const std::string scene = writeTemp("glass.json", R"({"camera": {"position": [0, 0, 4], "look_at": [0, 0, 0], "resolution": [4, 4]},
-            "integrator": {"spp": 1}, "lights": [)" + light + R"(],
+        const std::string scene =
+            writeTemp("glass.json", R"({"camera": {"position": [0, 0, 4], "look_at": [0, 0, 0], "resolution": [4, 4]},
+            "integrator": {"spp": 1}, "lights": [)" +
+                                        light + R"(],
             "media": [{"shape": {"type": "sphere", "center": [0, 0, 0], "radius": 1}, "sigma_s": 2, "boundary": {"type": "dielectric", "ior": 1.5}}]})");
         for (const char* integrator : {"volpath", "single", "photon"}) {
-            const auto r = runTetglow("render " + scene + " --photons 100 --integrator " + integrator + " -o " + tempDir() + "/glass.exr");
+            const auto r = runTetglow("render " + scene + " --photons 100 --integrator " + integrator + " -o " +
+                                      tempDir() + "/glass.exr");
             ASSERT_EQ(r.exitCode, 0) << r.err;
-            const bool warned = r.err.find("warning: /media/0 lies inside a dielectric boundary, through which " + std::string(integrator) +
-                                           " cannot carry light from a point, spot or distant light") != std::string::npos;
+            const bool warned =
+                r.err.find("warning: /media/0 lies inside a dielectric boundary, through which " +
+                           std::string(integrator) + " cannot carry light from a point, spot or distant light") !=
+                std::string::npos;
             EXPECT_EQ(warned, std::string(integrator) != "photon") << light << integrator << ": " << r.err;
             if (warned) {
                 EXPECT_NE(r.err.find("--integrator photon renders it\n"), std::string::npos) << r.err;
@@ -79,7 +86,8 @@ TEST(RenderCommand, DeltaLightsBehindGlassAreReported) {
         }
     }
     // Under a sky alone (no delta light) nothing is missing.
-    const std::string sky = writeTemp("sky.json", R"({"camera": {"position": [0, 0, 4], "look_at": [0, 0, 0], "resolution": [4, 4]},
+    const std::string sky =
+        writeTemp("sky.json", R"({"camera": {"position": [0, 0, 4], "look_at": [0, 0, 0], "resolution": [4, 4]},
         "integrator": {"spp": 1}, "lights": [{"type": "environment", "radiance": 1}],
         "media": [{"shape": {"type": "sphere", "center": [0, 0, 0], "radius": 1}, "sigma_s": 2, "boundary": {"type": "dielectric", "ior": 1.5}}]})");
     const auto r = runTetglow("render " + sky + " -o " + tempDir() + "/sky.exr");
@@ -90,7 +98,8 @@ TEST(RenderCommand, DeltaLightsBehindGlassAreReported) {
 // A dense glowing sphere stores a photon at each of a path's 64 events: 10 million paths would
 // take minutes. Under --time the pass stops starting blocks of paths when the time is up.
 TEST(RenderCommand, APhotonPassEndsWithItsTimeLimit) {
-    const std::string scene = writeTemp("dense.json", R"({"camera": {"position": [0, 0, 4], "look_at": [0, 0, 0], "resolution": [1, 1]},
+    const std::string scene =
+        writeTemp("dense.json", R"({"camera": {"position": [0, 0, 4], "look_at": [0, 0, 0], "resolution": [1, 1]},
         "integrator": {"type": "photon", "spp": 1, "photons": 10000000},
         "media": [{"shape": {"type": "sphere", "center": [0, 0, 0], "radius": 1}, "sigma_s": 1000, "emission": 1}]})");
     const auto r = runTetglow("render " + scene + " --time 0.001 -o " + tempDir() + "/dense.exr");
@@ -113,8 +122,10 @@ TEST(RenderCommand, BrokenScenesGetClearErrors) {
     };
     const std::vector<Case> cases = {
         {"syntax", "{\"camera\": ", "syntax.json"},
-        {"missing-mesh", replaced("{\"type\": \"sphere\", \"center\": [0, 0, 0], \"radius\": 1, \"subdivisions\": 4}",
-                                  "{\"type\": \"mesh\", \"file\": \"no/such/mesh.obj\"}"), "no/such/mesh.obj"},
+        {"missing-mesh",
+         replaced("{\"type\": \"sphere\", \"center\": [0, 0, 0], \"radius\": 1, \"subdivisions\": 4}",
+                  "{\"type\": \"mesh\", \"file\": \"no/such/mesh.obj\"}"),
+         "no/such/mesh.obj"},
         {"bad-sigma", replaced("\"sigma_a\": [0.3, 0.3, 0.3]", "\"sigma_a\": [0.3, \"x\", 0.3]"), "/media/0/sigma_a"},
         {"nan-g", replaced("\"g\": 0.0", "\"g\": 1e999"), "/media/0/g"},
     };
@@ -165,8 +176,9 @@ TEST(RenderCommand, ReferenceWritesTheErrorPerPass) {
     ASSERT_NE(at, std::string::npos) << d.out;
     EXPECT_NEAR(std::stod(d.out.substr(at + 11)), csvError, 1e-6 * csvError + 1e-12);
     // A reference of another size: one line naming it.
-    expectOneLineError(runTetglow("render " + kSphere + " --resolution 8x8 --spp 1 --reference " + dir + "/ref.exr -o " + dir + "/x.exr"), 1,
-                       "ref.exr: the reference is 20x16");
+    expectOneLineError(runTetglow("render " + kSphere + " --resolution 8x8 --spp 1 --reference " + dir +
+                                  "/ref.exr -o " + dir + "/x.exr"),
+                       1, "ref.exr: the reference is 20x16");
 }
 
 }  // namespace

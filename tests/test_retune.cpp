@@ -135,14 +135,20 @@ TEST(Retune, CoefficientsRoundTripThroughTheLoadersChecks) {
     nlohmann::json j = nlohmann::json::parse(mediumCoefficientsJson(m).dump());
     j["scale"] = 2;
     MediumDesc read;
-    JsonValue(&j, nlohmann::json::json_pointer(), "request").readObject([&](JsonObject& o) { readMediumCoefficients(o, read); return 0; });
+    JsonValue(&j, nlohmann::json::json_pointer(), "request").readObject([&](JsonObject& o) {
+        readMediumCoefficients(o, read);
+        return 0;
+    });
     EXPECT_EQ(read.sigmaA, 2.0 * m.sigmaA);
     EXPECT_EQ(read.sigmaS, 2.0 * m.sigmaS);
     EXPECT_EQ(read.g, m.g);
     EXPECT_EQ(read.emission, m.emission);
     j["g"] = 1.5;
     try {
-        JsonValue(&j, nlohmann::json::json_pointer(), "request").readObject([&](JsonObject& o) { readMediumCoefficients(o, read); return 0; });
+        JsonValue(&j, nlohmann::json::json_pointer(), "request").readObject([&](JsonObject& o) {
+            readMediumCoefficients(o, read);
+            return 0;
+        });
         FAIL() << "g = 1.5 was accepted";
     } catch (const InputError& e) {
         EXPECT_STREQ(e.what(), "request: /g: expected a number in (-1, 1), got 1.5");

@@ -41,7 +41,8 @@ void expectNet(const std::vector<std::pair<double, double>>& points, int k) {
             ASSERT_LT(y, 1);
             ++count[(size_t(x * (1 << s)) << (k - s)) + size_t(y * (1 << (k - s)))];
         }
-        for (size_t c = 0; c < count.size(); ++c) ASSERT_EQ(count[c], 1) << "split " << s << " of 2^" << k << ", interval " << c;
+        for (size_t c = 0; c < count.size(); ++c)
+            ASSERT_EQ(count[c], 1) << "split " << s << " of 2^" << k << ", interval " << c;
     }
 }
 
@@ -49,7 +50,8 @@ TEST(Sampler, EveryPairOfEveryPixelIsANetForEveryPowerOfTwo) {
     for (uint64_t pixel : {0u, 1u, 77u, 123456u})
         for (int j = 0; j < int(Rng::kSobolDimensions / 2); ++j)
             for (int k = 0; k <= 10; ++k) {
-                SCOPED_TRACE("pixel " + std::to_string(pixel) + ", pair " + std::to_string(j) + ", 2^" + std::to_string(k));
+                SCOPED_TRACE("pixel " + std::to_string(pixel) + ", pair " + std::to_string(j) + ", 2^" +
+                             std::to_string(k));
                 expectNet(pairOf(3, pixel, 0, k, j), k);
                 // Passes rendered apart (a farm's ranges) start at multiples of 2^k: nets too.
                 expectNet(pairOf(3, pixel, 5u << k, k, j), k);
@@ -128,8 +130,8 @@ TEST(Sampler, StratifiesAPixelEdgeBetterThanIndependentNumbers) {
         independentError2 += std::pow(independent / n - exact, 2);
     }
     const double ratio = independentError2 / sobolError2;
-    std::printf("pixel edge, %d samples: variance %.3g (independent) / %.3g (Sobol) = %.1f\n", n, independentError2 / pixels,
-                sobolError2 / pixels, ratio);
+    std::printf("pixel edge, %d samples: variance %.3g (independent) / %.3g (Sobol) = %.1f\n", n,
+                independentError2 / pixels, sobolError2 / pixels, ratio);
     // n^-1 against about n^-3/2: 8 at 64 samples; measured 11.3.
     EXPECT_GT(ratio, 5);
 }

@@ -4,8 +4,8 @@
 #include <fstream>
 #include <sstream>
 
-#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
+#include <glm/geometric.hpp>
 
 #include "TestMeshes.h"
 #include "scene/SceneLoader.h"
@@ -128,7 +128,7 @@ TEST(SceneLoader, FullSceneGivesTheNumbersAndMeshes) {
     EXPECT_EQ(s.media[1].density.type, DensityDesc::Type::Noise);
     EXPECT_EQ(s.media[1].density.seed, 3u);
     EXPECT_GT(signedVolume(s.media[1].boundary), 0);  // mirrored, still outward
-    const Bounds3 b = bounds(s.media[2].boundary);      // row-major: the translation is the last column
+    const Bounds3 b = bounds(s.media[2].boundary);    // row-major: the translation is the last column
     EXPECT_EQ(b.lo, glm::dvec3(7, 0, -1));
     EXPECT_EQ(b.hi, glm::dvec3(8, 1, 0));
     EXPECT_NEAR(signedVolume(s.media[2].boundary), 1, 1e-12);
@@ -165,11 +165,14 @@ struct Broken {
 
 const Broken kBroken[] = {
     {"syntax error", R"("fov": 35, )", R"("fov": 35 )", "scene.json:2:97: /camera: syntax error"},
-    {"number overflow", "[0.1, 0.2, 0.3]", "[0.1, 1e999, 0.3]", "scene.json:17:27: /media/0/sigma_a/1: number overflow"},
+    {"number overflow", "[0.1, 0.2, 0.3]", "[0.1, 1e999, 0.3]",
+     "scene.json:17:27: /media/0/sigma_a/1: number overflow"},
     {"duplicate key", R"("spp": 4,)", R"("spp": 4, "spp": 5,)", "/integrator/spp: duplicate key"},
-    {"unknown key", R"("fov": 35)", R"("fovy": 35)", "/camera/fovy: unknown key; allowed here: position, look_at, up, fov"},
+    {"unknown key", R"("fov": 35)", R"("fovy": 35)",
+     "/camera/fovy: unknown key; allowed here: position, look_at, up, fov"},
     {"unknown top-level key", R"("output")", R"("ouptut")", "/ouptut: unknown key"},
-    {"wrong type", R"("spp": 4)", R"("spp": "many")", R"(/integrator/spp: expected an integer in 1..1048576, got "many")"},
+    {"wrong type", R"("spp": 4)", R"("spp": "many")",
+     R"(/integrator/spp: expected an integer in 1..1048576, got "many")"},
     {"NaN as a string", R"("g": 0.5)", R"("g": "NaN")", R"(/media/0/g: expected a number in (-1, 1), got "NaN")"},
     {"negative sigma", R"("sigma_s": [1, 1, 1])", R"("sigma_s": [1, -1, 1])",
      "/media/0/sigma_s: expected an array of 3 numbers in [0, 3.40282e38]"},
@@ -177,7 +180,8 @@ const Broken kBroken[] = {
      R"(/media/1/sigma_s: expected an array of 3 numbers in [0, 3.40282e38] (or one for all 3), got "abc")"},
     {"g = 1", R"("g": 0.5)", R"("g": 1)", "/media/0/g"},
     {"spp = 0", R"("spp": 4)", R"("spp": 0)", "/integrator/spp"},
-    {"even parity_rays", R"("parity_rays": 3)", R"("parity_rays": 2)", "/integrator/parity_rays: expected an odd integer"},
+    {"even parity_rays", R"("parity_rays": 3)", R"("parity_rays": 2)",
+     "/integrator/parity_rays: expected an odd integer"},
     {"resolution too large", "[320, 240]", "[320, 20000]", "/camera/resolution/1: expected an integer in 1..16384"},
     {"missing mesh file", "meshes/box.obj", "meshes/fish.obj", "/media/0/shape/file: "},  // in full: below
     {"quad as a medium", R"("type": "sphere")", R"("type": "quad")", "/media/1/shape/type: expected a closed shape"},
@@ -186,20 +190,29 @@ const Broken kBroken[] = {
     {"missing required key", R"("position": [1, 2, 3], )", "", "/lights/0/position: missing"},
     {"bad light type", R"("type": "environment")", R"("type": "sun")", R"(/lights/3/type: expected one of "point")"},
     {"cone_delta beyond cone_angle", R"("cone_delta": 4)", R"("cone_delta": 25)", "/lights/1/cone_delta"},
-    {"reflectance above 1", R"("reflectance": 0.8)", R"("reflectance": [0.5, 1.5, 0.5])", "/surfaces/0/material/reflectance"},
-    {"diffuse medium boundary", R"("boundary": {"type": "dielectric")", R"("boundary": {"type": "diffuse")", "/media/0/boundary/type"},
+    {"reflectance above 1", R"("reflectance": 0.8)", R"("reflectance": [0.5, 1.5, 0.5])",
+     "/surfaces/0/material/reflectance"},
+    {"diffuse medium boundary", R"("boundary": {"type": "dielectric")", R"("boundary": {"type": "diffuse")",
+     "/media/0/boundary/type"},
     {"key of another type", R"("type": "dielectric", "ior": 1.4)", R"("type": "interface", "ior": 1.4)",
      "/surfaces/1/material/ior: unknown key"},
     {"tetgen quality below 1", R"("quality": 1.5)", R"("quality": 0.5)", "/media/0/tetgen/quality"},
-    {"singular transform", R"({"scale": [-1, 1, 1]})", R"({"scale": [0, 1, 1]})", "/media/1/shape/transform: the transform is singular"},
-    {"unknown transform", R"({"translate": [1, 0, 0]})", R"({"shift": [1, 0, 0]})", "/media/0/shape/transform/2/shift: unknown key"},
-    {"non-affine matrix", "0, 0, -1, 0,  0, 0, 0, 1]", "0, 0, -1, 0,  0, 0, 1, 1]", "/media/2/shape/transform/0/matrix"},
+    {"singular transform", R"({"scale": [-1, 1, 1]})", R"({"scale": [0, 1, 1]})",
+     "/media/1/shape/transform: the transform is singular"},
+    {"unknown transform", R"({"translate": [1, 0, 0]})", R"({"shift": [1, 0, 0]})",
+     "/media/0/shape/transform/2/shift: unknown key"},
+    {"non-affine matrix", "0, 0, -1, 0,  0, 0, 0, 1]", "0, 0, -1, 0,  0, 0, 1, 1]",
+     "/media/2/shape/transform/0/matrix"},
     {"empty box", R"("max": [3, 1, 1])", R"("max": [3, 0, 1])", "/media/2/shape/max"},
     {"no emitters", R"("intensity": 1)", R"("intensity": 0)", "/lights: nothing emits light", kMinimalScene},
-    {"turntable without frames", R"("camera":)", R"("turntable": {"degrees": 90}, "camera":)", "/turntable/frames: missing"},
-    {"turntable of 0 frames", R"("camera":)", R"("turntable": {"frames": 0}, "camera":)", "/turntable/frames: expected an integer in 1..1000000"},
-    {"turntable about no axis", R"("camera":)", R"("turntable": {"frames": 4, "axis": [0, 0, 0]}, "camera":)", "/turntable/axis: expected a non-zero vector"},
-    {"medium name not a string", R"("g": 0.5)", R"("g": 0.5, "name": 7)", "/media/0/name: expected a non-empty string, got 7"},
+    {"turntable without frames", R"("camera":)", R"("turntable": {"degrees": 90}, "camera":)",
+     "/turntable/frames: missing"},
+    {"turntable of 0 frames", R"("camera":)", R"("turntable": {"frames": 0}, "camera":)",
+     "/turntable/frames: expected an integer in 1..1000000"},
+    {"turntable about no axis", R"("camera":)", R"("turntable": {"frames": 4, "axis": [0, 0, 0]}, "camera":)",
+     "/turntable/axis: expected a non-zero vector"},
+    {"medium name not a string", R"("g": 0.5)", R"("g": 0.5, "name": 7)",
+     "/media/0/name: expected a non-empty string, got 7"},
     {"medium name too long", R"("g": 0.5)", R"("g": 0.5, "name": ")" + std::string(65, 'x') + "\"",
      "/media/0/name: expected a name of 1 to 64 bytes without control characters, got \"xxxxxxxx"},
     {"medium name with a control character", R"("g": 0.5)", R"("g": 0.5, "name": "body\u0007")",
@@ -208,9 +221,12 @@ const Broken kBroken[] = {
      "/media/0/name: expected a name of 1 to 64 bytes without control characters"},
     {"medium name with a line break", R"("g": 0.5)", R"("g": 0.5, "name": "body\nlure")",
      "/media/0/name: expected a name of 1 to 64 bytes without control characters"},
-    {"light switched by a number", R"("two_sided": true)", R"("two_sided": true, "on": 1)", "/lights/2/on: expected true or false, got 1"},
-    {"no lights at all", "", R"({"camera": {"position": [0, 0, 5], "look_at": [0, 0, 0]}})", "/lights: nothing emits light"},
-    {"no camera", "", R"({"lights": [{"type": "environment", "radiance": 1}]})", "/camera: missing; expected an object"},
+    {"light switched by a number", R"("two_sided": true)", R"("two_sided": true, "on": 1)",
+     "/lights/2/on: expected true or false, got 1"},
+    {"no lights at all", "", R"({"camera": {"position": [0, 0, 5], "look_at": [0, 0, 0]}})",
+     "/lights: nothing emits light"},
+    {"no camera", "", R"({"lights": [{"type": "environment", "radiance": 1}]})",
+     "/camera: missing; expected an object"},
     {"top level not an object", "", "[1, 2]", "scene.json: expected an object, got [1,2]"},
 };
 
@@ -248,7 +264,8 @@ TEST(SceneLoader, MediaAreNamedByTheFileOrByTheirMesh) {
   "media": [
     {"name": "Köder", "shape": {"type": "mesh", "file": "meshes/box.obj"}},
     {"shape": {"type": "mesh", "file": "meshes/box.obj", "transform": [{"translate": [3, 0, 0]}]}},
-    {"shape": {"type": "sphere", "center": [-3, 0, 0], "radius": 0.5}, "name": ")" + longest + R"("}
+    {"shape": {"type": "sphere", "center": [-3, 0, 0], "radius": 0.5}, "name": ")" +
+                                             longest + R"("}
   ],
   "cavities": [{"shape": {"type": "sphere", "center": [0.5, 0.5, 0.5], "radius": 0.1}, "name": "bubble"}]
 })"));
@@ -325,7 +342,8 @@ TEST(Turntable, TurnsTheCameraAboutTheAxis) {
     scene.camera.up = {0, 1, 0};
     scene.turntable = {.frames = 4, .center = {1, 0, 0}, .axis = {0, 2, 0}, .degrees = 360};
     const CameraDesc still = cameraAtFrame(scene, 0);
-    EXPECT_TRUE(still.position == scene.camera.position && still.lookAt == scene.camera.lookAt && still.up == scene.camera.up);
+    EXPECT_TRUE(still.position == scene.camera.position && still.lookAt == scene.camera.lookAt &&
+                still.up == scene.camera.up);
     const CameraDesc quarter = cameraAtFrame(scene, 1);  // (x, z) - center -> (z, -x): a quarter turn about +y
     EXPECT_NEAR(glm::distance(quarter.position, glm::dvec3(1 + 4, 0.2, 0.7)), 0, 1e-12);
     EXPECT_NEAR(glm::distance(quarter.lookAt, glm::dvec3(1, 0, 0)), 0, 1e-12);

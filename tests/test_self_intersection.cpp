@@ -7,9 +7,9 @@
 #include <map>
 #include <numbers>
 
+#include <gtest/gtest.h>
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
-#include <gtest/gtest.h>
 
 using namespace tetglow;
 

@@ -17,10 +17,11 @@ TEST(Slab, MatchesPublishedReflectanceAndTransmittance) {
     EXPECT_NEAR(r.reflectance.mean, 0.09739, 3 * r.reflectance.stdError);
     EXPECT_NEAR(r.transmittance.mean, 0.66096, 3 * r.transmittance.stdError);
     EXPECT_LT(r.transmittance.stdError, 0.0015);  // fine enough to see a 0.5% error in Tt
-    EXPECT_EQ(r.lost.mean, 0);                 // nothing reaches the sides of the wide box
+    EXPECT_EQ(r.lost.mean, 0);                    // nothing reaches the sides of the wide box
     // Energy balance: what enters is reflected, transmitted or absorbed.
     const double sum = r.reflectance.mean + r.transmittance.mean + r.absorbed.mean;
-    const double se = std::sqrt(std::pow(r.reflectance.stdError, 2) + std::pow(r.transmittance.stdError, 2) + std::pow(r.absorbed.stdError, 2));
+    const double se = std::sqrt(std::pow(r.reflectance.stdError, 2) + std::pow(r.transmittance.stdError, 2) +
+                                std::pow(r.absorbed.stdError, 2));
     EXPECT_NEAR(sum, 1.0, 3 * se);
 }
 
@@ -66,7 +67,8 @@ TEST(Slab, PhotonAtTheEventCapIsAnError) {
         simulateSlab(p);
         FAIL() << "a photon at the event cap was counted";
     } catch (const InputError& e) {
-        EXPECT_NE(std::string(e.what()).find("a photon scattered 1048576 times without leaving or being absorbed"), std::string::npos)
+        EXPECT_NE(std::string(e.what()).find("a photon scattered 1048576 times without leaving or being absorbed"),
+                  std::string::npos)
             << e.what();
     }
 }

@@ -36,15 +36,17 @@ std::vector<Mode> modes(double step) {
     std::vector<Mode> all;
     IntegratorDesc volpath;
     all.push_back({"volpath", volpath});
-    for (const auto& [name, boundary] : {std::pair{"single, tets", BoundaryMode::Tet}, std::pair{"single, parity", BoundaryMode::Parity},
-                                         std::pair{"single, bbox", BoundaryMode::Bbox}}) {
+    for (const auto& [name, boundary] :
+         {std::pair{"single, tets", BoundaryMode::Tet}, std::pair{"single, parity", BoundaryMode::Parity},
+          std::pair{"single, bbox", BoundaryMode::Bbox}}) {
         IntegratorDesc single;
         single.type = IntegratorType::Single;
         single.boundary = boundary;
         single.stepSize = step;
         all.push_back({name, single});
     }
-    for (const auto& [name, estimate] : {std::pair{"photon, beam", PhotonEstimate::Beam}, std::pair{"photon, knn-march", PhotonEstimate::KnnMarch}}) {
+    for (const auto& [name, estimate] :
+         {std::pair{"photon, beam", PhotonEstimate::Beam}, std::pair{"photon, knn-march", PhotonEstimate::KnnMarch}}) {
         all.push_back({name, photon(estimate, 20000)});
         all.back().desc.stepSize = step;
     }
@@ -67,7 +69,8 @@ SceneDesc furnace(TriangleMesh boundary, const RGB& sigmaA, const RGB& sigmaS, d
 // chord itself is only known to about 1e-16 / 1e-8 in double precision). Parity and bbox are
 // only bounded.
 template <class Exact>
-void expectEveryIntegratorAlong(const Scene& scene, const std::vector<NamedLine>& lines, Exact&& exact, const char* what) {
+void expectEveryIntegratorAlong(const Scene& scene, const std::vector<NamedLine>& lines, Exact&& exact,
+                                const char* what) {
     for (const auto& mode : modes(0.01)) {
         const auto integrator = makeIntegrator(scene, mode.desc);
         integrator->beginPass(0);
@@ -91,7 +94,8 @@ void expectEveryIntegratorAlong(const Scene& scene, const std::vector<NamedLine>
             ++e.lines;
         }
         std::printf("%-15s %s, mean (max):", mode.name.c_str(), what);
-        for (const auto& [kind, e] : errorByKind) std::printf(" %s %.1e (%.1e);", kind.c_str(), e.sum / double(e.lines), e.max);
+        for (const auto& [kind, e] : errorByKind)
+            std::printf(" %s %.1e (%.1e);", kind.c_str(), e.sum / double(e.lines), e.max);
         std::printf("\n");
     }
 }
@@ -214,11 +218,16 @@ TEST(StabilityRender, PhotonCountsAndRadiiAtTheirExtremes) {
         double radius;  // 0: k = 16 neighbours
     };
     const PhotonEstimate beam = PhotonEstimate::Beam, knn = PhotonEstimate::KnnMarch;
-    const Case cases[] = {{"beam, 20000 photons (moderate)", beam, 20000, 0}, {"beam, 1 photon", beam, 1, 0},
-                          {"beam, 30 photons", beam, 30, 0},          {"beam, 300 photons", beam, 300, 0},
-                          {"beam, radius 1e-4", beam, 20000, 1e-4},   {"beam, radius 1e-2", beam, 20000, 1e-2},
-                          {"beam, radius 3 (> the sphere)", beam, 20000, 3}, {"knn-march, 30 photons", knn, 30, 0},
-                          {"knn-march, radius 1e-4", knn, 20000, 1e-4}, {"knn-march, radius 3", knn, 2000, 3}};
+    const Case cases[] = {{"beam, 20000 photons (moderate)", beam, 20000, 0},
+                          {"beam, 1 photon", beam, 1, 0},
+                          {"beam, 30 photons", beam, 30, 0},
+                          {"beam, 300 photons", beam, 300, 0},
+                          {"beam, radius 1e-4", beam, 20000, 1e-4},
+                          {"beam, radius 1e-2", beam, 20000, 1e-2},
+                          {"beam, radius 3 (> the sphere)", beam, 20000, 3},
+                          {"knn-march, 30 photons", knn, 30, 0},
+                          {"knn-march, radius 1e-4", knn, 20000, 1e-4},
+                          {"knn-march, radius 3", knn, 2000, 3}};
     options.spp = 4;  // passes
     std::printf("volpath 64 spp: mean %.4f\n", referenceMean);
     for (const Case& c : cases) {
@@ -255,7 +264,8 @@ TEST(StabilityRender, PhotonCountsAndRadiiAtTheirExtremes) {
 std::string mediumScene(const std::string& name, const std::string& obj, const std::string& tetgen) {
     return writeTemp(name + ".json", R"({"camera": {"position": [0.5, 0.5, 4], "look_at": [0.5, 0.5, 0]},
             "lights": [{"type": "environment", "radiance": 1}],
-            "media": [{"shape": {"type": "mesh", "file": ")" + obj + R"("}, "sigma_s": 1, "tetgen": )" + tetgen + "}]}");
+            "media": [{"shape": {"type": "mesh", "file": ")" +
+                                         obj + R"("}, "sigma_s": 1, "tetgen": )" + tetgen + "}]}");
 }
 
 // A scene whose medium is broken, with strict tets: the render stops with the validation's
@@ -263,11 +273,13 @@ std::string mediumScene(const std::string& name, const std::string& obj, const s
 TEST(StabilityRender, BrokenMediaAreRefusedWhenStrict) {
     TriangleMesh holed = box();
     holed.triangles.pop_back();
-    for (const auto& [name, mesh, expected] : {std::tuple{"holed", holed, "not closed"},
-                                               std::tuple{"crossing", merge(box(), box(glm::dvec3(0.5), glm::dvec3(1.5))), "intersects itself"}}) {
+    for (const auto& [name, mesh, expected] :
+         {std::tuple{"holed", holed, "not closed"},
+          std::tuple{"crossing", merge(box(), box(glm::dvec3(0.5), glm::dvec3(1.5))), "intersects itself"}}) {
         const std::string obj = tempDir() + "/" + name + ".obj", out = tempDir() + "/" + name + ".exr";
         writeObj(mesh, obj);
-        const auto r = runTetglow("render " + mediumScene(name, obj, R"({"strict": true})") + " --resolution 8x8 --spp 1 -o " + out);
+        const auto r = runTetglow("render " + mediumScene(name, obj, R"({"strict": true})") +
+                                  " --resolution 8x8 --spp 1 -o " + out);
         EXPECT_EQ(r.exitCode, 1) << name << ": " << r.err;
         EXPECT_NE(r.err.find(expected), std::string::npos) << name << ": " << r.err;
         EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << name << ": " << r.err;
@@ -286,7 +298,8 @@ TEST(StabilityRender, SmallHolesRenderLikeTheClosedMesh) {
     for (const auto& [name, mesh] : {std::pair{"closed", closed}, std::pair{"holed", holed}}) {
         const std::string obj = tempDir() + "/" + name + ".obj", out = tempDir() + "/" + name + ".exr";
         writeObj(mesh, obj);
-        const auto r = runTetglow("render " + mediumScene(name, obj, "{}") + " --resolution 24x24 --spp 16 --seed 3 -o " + out);
+        const auto r =
+            runTetglow("render " + mediumScene(name, obj, "{}") + " --resolution 24x24 --spp 16 --seed 3 -o " + out);
         ASSERT_EQ(r.exitCode, 0) << name << ": " << r.err;
         images.push_back(readExr(out));
     }

@@ -1,10 +1,10 @@
 // The tet cache: each entry carries a checksum of its content; an entry that is damaged in any
 // way is never used, but rebuilt, with one warning naming the file and the problem.
-#include <cstring>
 #include <fcntl.h>
+#include <sys/stat.h>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <sys/stat.h>
 
 #include <gtest/gtest.h>
 
@@ -21,7 +21,9 @@ std::string slurp(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     return {std::istreambuf_iterator<char>(in), {}};
 }
-void spit(const std::string& path, const std::string& bytes) { std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes; }
+void spit(const std::string& path, const std::string& bytes) {
+    std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
+}
 
 // Recomputes the checksum, as a forger would: the content checks behind it must hold by themselves.
 void reseal(std::string& entry) {
@@ -55,7 +57,8 @@ void expectRebuilt(const Cached& c, const std::string& problem) {
     const TetMesh again = tetrahedralize(box(), c.options, &stats);
     const std::string err = testing::internal::GetCapturedStderr();
     EXPECT_FALSE(stats.fromCache);
-    EXPECT_EQ(stats.cacheWarning, c.file + ": damaged tet cache entry (" + problem + "); not used, tetrahedralizing again");
+    EXPECT_EQ(stats.cacheWarning,
+              c.file + ": damaged tet cache entry (" + problem + "); not used, tetrahedralizing again");
     EXPECT_EQ(err, "tetglow: warning: " + stats.cacheWarning + "\n");
     EXPECT_EQ(again.vertices, c.fresh.vertices);
     EXPECT_EQ(again.tets, c.fresh.tets);

@@ -6,14 +6,14 @@
 #include <random>
 #include <set>
 
-#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
+#include <glm/geometric.hpp>
 
 #include "TestMeshes.h"
 #include "scene/MeshFile.h"
 #include "tet/Predicates.h"
-#include "tet/Tetrahedralizer.h"
 #include "tet/TetVolume.h"
+#include "tet/Tetrahedralizer.h"
 
 namespace tetglow {
 namespace {
@@ -159,7 +159,8 @@ TEST_P(TetCore, LocationAgreesWithParity) {
         // Only points within 1e-6 of the diagonal from the surface may disagree.
         double d = INFINITY;
         for (uint32_t s = 0; s < surface.triangles.size(); ++s) {
-            const glm::dvec3 a = surface.corner(s, 0), n = glm::normalize(glm::cross(surface.corner(s, 1) - a, surface.corner(s, 2) - a));
+            const glm::dvec3 a = surface.corner(s, 0),
+                             n = glm::normalize(glm::cross(surface.corner(s, 1) - a, surface.corner(s, 2) - a));
             d = std::min(d, std::abs(glm::dot(p - a, n)));
         }
         EXPECT_LT(d, 1e-6 * diag_) << "point " << p.x << ' ' << p.y << ' ' << p.z;
@@ -216,7 +217,8 @@ ExactChord exactChord(const TetMesh& m, const Ray& ray) {
     for (const auto& f : m.surface) {
         const auto &a = p[f[0]], &b = p[f[1]], &c = p[f[2]];
         r.clearance = std::min({r.clearance, distance(a.uv, b.uv), distance(b.uv, c.uv), distance(c.uv, a.uv)});
-        const double ab = side(f[0], a.uv, f[1], b.uv), bc = side(f[1], b.uv, f[2], c.uv), ca = side(f[2], c.uv, f[0], a.uv);
+        const double ab = side(f[0], a.uv, f[1], b.uv), bc = side(f[1], b.uv, f[2], c.uv),
+                     ca = side(f[2], c.uv, f[0], a.uv);
         if ((ab > 0) != (bc > 0) || (bc > 0) != (ca > 0)) continue;
         const double t = (bc * a.t + ca * b.t + ab * c.t) / (ab + bc + ca);  // barycentric in the projection
         r.chord += ab > 0 ? t : -t;  // counter-clockwise: the outward normal points along the ray, an exit
@@ -286,9 +288,10 @@ TEST_P(TetCore, DegenerateRayChordsMatchEmbreeOrExactChord) {
         axis[int(rng() % 3)] = 1;
         check({(a + b) * 0.5 - axis * (2 * diag_), axis});
     }
-    std::printf("degenerate rays on %s: %d (exact reference for %d where Embree is ambiguous), lost %d, "
-                "more steps than tets %d, chord off by > 1e-6 diagonals %d\n",
-                GetParam().name.c_str(), rays, ambiguous, lost, longWalks, off);
+    std::printf(
+        "degenerate rays on %s: %d (exact reference for %d where Embree is ambiguous), lost %d, "
+        "more steps than tets %d, chord off by > 1e-6 diagonals %d\n",
+        GetParam().name.c_str(), rays, ambiguous, lost, longWalks, off);
     EXPECT_GT(rays, 3000);
     EXPECT_EQ(lost + longWalks + off, 0);  // each counted on the line above
 }
@@ -305,9 +308,20 @@ TEST_P(TetCore, WalkFromInsideMatchesWalkFromOutside) {
         const glm::dvec3 d = uniformDirection(rng);
         const Ray ray{p - d * (2 * diag_), d};
         double inner = 0, outer = 0;
-        volume_->traverse(ray, 2 * diag_, INFINITY, [&](const WalkSegment& s) { inner += s.tOut - s.tIn; return true; }, t);
-        volume_->traverse(ray, 2 * diag_, INFINITY, [&](const WalkSegment& s) { outer += s.tOut - s.tIn; return true; },
-                          TetVolume::kUnknown);
+        volume_->traverse(
+            ray, 2 * diag_, INFINITY,
+            [&](const WalkSegment& s) {
+                inner += s.tOut - s.tIn;
+                return true;
+            },
+            t);
+        volume_->traverse(
+            ray, 2 * diag_, INFINITY,
+            [&](const WalkSegment& s) {
+                outer += s.tOut - s.tIn;
+                return true;
+            },
+            TetVolume::kUnknown);
         double full = 0;
         volume_->traverse(
             ray, 0, INFINITY,
@@ -348,8 +362,13 @@ TEST(TetWalkDegenerate, BodyDiagonalThroughAPinch) {
         const glm::dvec3 d(s, s, s);
         const Ray ray{glm::dvec3(1) - 2.0 * d, d};  // through the cubes for t in [1, 3]
         double length = 0;
-        ASSERT_TRUE(volume.traverse(ray, 0, INFINITY, [&](const WalkSegment& w) { length += w.tOut - w.tIn; return true; },
-                                    TetVolume::kOutside));
+        ASSERT_TRUE(volume.traverse(
+            ray, 0, INFINITY,
+            [&](const WalkSegment& w) {
+                length += w.tOut - w.tIn;
+                return true;
+            },
+            TetVolume::kOutside));
         EXPECT_NEAR(length, 2.0, 1e-6);
     }
 }

@@ -8,8 +8,8 @@
 #include <glm/geometric.hpp>
 
 #include "scene/MeshFile.h"
-#include "tet/Tetrahedralizer.h"
 #include "tet/TetVolume.h"
+#include "tet/Tetrahedralizer.h"
 
 namespace tetglow {
 namespace {
@@ -18,10 +18,10 @@ std::string gMeshPath = std::string(TETGLOW_SOURCE_DIR) + "/scenes/meshes/fish.o
 
 struct Fixture {
     std::unique_ptr<TetVolume> volume;
-    Bounds3 box;                  // of the medium: the parity baseline's march samples only inside it
-    std::vector<Ray> rays;        // each crosses the medium
-    std::vector<uint32_t> entries;  // Embree's entry triangle per ray
-    std::vector<double> t0, t1;   // each ray's stretch in the box
+    Bounds3 box;                                  // of the medium: the parity baseline's march samples only inside it
+    std::vector<Ray> rays;                        // each crosses the medium
+    std::vector<uint32_t> entries;                // Embree's entry triangle per ray
+    std::vector<double> t0, t1;                   // each ray's stretch in the box
     std::vector<std::vector<glm::dvec3>> inside;  // march samples (step diagonal / 100) inside the medium
 };
 
@@ -95,7 +95,8 @@ void BM_TetStepsAcrossRegions(benchmark::State& state) {
                 names.push_back(part);
             }
         volume = std::make_unique<TetVolume>(tetrahedralize(meshes, names, TetOptions{}));
-        for (const Ray& ray : f.rays) entries[state.range(0)].push_back(volume->bvh().intersect(ray, 0, INFINITY, Facing::Entering)->triangle);
+        for (const Ray& ray : f.rays)
+            entries[state.range(0)].push_back(volume->bvh().intersect(ray, 0, INFINITY, Facing::Entering)->triangle);
     }
     size_t steps = 0, interfaces = 0, i = 0;
     double length = 0;  // the same for both: the organs only split the body's chords
@@ -122,8 +123,13 @@ void BM_RayWalkFull(benchmark::State& state) {
     size_t i = 0;
     for (auto _ : state) {
         double length = 0;
-        f.volume->traverse(f.rays[i++ % f.rays.size()], 0, INFINITY,
-                           [&](const WalkSegment& s) { length += s.tOut - s.tIn; return true; }, TetVolume::kOutside);
+        f.volume->traverse(
+            f.rays[i++ % f.rays.size()], 0, INFINITY,
+            [&](const WalkSegment& s) {
+                length += s.tOut - s.tIn;
+                return true;
+            },
+            TetVolume::kOutside);
         benchmark::DoNotOptimize(length);
     }
     state.counters["rays/s"] = benchmark::Counter(double(state.iterations()), benchmark::Counter::kIsRate);
@@ -152,11 +158,14 @@ void BM_LocateAlongPath(benchmark::State& state) {
         const size_t n = marchSamples(f, r, step);
         tets.assign(n, -1);
         size_t k = 0;  // the next sample
-        f.volume->traverse(f.rays[r], f.t0[r], f.t1[r], [&](const WalkSegment& s) {
-            while (k < n && marchT(f, r, k, step) < s.tIn) ++k;  // between segments: outside
-            for (; k < n && marchT(f, r, k, step) < s.tOut; ++k) tets[k] = s.tet;
-            return true;
-        }, TetVolume::kOutside);
+        f.volume->traverse(
+            f.rays[r], f.t0[r], f.t1[r],
+            [&](const WalkSegment& s) {
+                while (k < n && marchT(f, r, k, step) < s.tIn) ++k;  // between segments: outside
+                for (; k < n && marchT(f, r, k, step) < s.tOut; ++k) tets[k] = s.tet;
+                return true;
+            },
+            TetVolume::kOutside);
         return n;
     };
     for (size_t r = 0; r < 256; ++r)  // once, untimed: the located tets hold their samples

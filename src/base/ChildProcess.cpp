@@ -79,7 +79,8 @@ std::string seconds(double s) {
 }
 
 ChildFailure outOfMemory(double limit) {
-    return ChildFailure(ChildFailure::Kind::OutOfMemory, gigabytes(limit), "ran out of memory (its limit is " + gigabytes(limit) + ")");
+    return ChildFailure(ChildFailure::Kind::OutOfMemory, gigabytes(limit),
+                        "ran out of memory (its limit is " + gigabytes(limit) + ")");
 }
 
 // In the child: run the work and write its answer; never returns.
@@ -124,7 +125,8 @@ ChildFailure outOfMemory(double limit) {
 ChildFailure killedBy(int sig) {
     const char* abbrev = ::sigabbrev_np(sig);
     const std::string name = abbrev ? "SIG" + std::string(abbrev) : "signal " + std::to_string(sig);
-    return ChildFailure(ChildFailure::Kind::Signal, ::strsignal(sig) + (", " + name), "was killed by " + name + " (" + ::strsignal(sig) + ")");
+    return ChildFailure(ChildFailure::Kind::Signal, ::strsignal(sig) + (", " + name),
+                        "was killed by " + name + " (" + ::strsignal(sig) + ")");
 }
 
 }  // namespace
@@ -140,7 +142,8 @@ std::string runInChild(const std::function<std::string()>& work, ChildLimits lim
     limits.memoryBytes = std::min(limits.memoryBytes, ceilingMemory.load());
     limits.seconds = std::min(limits.seconds, ceilingSeconds.load());
     int fds[2];
-    if (::pipe2(fds, O_CLOEXEC) != 0) throw std::runtime_error(std::string("cannot create a pipe: ") + std::strerror(errno));
+    if (::pipe2(fds, O_CLOEXEC) != 0)
+        throw std::runtime_error(std::string("cannot create a pipe: ") + std::strerror(errno));
     std::fflush(nullptr);
     const pid_t parent = ::getpid();
     const double shared = statmBytes(parent, 1);  // the child's resident memory at the fork
@@ -159,8 +162,7 @@ std::string runInChild(const std::function<std::string()>& work, ChildLimits lim
     const int fd = fds[0];
     auto stop = [&](const ChildFailure& why) {
         ::kill(pid, SIGKILL);
-        while (::waitpid(pid, nullptr, 0) < 0 && errno == EINTR) {
-        }
+        while (::waitpid(pid, nullptr, 0) < 0 && errno == EINTR) {}
         ::close(fd);
         throw why;
     };
@@ -186,15 +188,18 @@ std::string runInChild(const std::function<std::string()>& work, ChildLimits lim
                 for (size_t had = SIZE_MAX; open && had != answer.size();) had = answer.size(), open = read(0);
                 break;
             }
-            if (done < 0 && errno != EINTR) stop(ChildFailure(ChildFailure::Kind::Exit, "lost", "was lost (waitpid failed)"));
+            if (done < 0 && errno != EINTR)
+                stop(ChildFailure(ChildFailure::Kind::Exit, "lost", "was lost (waitpid failed)"));
             if (!open) ::poll(nullptr, 0, 1);
         }
         const auto now = std::chrono::steady_clock::now();
         if (now - lastLook < std::chrono::milliseconds(kPollMilliseconds)) continue;
         lastLook = now;
         if (std::chrono::duration<double>(now - start).count() > limits.seconds)
-            stop(ChildFailure(ChildFailure::Kind::OutOfTime, seconds(limits.seconds), "ran past its time limit of " + seconds(limits.seconds)));
-        if (double(answer.size()) > limits.memoryBytes || statmBytes(pid, 1) - shared > limits.memoryBytes) stop(outOfMemory(limits.memoryBytes));
+            stop(ChildFailure(ChildFailure::Kind::OutOfTime, seconds(limits.seconds),
+                              "ran past its time limit of " + seconds(limits.seconds)));
+        if (double(answer.size()) > limits.memoryBytes || statmBytes(pid, 1) - shared > limits.memoryBytes)
+            stop(outOfMemory(limits.memoryBytes));
     }
     ::close(fd);
     if (WIFSIGNALED(status)) throw killedBy(WTERMSIG(status));
@@ -205,10 +210,14 @@ std::string runInChild(const std::function<std::string()>& work, ChildLimits lim
     const char tag = answer.back();
     answer.pop_back();
     switch (tag) {
-        case kResult: return answer;
-        case kInputError: throw InputError(answer);
-        case kOutOfMemory: throw outOfMemory(limits.memoryBytes);
-        default: throw ChildFailure(ChildFailure::Kind::Exception, answer, "failed: " + oneLine(answer));
+        case kResult:
+            return answer;
+        case kInputError:
+            throw InputError(answer);
+        case kOutOfMemory:
+            throw outOfMemory(limits.memoryBytes);
+        default:
+            throw ChildFailure(ChildFailure::Kind::Exception, answer, "failed: " + oneLine(answer));
     }
 }
 

@@ -30,7 +30,8 @@ struct ChildFailure : std::runtime_error {
     ChildFailure(Kind kind, const std::string& detail, const std::string& phrase)
         : std::runtime_error(phrase), kind(kind), detail(detail) {}
     Kind kind;
-    std::string detail;  // the limit, the signal ("Segmentation fault, SIGSEGV"), the exit status or the exception's message
+    std::string
+        detail;  // the limit, the signal ("Segmentation fault, SIGSEGV"), the exit status or the exception's message
 };
 
 // Runs `work` in a forked child under `limits` and returns the bytes it returned. An InputError

@@ -29,8 +29,10 @@ inline std::string shorten(const std::string& s, size_t max = 80) {
 // a million times, so after the first kMaxWarnings only one line says that more were dropped.
 inline constexpr size_t kMaxWarnings = 100;
 inline void addWarning(std::vector<std::string>& warnings, const std::string& message) {
-    if (warnings.size() < kMaxWarnings) warnings.push_back(shorten(oneLine(message), 400));
-    else if (warnings.size() == kMaxWarnings) warnings.push_back("tetglow: warning: more than 100 warnings; the rest are not shown");
+    if (warnings.size() < kMaxWarnings)
+        warnings.push_back(shorten(oneLine(message), 400));
+    else if (warnings.size() == kMaxWarnings)
+        warnings.push_back("tetglow: warning: more than 100 warnings; the rest are not shown");
 }
 
 }  // namespace tetglow

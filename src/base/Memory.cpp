@@ -14,7 +14,8 @@ void checkMemory(double bytes, const std::string& what) {
     const double available = physicalMemory();
     if (bytes <= available) return;
     char text[128];
-    std::snprintf(text, sizeof text, " needs about %.3g GB, more than this machine's %.3g GB of memory", bytes / 1e9, available / 1e9);
+    std::snprintf(text, sizeof text, " needs about %.3g GB, more than this machine's %.3g GB of memory", bytes / 1e9,
+                  available / 1e9);
     throw InputError(what + text);
 }
 

@@ -65,7 +65,8 @@ void prepareOutput(const std::string& path, const std::vector<std::string>& inpu
     if (path.empty() || !target.has_filename() || fs::is_directory(target, ec))
         throw InputError("'" + path + "': the output must name a file, not a folder");
     for (const auto& input : inputs)
-        if (fs::equivalent(input, target, ec)) throw InputError(path + ": the output is an input (" + input + "): refusing to overwrite it");
+        if (fs::equivalent(input, target, ec))
+            throw InputError(path + ": the output is an input (" + input + "): refusing to overwrite it");
     const fs::path dir = target.parent_path();
     if (!dir.empty() && !fs::is_directory(dir, ec)) {
         fs::create_directories(dir, ec);
@@ -81,7 +82,8 @@ void writeTogether(const std::vector<OutputWrite>& files) {
     for (const auto& file : files) {
         const fs::path dir = fs::path(file.path).parent_path();
         std::error_code ec;
-        if (!dir.empty() && !fs::is_directory(dir, ec)) throw InputError(file.path + ": the folder " + dir.string() + " does not exist");
+        if (!dir.empty() && !fs::is_directory(dir, ec))
+            throw InputError(file.path + ": the folder " + dir.string() + " does not exist");
     }
     std::vector<std::unique_ptr<Temporary>> temporaries;
     const std::string* current = nullptr;

@@ -39,11 +39,13 @@ std::string unknownArgument(CLI::App& app, int argc, char** argv) {
         CLI::App* sub = nullptr;
         for (CLI::App* s : command->get_subcommands([](CLI::App*) { return true; }))
             if (s->check_name(arg)) sub = s;
-        if (!sub) return "unknown subcommand '" + shorten(arg) + "' of '" + path + "'; one of: " + subcommandNames(*command);
+        if (!sub)
+            return "unknown subcommand '" + shorten(arg) + "' of '" + path + "'; one of: " + subcommandNames(*command);
         command = sub;
         path += " " + sub->get_name();
     }
-    if (command->get_require_subcommand_min() > 0) return "'" + path + "' needs a subcommand: one of " + subcommandNames(*command);
+    if (command->get_require_subcommand_min() > 0)
+        return "'" + path + "' needs a subcommand: one of " + subcommandNames(*command);
     return "";
 }
 

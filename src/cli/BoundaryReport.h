@@ -14,9 +14,9 @@ struct MediumReport {
     std::string name;
     size_t tets = 0, triangles = 0;
     double diagonal = 0;
-    double sigmaT = 1;         // per unit: optical depth = sigmaT * length
+    double sigmaT = 1;  // per unit: optical depth = sigmaT * length
     std::string sigmaSource = "a mesh alone: optical depth = length";
-    bool homogeneous = true;   // false: a per-vertex density, left out of the optical depth
+    bool homogeneous = true;  // false: a per-vertex density, left out of the optical depth
     BoundaryComparison comparison;
 };
 

@@ -49,7 +49,8 @@ std::string unknownArgument(CLI::App& app, int argc, char** argv);
 inline CLI::Validator inRange(const Range& range) {
     return {[range](std::string& s) -> std::string {
                 double v = 0;
-                if (!CLI::detail::lexical_cast(s, v) || !range.contains(v)) return "expected a " + range.describe() + ", got '" + shorten(s) + "'";
+                if (!CLI::detail::lexical_cast(s, v) || !range.contains(v))
+                    return "expected a " + range.describe() + ", got '" + shorten(s) + "'";
                 return {};
             },
             range.describe()};
@@ -57,7 +58,7 @@ inline CLI::Validator inRange(const Range& range) {
 inline const CLI::Validator kFinite = inRange({});
 
 // An empty value would read as "not given" and be ignored.
-inline const CLI::Validator kNonEmpty{[](std::string& s) { return s.empty() ? std::string("expected a value, got ''") : std::string(); },
-                                      "NONEMPTY"};
+inline const CLI::Validator kNonEmpty{
+    [](std::string& s) { return s.empty() ? std::string("expected a value, got ''") : std::string(); }, "NONEMPTY"};
 
 }  // namespace tetglow::cli

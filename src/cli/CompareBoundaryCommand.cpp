@@ -26,9 +26,9 @@ struct Options {
 
 // The media to compare, with what the picture needs: a camera, a step and rays per parity test.
 struct Subject {
-    std::unique_ptr<Scene> scene;              // SCENE input
-    std::unique_ptr<TetVolume> mesh;           // MESH input
-    std::unique_ptr<TriangleMesh> broken;      // MESH input as read, where it was repaired
+    std::unique_ptr<Scene> scene;          // SCENE input
+    std::unique_ptr<TetVolume> mesh;       // MESH input
+    std::unique_ptr<TriangleMesh> broken;  // MESH input as read, where it was repaired
     std::vector<const TetVolume*> volumes;
     std::vector<MediumReport> reports;
     CameraDesc camera;
@@ -103,9 +103,11 @@ void writePicture(const Options& o, Subject& s) {
     const BoundaryPicture picture = renderBoundaryPicture(Camera(camera), s.volumes, s.step, s.parityRays);
     writeExr(o.picture, picture.image);
     writePng(previewPath(o.picture), picture.image);
-    std::fprintf(stderr, "picture %s: %dx%d, step %.4g, %d parity ray(s) per sample: %zu samples, %zu disagree (%zu magenta pixels)\n",
-                 o.picture.c_str(), camera.width, camera.height, s.step, s.parityRays, picture.samples, picture.disagreements,
-                 picture.pixelsWithDisagreement);
+    std::fprintf(
+        stderr,
+        "picture %s: %dx%d, step %.4g, %d parity ray(s) per sample: %zu samples, %zu disagree (%zu magenta pixels)\n",
+        o.picture.c_str(), camera.width, camera.height, s.step, s.parityRays, picture.samples, picture.disagreements,
+        picture.pixelsWithDisagreement);
 }
 
 void run(const Options& o) {
@@ -113,7 +115,8 @@ void run(const Options& o) {
         throw InputError(o.picture + ": the picture must be an .exr file");
     for (const auto& path : {o.picture, o.picture.empty() ? "" : previewPath(o.picture), o.csv})
         if (!path.empty()) prepareOutput(path, {o.input});
-    Subject s = std::filesystem::path(o.input).extension() == ".json" ? loadSceneSubject(o.input) : loadMeshSubject(o.input, o.strict);
+    Subject s = std::filesystem::path(o.input).extension() == ".json" ? loadSceneSubject(o.input)
+                                                                      : loadMeshSubject(o.input, o.strict);
     for (size_t m = 0; m < s.volumes.size(); ++m)
         s.reports[m].comparison = compareBoundary(*s.volumes[m], o.comparison, s.broken.get());
     if (!o.picture.empty()) writePicture(o, s);
@@ -126,8 +129,11 @@ void run(const Options& o) {
     if (o.json) {
         nlohmann::json media = nlohmann::json::array();
         for (const auto& r : s.reports) media.push_back(toJson(r));
-        const nlohmann::json j = {{"input", o.input}, {"points_per_region", o.comparison.points}, {"rays", o.comparison.rays},
-                                  {"seed", o.comparison.seed}, {"media", media}};
+        const nlohmann::json j = {{"input", o.input},
+                                  {"points_per_region", o.comparison.points},
+                                  {"rays", o.comparison.rays},
+                                  {"seed", o.comparison.seed},
+                                  {"media", media}};
         std::cout << j.dump(2) << '\n';
         return;
     }
@@ -143,14 +149,19 @@ void addCompareBoundaryCommand(CLI::App& app) {
     auto* cmd = app.add_subcommand("compare-boundary",
                                    "Compare the tets with the parity test and the bounding box: inside/outside errors, "
                                    "optical-depth errors, time per query");
-    cmd->add_option("input", o->input, "Closed mesh (OBJ, OFF, PLY, STL, glTF, GLB, FBX, Collada) or scene (.json: every medium in it)")->required();
+    cmd->add_option("input", o->input,
+                    "Closed mesh (OBJ, OFF, PLY, STL, glTF, GLB, FBX, Collada) or scene (.json: every medium in it)")
+        ->required();
     cmd->add_option("--points", o->comparison.points, "Random points per region (the box and each shell)")
         ->check(CLI::Range(size_t(1), size_t(100000000)));
-    cmd->add_option("--rays", o->comparison.rays, "Random lines across the bounding box")->check(CLI::Range(size_t(1), size_t(100000000)));
+    cmd->add_option("--rays", o->comparison.rays, "Random lines across the bounding box")
+        ->check(CLI::Range(size_t(1), size_t(100000000)));
     // Beyond a diagonal a shell lies wholly outside the box, and its points must stay rays Embree takes.
-    cmd->add_option("--shells", o->comparison.shells, "Shell offsets from the surface in diagonals, at most 1 (default: 1e-2 to 1e-7)")
+    cmd->add_option("--shells", o->comparison.shells,
+                    "Shell offsets from the surface in diagonals, at most 1 (default: 1e-2 to 1e-7)")
         ->check(inRange({.lo = 0, .hi = 1, .loOpen = true}));
-    cmd->add_option("--steps", o->comparison.steps, "March steps in world units (default: the diagonal / 20, / 100, / 500)")
+    cmd->add_option("--steps", o->comparison.steps,
+                    "March steps in world units (default: the diagonal / 20, / 100, / 500)")
         ->check(inRange(kPositive));
     cmd->add_option("--seed", o->comparison.seed, "Random seed")->check(inRange(kNonNegative));
     cmd->add_flag("--json", o->json, "Print one JSON object instead of the tables");
@@ -161,8 +172,9 @@ void addCompareBoundaryCommand(CLI::App& app) {
         ->check(kNonEmpty);
     cmd->add_option("--picture-width", o->pictureWidth, "Width of the picture (default: the scene's; 320 for a mesh)")
         ->check(CLI::Range(1, kMaxResolution));
-    cmd->add_flag("--strict", o->strict, "Refuse a broken mesh instead of repairing it (a repaired one is compared "
-                                         "with parity on the mesh as read and with its winding number)");
+    cmd->add_flag("--strict", o->strict,
+                  "Refuse a broken mesh instead of repairing it (a repaired one is compared "
+                  "with parity on the mesh as read and with its winding number)");
     cmd->callback([o] { run(*o); });
 }
 

@@ -21,16 +21,19 @@ void run(const Options& o) {
     const SceneDesc scene = loadScene(o.scene);
     prepareOutput(o.output, scene.inputs);
     const auto meshes = writeScene(scene, o.output);
-    std::printf("%s and %zu mesh files: %zu lights, %zu surfaces, %zu media\n", o.output.c_str(), meshes.size(), scene.lights.size(),
-                scene.surfaces.size(), scene.media.size());
+    std::printf("%s and %zu mesh files: %zu lights, %zu surfaces, %zu media\n", o.output.c_str(), meshes.size(),
+                scene.lights.size(), scene.surfaces.size(), scene.media.size());
 }
 
 }  // namespace
 
 void addConvertCommand(CLI::App& app) {
     auto o = std::make_shared<Options>();
-    auto* cmd = app.add_subcommand("convert", "Write a scene (pbrt-v3 or JSON) as a tetglow JSON scene with OBJ meshes beside it");
-    cmd->add_option("scene", o->scene, "Scene file (pbrt-v3 or JSON, see docs/FORMAT.md)")->required()->check(CLI::ExistingFile);
+    auto* cmd = app.add_subcommand("convert",
+                                   "Write a scene (pbrt-v3 or JSON) as a tetglow JSON scene with OBJ meshes beside it");
+    cmd->add_option("scene", o->scene, "Scene file (pbrt-v3 or JSON, see docs/FORMAT.md)")
+        ->required()
+        ->check(CLI::ExistingFile);
     cmd->add_option("-o,--output", o->output, "The JSON scene to write")->required()->check(kNonEmpty);
     cmd->callback([o] { run(*o); });
 }

@@ -29,14 +29,10 @@ void run(const Options& o) {
     const Image test = readExr(o.test), reference = readExr(o.reference);
     const ImageDiff d = compare(test, reference);
     if (o.json) {
-        const nlohmann::json j = {{"rmse", d.rmse},
-                                  {"rel_mse", d.relMse},
-                                  {"mae", d.mae},
-                                  {"max_error", d.maxError},
-                                  {"max_pixel", {d.maxX, d.maxY}},
-                                  {"non_finite", d.nonFinite},
-                                  {"width", test.width},
-                                  {"height", test.height}};
+        const nlohmann::json j = {
+            {"rmse", d.rmse},          {"rel_mse", d.relMse},           {"mae", d.mae},
+            {"max_error", d.maxError}, {"max_pixel", {d.maxX, d.maxY}}, {"non_finite", d.nonFinite},
+            {"width", test.width},     {"height", test.height}};
         std::cout << j.dump(2) << '\n';
         return;
     }

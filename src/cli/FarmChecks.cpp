@@ -17,8 +17,10 @@ bool isControl(char c) { return (unsigned char)c < 0x20 || c == 0x7f; }
 std::string visible(const std::string& s) {
     std::string v;
     for (char c : s) {
-        if (c == '\n') v += "\\n";
-        else if (c == '\t') v += "\\t";
+        if (c == '\n')
+            v += "\\n";
+        else if (c == '\t')
+            v += "\\t";
         else if (isControl(c)) {
             char hex[8];
             std::snprintf(hex, sizeof hex, "\\x%02x", (unsigned char)c);
@@ -32,51 +34,58 @@ std::string visible(const std::string& s) {
 CLI::Validator matching(const std::string& pattern, const std::string& description) {
     const std::regex re(pattern);
     return {[re, description](std::string& s) {
-                return std::regex_match(s, re) ? std::string() : "expected " + description + ", got '" + visible(s) + "'";
+                return std::regex_match(s, re) ? std::string()
+                                               : "expected " + description + ", got '" + visible(s) + "'";
             },
             ""};
 }
 
 // What farm writes into every script itself, or has an option of its own for: a --sbatch-arg
 // naming one of these (or a prefix of one, which sbatch would take for it) is refused.
-const char* const kFarmSets[] = {"--array", "--output", "--error", "--dependency", "--job-name", "--cpus-per-task", "--partition",
-                                 "--account", "--time", "--mem", "--wrap", "--parsable", "--kill-on-invalid-dep"};
+const char* const kFarmSets[] = {
+    "--array",   "--output", "--error", "--dependency", "--job-name", "--cpus-per-task",      "--partition",
+    "--account", "--time",   "--mem",   "--wrap",       "--parsable", "--kill-on-invalid-dep"};
 
 }  // namespace
 
 CLI::Validator slurmName(bool list) {
-    return list ? matching("[A-Za-z0-9_.-]+(,[A-Za-z0-9_.-]+)*", "names of letters, digits, '_', '-' and '.', separated by commas")
+    return list ? matching("[A-Za-z0-9_.-]+(,[A-Za-z0-9_.-]+)*",
+                           "names of letters, digits, '_', '-' and '.', separated by commas")
                 : matching("[A-Za-z0-9_.-]+", "a name of letters, digits, '_', '-' and '.'");
 }
 
 const CLI::Validator kWalltime =
     matching("[0-9]+(:[0-9]+){0,2}|[0-9]+-[0-9]+(:[0-9]+){0,2}|UNLIMITED|INFINITE",
              "a Slurm time limit (MIN, MIN:SEC, H:MIN:SEC, D-H, D-H:MIN, D-H:MIN:SEC or UNLIMITED)");
-const CLI::Validator kMemory = matching("[0-9]+[KMGTkmgt]?", "memory per node as sbatch --mem takes it (e.g. 4000, 500M, 16G)");
+const CLI::Validator kMemory =
+    matching("[0-9]+[KMGTkmgt]?", "memory per node as sbatch --mem takes it (e.g. 4000, 500M, 16G)");
 
-const CLI::Validator kSbatchArg{[](std::string& s) -> std::string {
-                                    const std::string v = visible(s);
-                                    if (!std::regex_match(s, std::regex("--[A-Za-z][A-Za-z0-9-]*(=.*)?")) ||
-                                        std::any_of(s.begin(), s.end(), isControl))
-                                        return "expected one long option of sbatch's, --NAME or --NAME=VALUE on one line, got '" + v + "'";
-                                    const std::string name = s.substr(0, s.find('='));
-                                    for (const std::string reserved : kFarmSets)
-                                        if (reserved.starts_with(name))
-                                            return "'" + v + "': farm sets " + reserved + " itself" +
-                                                   (reserved == "--time" || reserved == "--mem" || reserved == "--partition" ||
-                                                            reserved == "--account" || reserved == "--cpus-per-task"
-                                                        ? " (give farm " + reserved + ")"
-                                                        : "");
-                                    return {};
-                                },
-                                ""};
+const CLI::Validator kSbatchArg{
+    [](std::string& s) -> std::string {
+        const std::string v = visible(s);
+        if (!std::regex_match(s, std::regex("--[A-Za-z][A-Za-z0-9-]*(=.*)?")) ||
+            std::any_of(s.begin(), s.end(), isControl))
+            return "expected one long option of sbatch's, --NAME or --NAME=VALUE on one line, got '" + v + "'";
+        const std::string name = s.substr(0, s.find('='));
+        for (const std::string reserved : kFarmSets)
+            if (reserved.starts_with(name))
+                return "'" + v + "': farm sets " + reserved + " itself" +
+                       (reserved == "--time" || reserved == "--mem" || reserved == "--partition" ||
+                                reserved == "--account" || reserved == "--cpus-per-task"
+                            ? " (give farm " + reserved + ")"
+                            : "");
+        return {};
+    },
+    ""};
 
 void checkScriptText(const std::string& what, const std::string& value, bool logFolder) {
     if (std::any_of(value.begin(), value.end(), isControl))
-        throw InputError("farm: " + what + " '" + visible(value) + "' holds a control character: refusing to write it into a batch script");
-    if (logFolder && value.find('\\') != std::string::npos)
         throw InputError("farm: " + what + " '" + visible(value) +
-                         "' holds a backslash, which turns off Slurm's file name patterns (task-%a.log): choose another folder");
+                         "' holds a control character: refusing to write it into a batch script");
+    if (logFolder && value.find('\\') != std::string::npos)
+        throw InputError(
+            "farm: " + what + " '" + visible(value) +
+            "' holds a backslash, which turns off Slurm's file name patterns (task-%a.log): choose another folder");
 }
 
 std::string localPathWarning(const std::string& what, const std::string& path) {
@@ -94,14 +103,17 @@ std::string localPathWarning(const std::string& what, const std::string& path) {
     std::string line, device, mountPoint, type, deepest, deepestType;
     while (std::getline(mounts, line)) {
         std::istringstream fields(line);
-        if (fields >> device >> mountPoint >> type && (mountPoint == "/" || under(mountPoint)) && mountPoint.size() >= deepest.size()) {
+        if (fields >> device >> mountPoint >> type && (mountPoint == "/" || under(mountPoint)) &&
+            mountPoint.size() >= deepest.size()) {
             deepest = mountPoint;
             deepestType = type;
         }
     }
-    if (deepestType == "tmpfs" || deepestType == "ramfs") why += (why.empty() ? "on " : ", on ") + deepestType + " " + deepest;
+    if (deepestType == "tmpfs" || deepestType == "ramfs")
+        why += (why.empty() ? "on " : ", on ") + deepestType + " " + deepest;
     if (why.empty()) return {};
-    return "farm: warning: " + what + " " + s + " lies " + why + ", which is local to each node: tasks on other nodes will not see it";
+    return "farm: warning: " + what + " " + s + " lies " + why +
+           ", which is local to each node: tasks on other nodes will not see it";
 }
 
 }  // namespace tetglow::cli

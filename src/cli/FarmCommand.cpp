@@ -73,7 +73,8 @@ std::string frameOutput(const std::string& output, int frame, bool animated) {
 FarmPlan plan(const Options& o) {
     const SceneDesc desc = loadSceneWith(o.args);
     if (desc.integrator.timeLimit > 0)
-        throw InputError("farm: " + o.args.scene + " renders for a time (\"time\"), which cannot be split into parts: give --spp or --passes");
+        throw InputError("farm: " + o.args.scene +
+                         " renders for a time (\"time\"), which cannot be split into parts: give --spp or --passes");
     const std::string given = o.output.empty() ? desc.output : o.output;
     if (given.empty()) throw InputError("farm: " + o.args.scene + " names no \"output\": give -o OUT.exr");
     if (fs::path(given).extension() != ".exr") throw InputError(given + ": the output must be an .exr file");
@@ -81,15 +82,18 @@ FarmPlan plan(const Options& o) {
     p.binary = fs::read_symlink("/proc/self/exe").string();
     p.scene = fs::absolute(o.args.scene).string();
     for (const CLI::Option* option : o.renderOptions)
-        for (const auto& value : option->results()) p.renderArgs.insert(p.renderArgs.end(), {option->get_name(), value});
+        for (const auto& value : option->results())
+            p.renderArgs.insert(p.renderArgs.end(), {option->get_name(), value});
     p.totalPasses = desc.integrator.spp;
     p.inputs = desc.inputs;
     if (o.parts > p.totalPasses)
-        throw InputError("farm: --parts " + std::to_string(o.parts) + " is more than the " + std::to_string(p.totalPasses) + " passes to split");
+        throw InputError("farm: --parts " + std::to_string(o.parts) + " is more than the " +
+                         std::to_string(p.totalPasses) + " passes to split");
     p.parts = o.parts;
     p.cpusPerTask = o.cpusPerTask;
     const int frames = desc.turntable.frames;
-    const auto [first, end] = o.frames.empty() ? std::pair{0, frames} : parseRange("--frames", o.frames, frames, "frames");
+    const auto [first, end] =
+        o.frames.empty() ? std::pair{0, frames} : parseRange("--frames", o.frames, frames, "frames");
     p.firstFrame = first;
     p.frames = end - first;
     const std::string output = fs::absolute(given).string();
@@ -105,8 +109,9 @@ FarmPlan plan(const Options& o) {
 
 // The parts, the output and the tet cache must be where every node reads and writes the same files.
 void warnAboutLocalPaths(const FarmPlan& p) {
-    for (const auto& [what, path] : {std::pair{"the output", p.outputs.front()}, {"the parts' folder", p.workDir},
-                                      {"the tet cache", cacheDirectory().string()}})
+    for (const auto& [what, path] : {std::pair{"the output", p.outputs.front()},
+                                     {"the parts' folder", p.workDir},
+                                     {"the tet cache", cacheDirectory().string()}})
         if (const std::string warning = path.empty() ? "" : localPathWarning(what, path); !warning.empty())
             std::fprintf(stderr, "%s\n", warning.c_str());
 }
@@ -116,7 +121,8 @@ void waitFor(const std::string& job) {
     for (;;) {
         const auto [out, status] = capture("squeue -h -j " + job + " -o %T");
         const std::string state = firstLine(out);
-        if (status != 0 || state.empty() || (state != "PENDING" && state != "RUNNING" && state != "CONFIGURING" && state != "COMPLETING"))
+        if (status != 0 || state.empty() ||
+            (state != "PENDING" && state != "RUNNING" && state != "CONFIGURING" && state != "COMPLETING"))
             return;
         std::this_thread::sleep_for(std::chrono::milliseconds(200));
     }
@@ -125,18 +131,23 @@ void waitFor(const std::string& job) {
 void run(const Options& o) {
     const FarmPlan p = plan(o);
     const BatchScripts scripts = batchScripts(p);
-    const std::string prepare = p.workDir + "/prepare.sh", render = p.workDir + "/render.sh", merge = p.workDir + "/merge.sh";
+    const std::string prepare = p.workDir + "/prepare.sh", render = p.workDir + "/render.sh",
+                      merge = p.workDir + "/merge.sh";
     // Each job after the ones it needs: the array only when the cache is filled, the merge after everything.
     auto renderAfter = [](const std::string& prepareJob) { return "afterok:" + prepareJob; };
-    auto mergeAfter = [](const std::string& prepareJob, const std::string& renderJob) { return "afterany:" + prepareJob + ":" + renderJob; };
+    auto mergeAfter = [](const std::string& prepareJob, const std::string& renderJob) {
+        return "afterany:" + prepareJob + ":" + renderJob;
+    };
     warnAboutLocalPaths(p);
     if (o.dryRun) {
-        std::printf("# %s\n%s\n# %s (after %s)\n%s\n# %s (after every task)\n%s\n"
-                    "# Submitted with these commands, each job's id in place of $prepare and $render:\n"
-                    "prepare=$(%s)\nrender=$(%s)\n%s\n",
-                    prepare.c_str(), scripts.prepare.c_str(), render.c_str(), prepare.c_str(), scripts.render.c_str(), merge.c_str(),
-                    scripts.merge.c_str(), sbatchCommand(prepare, "", false).c_str(), sbatchCommand(render, renderAfter("$prepare"), true).c_str(),
-                    sbatchCommand(merge, mergeAfter("$prepare", "$render"), false).c_str());
+        std::printf(
+            "# %s\n%s\n# %s (after %s)\n%s\n# %s (after every task)\n%s\n"
+            "# Submitted with these commands, each job's id in place of $prepare and $render:\n"
+            "prepare=$(%s)\nrender=$(%s)\n%s\n",
+            prepare.c_str(), scripts.prepare.c_str(), render.c_str(), prepare.c_str(), scripts.render.c_str(),
+            merge.c_str(), scripts.merge.c_str(), sbatchCommand(prepare, "", false).c_str(),
+            sbatchCommand(render, renderAfter("$prepare"), true).c_str(),
+            sbatchCommand(merge, mergeAfter("$prepare", "$render"), false).c_str());
         return;
     }
     for (const auto& output : p.outputs) prepareOutput(output, p.inputs);
@@ -151,17 +162,20 @@ void run(const Options& o) {
     const std::string prepareJob = submit(prepare, "", false);
     const std::string renderJob = submit(render, renderAfter(prepareJob), true);
     const std::string mergeJob = submit(merge, mergeAfter(prepareJob, renderJob), false);
-    std::printf("farm: submitted job %s (tet cache), array %s (%d tasks: %d frame(s) x %d parts), merge %s -> %s%s\n"
-                "farm: scripts and logs in %s; watch with: squeue -j %s,%s,%s\n",
-                prepareJob.c_str(), renderJob.c_str(), p.tasks(), p.frames, p.parts, mergeJob.c_str(), p.outputs.front().c_str(),
-                p.frames > 1 ? " ..." : "", p.workDir.c_str(), prepareJob.c_str(), renderJob.c_str(), mergeJob.c_str());
+    std::printf(
+        "farm: submitted job %s (tet cache), array %s (%d tasks: %d frame(s) x %d parts), merge %s -> %s%s\n"
+        "farm: scripts and logs in %s; watch with: squeue -j %s,%s,%s\n",
+        prepareJob.c_str(), renderJob.c_str(), p.tasks(), p.frames, p.parts, mergeJob.c_str(),
+        p.outputs.front().c_str(), p.frames > 1 ? " ..." : "", p.workDir.c_str(), prepareJob.c_str(), renderJob.c_str(),
+        mergeJob.c_str());
     if (!o.wait) return;
     std::fflush(stdout);
     waitFor(mergeJob);
     const std::string status = slurp(mergeStatusPath(p));
     if (status != "0\n") {
         const std::string log = slurp(p.workDir + "/merge.log");
-        throw InputError("farm: the merge job " + mergeJob + (status.empty() ? " ended without a status (cancelled?)" : " failed") +
+        throw InputError("farm: the merge job " + mergeJob +
+                         (status.empty() ? " ended without a status (cancelled?)" : " failed") +
                          (log.empty() ? std::string() : ": " + firstLine(log)));
     }
     std::printf("farm: done: %s\n", p.outputs.back().c_str());
@@ -171,26 +185,37 @@ void run(const Options& o) {
 
 void addFarmCommand(CLI::App& app) {
     auto o = std::make_shared<Options>();
-    auto* cmd = app.add_subcommand("farm", "Render on a Slurm cluster: a job array of parts (render --pass-range) and a merge job");
+    auto* cmd = app.add_subcommand(
+        "farm", "Render on a Slurm cluster: a job array of parts (render --pass-range) and a merge job");
     o->renderOptions = addRenderArgs(cmd, o->args);
     // render's --time cannot be split into parts, and each task's threads are its --cpus-per-task:
     // farm's own options take those names.
     std::erase_if(o->renderOptions, [&](CLI::Option* option) {
         return (option->check_name("--time") || option->check_name("--threads")) && cmd->remove_option(option);
     });
-    cmd->add_option("--parts", o->parts, "Parts to split the passes of each frame into (one array task each)")->required()->check(CLI::Range(1, 100000));
-    cmd->add_option("-o,--output", o->output, "Output .exr (an animation: OUT.0000.exr, OUT.0001.exr, ...; default: the scene's \"output\")")
+    cmd->add_option("--parts", o->parts, "Parts to split the passes of each frame into (one array task each)")
+        ->required()
+        ->check(CLI::Range(1, 100000));
+    cmd->add_option("-o,--output", o->output,
+                    "Output .exr (an animation: OUT.0000.exr, OUT.0001.exr, ...; default: the scene's \"output\")")
         ->check(kNonEmpty);
     cmd->add_option("--frames", o->frames, "Frames A..B-1 of the scene's turntable (A:B; default: all)");
-    cmd->add_option("--cpus-per-task,--threads", o->cpusPerTask, "Cores Slurm gives each task, and its render threads (default 1)")
+    cmd->add_option("--cpus-per-task,--threads", o->cpusPerTask,
+                    "Cores Slurm gives each task, and its render threads (default 1)")
         ->check(CLI::Range(1, 1024));
-    cmd->add_option("--partition", o->sbatch.partition, "Slurm partition(s), comma-separated (default: the cluster's)")->check(slurmName(true));
-    cmd->add_option("--account", o->sbatch.account, "Slurm account the jobs are charged to (default: yours)")->check(slurmName(false));
-    cmd->add_option("--time", o->sbatch.walltime, "Time limit of each job as sbatch --time takes it, e.g. 90 or 1-12:00:00 (default: the partition's)")
+    cmd->add_option("--partition", o->sbatch.partition, "Slurm partition(s), comma-separated (default: the cluster's)")
+        ->check(slurmName(true));
+    cmd->add_option("--account", o->sbatch.account, "Slurm account the jobs are charged to (default: yours)")
+        ->check(slurmName(false));
+    cmd->add_option(
+           "--time", o->sbatch.walltime,
+           "Time limit of each job as sbatch --time takes it, e.g. 90 or 1-12:00:00 (default: the partition's)")
         ->check(kWalltime);
-    cmd->add_option("--mem", o->sbatch.memory, "Memory per node of each job as sbatch --mem takes it, e.g. 8G (default: the partition's)")
+    cmd->add_option("--mem", o->sbatch.memory,
+                    "Memory per node of each job as sbatch --mem takes it, e.g. 8G (default: the partition's)")
         ->check(kMemory);
-    cmd->add_option("--sbatch-arg", o->sbatch.extra, "One more sbatch option for every job, as --sbatch-arg=--NAME=VALUE (repeatable)")
+    cmd->add_option("--sbatch-arg", o->sbatch.extra,
+                    "One more sbatch option for every job, as --sbatch-arg=--NAME=VALUE (repeatable)")
         ->allow_extra_args(false)  // one value each time: the scene after it stays the scene
         ->check(kSbatchArg);
     cmd->add_flag("--wait", o->wait, "Return when the merge is done; exit 1 if any task or the merge failed");

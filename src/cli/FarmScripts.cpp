@@ -15,7 +15,8 @@ std::string header(const FarmPlan& plan, const std::string& name, const std::str
     s += sbatchLine("--job-name", name);
     s += sbatchLine("--output", literalOutputPattern(plan.workDir) + "/" + log);
     s += sbatchLine("--cpus-per-task", std::to_string(cpus));
-    for (const auto& [option, value] : {std::pair{"--partition", o.partition}, {"--account", o.account}, {"--time", o.walltime}, {"--mem", o.memory}})
+    for (const auto& [option, value] :
+         {std::pair{"--partition", o.partition}, {"--account", o.account}, {"--time", o.walltime}, {"--mem", o.memory}})
         if (!value.empty()) s += sbatchLine(option, value);
     for (const auto& arg : o.extra) s += "#SBATCH " + sbatchQuote(arg) + "\n";
     return s;
@@ -80,19 +81,30 @@ std::string sbatchCommand(const std::string& script, const std::string& dependen
 BatchScripts batchScripts(const FarmPlan& plan) {
     BatchScripts b;
     // TetGen runs once, here; every task then reads the tets from the cache.
-    b.prepare = header(plan, "tetglow-prepare", "prepare.log", 1) + "exec " + renderCommand(plan) + " --tetrahedralize-only\n";
+    b.prepare =
+        header(plan, "tetglow-prepare", "prepare.log", 1) + "exec " + renderCommand(plan) + " --tetrahedralize-only\n";
 
     std::string ranges;
     for (int p = 0; p < plan.parts; ++p) ranges.append(" ").append(range(plan.passRange(p)));
     // The part's name is formatted on its own and appended to the quoted folder: no path is
     // ever a printf format.
-    b.render = header(plan, "tetglow-render", "task-%a.log", plan.cpusPerTask) + "#SBATCH --array=0-" + std::to_string(plan.tasks() - 1) +
+    b.render = header(plan, "tetglow-render", "task-%a.log", plan.cpusPerTask) + "#SBATCH --array=0-" +
+               std::to_string(plan.tasks() - 1) +
                "\n# Task i renders part i % parts of frame first + i / parts.\n"
-               "ranges=(" + ranges + " )\n"
-               "frame=$((" + std::to_string(plan.firstFrame) + " + SLURM_ARRAY_TASK_ID / " + std::to_string(plan.parts) + "))\n"
-               "part=$((SLURM_ARRAY_TASK_ID % " + std::to_string(plan.parts) + "))\n"
-               "printf -v name '" + kPartName + "' \"$frame\" \"$part\"\n"
-               "exec " + renderCommand(plan) + " --threads " + std::to_string(plan.cpusPerTask) +
+               "ranges=(" +
+               ranges +
+               " )\n"
+               "frame=$((" +
+               std::to_string(plan.firstFrame) + " + SLURM_ARRAY_TASK_ID / " + std::to_string(plan.parts) +
+               "))\n"
+               "part=$((SLURM_ARRAY_TASK_ID % " +
+               std::to_string(plan.parts) +
+               "))\n"
+               "printf -v name '" +
+               kPartName +
+               "' \"$frame\" \"$part\"\n"
+               "exec " +
+               renderCommand(plan) + " --threads " + std::to_string(plan.cpusPerTask) +
                " --frame \"$frame\" --pass-range \"${ranges[part]}\" -o " + shellQuote(plan.workDir) + "/\"$name\"\n";
 
     // Runs after every task, failed or not, so that a failed task fails the merge with its own
@@ -101,7 +113,9 @@ BatchScripts batchScripts(const FarmPlan& plan) {
               "status=0\n"
               "missing() {  # task, its log: the task's own error, else why it did not run\n"
               "  why=$(grep -h error \"$2\" 2>/dev/null | tail -n 1)\n"
-              "  cache=$(grep -h error " + shellQuote(plan.workDir + "/prepare.log") + " 2>/dev/null | tail -n 1)\n"
+              "  cache=$(grep -h error " +
+              shellQuote(plan.workDir + "/prepare.log") +
+              " 2>/dev/null | tail -n 1)\n"
               "  [ -n \"$why\" ] || why=\"it did not run${cache:+: the tet cache job failed: $cache}\"\n"
               "  echo \"tetglow farm: task $1 wrote no part: $why\" >&2\n"
               "  status=1\n"
@@ -115,8 +129,8 @@ BatchScripts batchScripts(const FarmPlan& plan) {
                        shellQuote(plan.workDir + "/task-" + std::to_string(task) + ".log") + "\n";
             parts += " " + part;
         }
-        b.merge += "[ $status -ne 0 ] || " + shellQuote(plan.binary) + " merge" + parts + " -o " + shellQuote(plan.outputs[size_t(f)]) +
-                   " || status=1\n";
+        b.merge += "[ $status -ne 0 ] || " + shellQuote(plan.binary) + " merge" + parts + " -o " +
+                   shellQuote(plan.outputs[size_t(f)]) + " || status=1\n";
     }
     b.merge += "echo $status > " + shellQuote(mergeStatusPath(plan)) + "\nexit $status\n";
     return b;

@@ -14,16 +14,16 @@ namespace tetglow::cli {
 // What every job is submitted with, beside what farm sets itself.
 struct SbatchOptions {
     std::string partition, account, walltime, memory;  // "": the cluster's default
-    std::vector<std::string> extra;                     // --sbatch-arg: long options, passed on as given
+    std::vector<std::string> extra;                    // --sbatch-arg: long options, passed on as given
 };
 
 struct FarmPlan {
-    std::string binary, scene;              // absolute paths
-    std::vector<std::string> renderArgs;    // the render options as given, handed on to every task
+    std::string binary, scene;            // absolute paths
+    std::vector<std::string> renderArgs;  // the render options as given, handed on to every task
     int totalPasses = 1, parts = 1, cpusPerTask = 1;
-    int firstFrame = 0, frames = 1;         // frames firstFrame .. firstFrame + frames - 1
-    std::vector<std::string> outputs;       // per frame
-    std::vector<std::string> inputs;        // every file the scene reads: no output may name one
+    int firstFrame = 0, frames = 1;    // frames firstFrame .. firstFrame + frames - 1
+    std::vector<std::string> outputs;  // per frame
+    std::vector<std::string> inputs;   // every file the scene reads: no output may name one
     std::string workDir;
     SbatchOptions sbatch;
     std::pair<int, int> passRange(int part) const;  // part p of `parts`: passes as even as can be

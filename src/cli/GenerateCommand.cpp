@@ -1,4 +1,5 @@
-// tetglow generate fish|fish-photophores|fish-eyes|fish-lure-core|cloud|sphere [-o FILE.obj] [--PARAMETER VALUE ...]: procedural meshes.
+// tetglow generate fish|fish-photophores|fish-eyes|fish-lure-core|cloud|sphere [-o FILE.obj] [--PARAMETER VALUE ...]:
+// procedural meshes.
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -77,7 +78,8 @@ struct SphereParams {
 
 TriangleMesh makeSphere(const SphereParams& p) {
     if (!(p.radius > 0) || !std::isfinite(p.radius)) throw InputError("--radius must be a finite number > 0");
-    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) throw InputError("--x, --y, --z must be finite");
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+        throw InputError("--x, --y, --z must be finite");
     if (p.subdivisions < 0 || p.subdivisions > 7) throw InputError("--subdivisions must be 0 to 7");
     return icosphere(p.subdivisions, p.radius, {p.x, p.y, p.z});
 }
@@ -95,9 +97,12 @@ void addGenerateCommand(CLI::App& app) {
         const char* description;
         TriangleMesh (*make)(const FishParams&);
     } fishParts[] = {
-        {"fish", "A deep-sea fish with fins and a glowing lure on a stalk (two closed shells), about 2 units long, nose at +x. "
-                 "About 1.2 * rings * segments triangles.", makeFish},
-        {"fish-photophores", "The fish's light organs: two rows of small spheres along the belly, inside the body", makeFishPhotophores},
+        {"fish",
+         "A deep-sea fish with fins and a glowing lure on a stalk (two closed shells), about 2 units long, nose at +x. "
+         "About 1.2 * rings * segments triangles.",
+         makeFish},
+        {"fish-photophores", "The fish's light organs: two rows of small spheres along the belly, inside the body",
+         makeFishPhotophores},
         {"fish-eyes", "The fish's two eyes, inside the head", makeFishEyes},
         {"fish-lure-core", "The glowing core inside the fish's lure bulb", makeFishLureCore},
     };
@@ -119,8 +124,8 @@ void addGenerateCommand(CLI::App& app) {
         .option("--bumps", &CloudParams::bumps, "Large puffs, 1 to 16")
         .option("--roughness", &CloudParams::roughness, "Height of the small puffs relative to the radius, 0 to 0.15");
 
-    Generator<SphereParams>(*generate, "sphere", "An icosphere of 20 * 4^subdivisions triangles, vertices on the sphere",
-                            makeSphere)
+    Generator<SphereParams>(*generate, "sphere",
+                            "An icosphere of 20 * 4^subdivisions triangles, vertices on the sphere", makeSphere)
         .option("--radius", &SphereParams::radius, "Radius, > 0")
         .option("--x", &SphereParams::x, "Centre x")
         .option("--y", &SphereParams::y, "Centre y")

@@ -42,11 +42,16 @@ nlohmann::json firstScene(const Bounds3& box, const std::string& meshFile) {
         {"camera", {{"position", vec(eye)}, {"look_at", vec(center)}, {"fov", kFov}, {"resolution", {320, 240}}}},
         {"integrator", {{"type", "volpath"}, {"spp", 64}, {"seed", 1}}},
         {"lights",
-         {{{"type", "point"}, {"position", vec(lamp)}, {"intensity", {tidy(lampDistance2 * 0.8), tidy(lampDistance2 * 0.76), tidy(lampDistance2 * 0.68)}}},
+         {{{"type", "point"},
+           {"position", vec(lamp)},
+           {"intensity", {tidy(lampDistance2 * 0.8), tidy(lampDistance2 * 0.76), tidy(lampDistance2 * 0.68)}}},
           {{"type", "environment"}, {"radiance", {0.01, 0.02, 0.04}}}}},
         {"surfaces",
-         {{{"shape", {{"type", "quad"}, {"corner", vec(glm::dvec3(center.x - 6 * r, floorY, center.z - 6 * r))},
-                      {"edge0", vec(glm::dvec3(0, 0, 12 * r))}, {"edge1", vec(glm::dvec3(12 * r, 0, 0))}}},
+         {{{"shape",
+            {{"type", "quad"},
+             {"corner", vec(glm::dvec3(center.x - 6 * r, floorY, center.z - 6 * r))},
+             {"edge0", vec(glm::dvec3(0, 0, 12 * r))},
+             {"edge1", vec(glm::dvec3(12 * r, 0, 0))}}},
            {"material", {{"type", "diffuse"}, {"reflectance", {0.5, 0.5, 0.5}}}}}}},
         {"media",
          {{{"shape", {{"type", "mesh"}, {"file", meshFile}}},
@@ -68,17 +73,22 @@ void run(const std::string& mesh, const std::string& output) {
     const fs::path folder = fs::absolute(output).parent_path();
     const std::string meshFile = fs::relative(fs::absolute(mesh), folder).generic_string();
     writeStream(output, [&](std::ostream& out) { out << firstScene(box, meshFile).dump(2) << '\n'; });
-    std::printf("%s: %s as a glowing medium on a floor; render it with `tetglow render %s`, tune it live with `tetglow preview %s`\n",
-                output.c_str(), mesh.c_str(), output.c_str(), output.c_str());
+    std::printf(
+        "%s: %s as a glowing medium on a floor; render it with `tetglow render %s`, tune it live with `tetglow preview "
+        "%s`\n",
+        output.c_str(), mesh.c_str(), output.c_str(), output.c_str());
 }
 
 }  // namespace
 
 void addInitCommand(CLI::App& app) {
     auto mesh = std::make_shared<std::string>(), output = std::make_shared<std::string>("scene.json");
-    auto* cmd = app.add_subcommand("init", "Write a first scene around a mesh of your own: a glowing medium on a floor, lit and framed");
+    auto* cmd = app.add_subcommand(
+        "init", "Write a first scene around a mesh of your own: a glowing medium on a floor, lit and framed");
     cmd->add_option("mesh", *mesh, "Closed triangle mesh, OBJ or OFF")->required()->check(CLI::ExistingFile);
-    cmd->add_option("-o,--output", *output, "Scene file to write (default: scene.json); the mesh is named relative to it")->check(kNonEmpty);
+    cmd->add_option("-o,--output", *output,
+                    "Scene file to write (default: scene.json); the mesh is named relative to it")
+        ->check(kNonEmpty);
     cmd->callback([mesh, output] { run(*mesh, *output); });
 }
 

@@ -45,17 +45,20 @@ bool fromOwnPage(const httplib::Request& req, const std::string& ownOrigin) {
 Refusal accessRefusal(const httplib::Request& req, const std::string& host, int port) {
     const std::string hostHeader = req.get_header_value("Host");
     if (!namesThisServer(hostHeader, host, port))
-        return {403, "refused: Host \"" + hostHeader + "\" is not this preview's address (" + host + ":" + std::to_string(port) + ")"};
+        return {403, "refused: Host \"" + hostHeader + "\" is not this preview's address (" + host + ":" +
+                         std::to_string(port) + ")"};
     if (req.method == "GET" || req.method == "HEAD") return {};
     const std::string ownOrigin = "http://" + lower(hostHeader);
     if (!fromOwnPage(req, ownOrigin)) {
-        const std::string from = req.has_header("Origin") ? req.get_header_value("Origin") : req.get_header_value("Referer");
+        const std::string from =
+            req.has_header("Origin") ? req.get_header_value("Origin") : req.get_header_value("Referer");
         return {403, "refused: a " + req.method + " from another page (" + (from.empty() ? "cross-site" : from) +
                          "); only the preview's own page at " + ownOrigin + "/ may change it"};
     }
     const std::string type = req.get_header_value("Content-Type");
     if (lower(type.substr(0, type.find(';'))) != "application/json")
-        return {415, "refused: a " + req.method + " body must be declared \"Content-Type: application/json\", not \"" + type + "\""};
+        return {415, "refused: a " + req.method + " body must be declared \"Content-Type: application/json\", not \"" +
+                         type + "\""};
     return {};
 }
 

@@ -62,7 +62,9 @@ void sendJson(httplib::Response& res, const Json& j, int status = 200) {
     res.set_content(j.dump(), "application/json");
 }
 
-void sendError(httplib::Response& res, const std::string& message, int status = 400) { sendJson(res, {{"error", message}}, status); }
+void sendError(httplib::Response& res, const std::string& message, int status = 400) {
+    sendJson(res, {{"error", message}}, status);
+}
 
 // The exposure a request asks for ("exposure" in the query or the JSON body), 0 when absent.
 double exposureOf(const std::string& text) {
@@ -113,7 +115,9 @@ public:
             setsockopt(s, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
         });
         const int bound = port == 0 ? server_.bind_to_any_port(host) : (server_.bind_to_port(host, port) ? port : -1);
-        if (bound < 0) throw InputError("cannot listen on " + host + ":" + std::to_string(port) + " (in use, or not an address of this machine)");
+        if (bound < 0)
+            throw InputError("cannot listen on " + host + ":" + std::to_string(port) +
+                             " (in use, or not an address of this machine)");
         host_ = host;
         port_ = bound;
         return bound;
@@ -146,7 +150,8 @@ private:
         // Before a byte of the body is read.
         server_.set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
             Refusal refusal = accessRefusal(req, host_, port_);
-            if (!refusal.status && req.has_header("Content-Length") && req.get_header_value<uint64_t>("Content-Length") > kMaxRequestBytes)
+            if (!refusal.status && req.has_header("Content-Length") &&
+                req.get_header_value<uint64_t>("Content-Length") > kMaxRequestBytes)
                 refusal = {413, tooLarge()};
             if (!refusal.status) return httplib::Server::HandlerResponse::Unhandled;
             sendError(res, refusal.message, refusal.status);
@@ -157,10 +162,10 @@ private:
             const std::string body(reinterpret_cast<const char*>(file.bytes), file.size);
             const std::string type = contentType(name);
             // httplib's patterns are regular expressions: the name's dots must match dots only.
-            const std::string pattern = name == "index.html" ? "/" : "/" + std::regex_replace(name, std::regex("\\."), "\\.");
-            server_.Get(pattern, [body, type](const httplib::Request&, httplib::Response& res) {
-                res.set_content(body, type);
-            });
+            const std::string pattern =
+                name == "index.html" ? "/" : "/" + std::regex_replace(name, std::regex("\\."), "\\.");
+            server_.Get(pattern,
+                        [body, type](const httplib::Request&, httplib::Response& res) { res.set_content(body, type); });
         }
         server_.Get("/state", [this](const httplib::Request&, httplib::Response& res) { sendJson(res, state()); });
         server_.Get("/image.png", [this](const httplib::Request& req, httplib::Response& res) { image(req, res); });
@@ -169,7 +174,11 @@ private:
         post("/save/image", [this](const std::string& body, httplib::Response& res) { saveImage(body, res); });
         server_.set_error_handler([](const httplib::Request&, httplib::Response& res) {
             if (!res.body.empty()) return;
-            sendError(res, res.status == 404 ? "not found" : res.status == 413 ? tooLarge() : "bad request", res.status);
+            sendError(res,
+                      res.status == 404   ? "not found"
+                      : res.status == 413 ? tooLarge()
+                                          : "bad request",
+                      res.status);
         });
         server_.set_exception_handler([](const httplib::Request&, httplib::Response& res, std::exception_ptr e) {
             try {
@@ -182,24 +191,27 @@ private:
         });
     }
 
-    static std::string tooLarge() { return "request too large: at most " + std::to_string(kMaxRequestBytes) + " bytes"; }
+    static std::string tooLarge() {
+        return "request too large: at most " + std::to_string(kMaxRequestBytes) + " bytes";
+    }
 
     // A POST route whose body is read here, kMaxRequestBytes at most, also when it comes in
     // chunks (httplib checks only a Content-Length against its limit): reading stops at the first
     // byte too many, and the connection closes.
     void post(const std::string& path, std::function<void(const std::string&, httplib::Response&)> handler) {
-        server_.Post(path, [handler](const httplib::Request&, httplib::Response& res, const httplib::ContentReader& read) {
-            std::string body;
-            bool over = false;
-            const bool complete = read([&](const char* data, size_t size) {
-                over = body.size() + size > kMaxRequestBytes;
-                if (!over) body.append(data, size);
-                return !over;
-            });
-            if (over) return sendError(res, tooLarge(), 413);
-            if (!complete) return sendError(res, "bad request: the body is incomplete", 400);
-            handler(body, res);
-        });
+        server_.Post(path,
+                     [handler](const httplib::Request&, httplib::Response& res, const httplib::ContentReader& read) {
+                         std::string body;
+                         bool over = false;
+                         const bool complete = read([&](const char* data, size_t size) {
+                             over = body.size() + size > kMaxRequestBytes;
+                             if (!over) body.append(data, size);
+                             return !over;
+                         });
+                         if (over) return sendError(res, tooLarge(), 413);
+                         if (!complete) return sendError(res, "bad request: the body is incomplete", 400);
+                         handler(body, res);
+                     });
     }
 
     Json state() {
@@ -217,7 +229,7 @@ private:
         j["image"] = nullptr;
         if (live)
             j["image"] = {{"version", live->version}, {"generation", live->generation}, {"passes", live->passes},
-                          {"seconds", live->seconds}, {"width", live->image.width}, {"height", live->image.height}};
+                          {"seconds", live->seconds}, {"width", live->image.width},     {"height", live->image.height}};
         return j;
     }
 
@@ -273,7 +285,8 @@ private:
         const bool overwrite = flagOf(body, "overwrite");
         std::lock_guard lock(saveMutex_);
         std::lock_guard settingsLock(settingsMutex_);
-        if (overwrite && original_.is_null()) return sendError(res, "not saved: a pbrt scene is saved as JSON beside it, never over it");
+        if (overwrite && original_.is_null())
+            return sendError(res, "not saved: a pbrt scene is saved as JSON beside it, never over it");
         const std::string path = overwrite ? scenePath_ : saves_.next("tuned", {".json"}) + ".json";
         if (original_.is_null())
             writeScene(settings_.scene(), path);
@@ -290,7 +303,8 @@ private:
         const std::string exr = saves_.next("image", {".exr", ".png"}) + ".exr";
         writeExr(exr, live->image);
         writePng(previewPath(exr), live->image, exposure);
-        sendJson(res, {{"exr", exr}, {"png", previewPath(exr)}, {"passes", live->passes}, {"generation", live->generation}});
+        sendJson(res,
+                 {{"exr", exr}, {"png", previewPath(exr)}, {"passes", live->passes}, {"generation", live->generation}});
     }
 
     const std::string scenePath_;
@@ -326,9 +340,12 @@ void run(const Options& o) {
 
 void addPreviewCommand(CLI::App& app) {
     auto o = std::make_shared<Options>();
-    auto* cmd = app.add_subcommand("preview", "Serve a local web page that renders the scene live while its media, lights, camera and integrator are tuned");
+    auto* cmd = app.add_subcommand(
+        "preview",
+        "Serve a local web page that renders the scene live while its media, lights, camera and integrator are tuned");
     cmd->add_option("scene", o->scene, "Scene file: JSON, or pbrt-v3 (.pbrt)")->required()->check(CLI::ExistingFile);
-    cmd->add_option("--port", o->port, "TCP port (0: any free one; the URL printed says which)")->check(CLI::Range(0, 65535));
+    cmd->add_option("--port", o->port, "TCP port (0: any free one; the URL printed says which)")
+        ->check(CLI::Range(0, 65535));
     cmd->add_option("--host", o->host, "Address to listen on (default 127.0.0.1: this machine only)");
     cmd->add_option("--threads", o->threads, "Render threads (default: all cores)")->check(CLI::Range(1, 1024));
     cmd->callback([o] { run(*o); });

@@ -9,7 +9,8 @@ namespace tetglow::cli {
 
 namespace fs = std::filesystem;
 
-PreviewSaves::PreviewSaves(fs::path dir, std::string stem, int limit) : dir_(std::move(dir)), stem_(std::move(stem)), limit_(limit) {}
+PreviewSaves::PreviewSaves(fs::path dir, std::string stem, int limit)
+    : dir_(std::move(dir)), stem_(std::move(stem)), limit_(limit) {}
 
 // The largest n of the files named "<base><n>." or "<base><n>-..." (a save's files), 0 for none.
 int PreviewSaves::largestTaken(const std::string& base) const {
@@ -29,13 +30,15 @@ int PreviewSaves::largestTaken(const std::string& base) const {
 std::string PreviewSaves::next(const std::string& kind, const std::vector<std::string>& extensions) {
     std::lock_guard lock(mutex_);
     if (made_ >= limit_)
-        throw InputError("not saved: this preview has saved " + std::to_string(limit_) + " times, its limit (restart it to save more)");
+        throw InputError("not saved: this preview has saved " + std::to_string(limit_) +
+                         " times, its limit (restart it to save more)");
     const std::string base = stem_ + "-" + kind + "-";
     auto found = last_.find(kind);
     if (found == last_.end()) found = last_.emplace(kind, largestTaken(base)).first;
     // Another program may have made a file since: a stat per extension, not a listing.
     const auto taken = [&](const std::string& path) {
-        return std::any_of(extensions.begin(), extensions.end(), [&](const std::string& ext) { return fs::exists(path + ext); });
+        return std::any_of(extensions.begin(), extensions.end(),
+                           [&](const std::string& ext) { return fs::exists(path + ext); });
     };
     std::string path;
     do path = (dir_ / (base + std::to_string(++found->second))).string();

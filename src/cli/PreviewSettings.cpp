@@ -34,14 +34,19 @@ nlohmann::json lightSettings(const LightDesc& l, const nlohmann::ordered_json& e
 
 // "spot", "environment"; "spot 1", "spot 2" where a type comes more than once.
 std::vector<std::string> lightNames(const std::vector<LightDesc>& lights) {
-    static const NameTable<LightType, 6> kNames{{{"point", LightType::Point}, {"spot", LightType::Spot}, {"distant", LightType::Distant},
-                                                 {"quad", LightType::Quad}, {"mesh light", LightType::Mesh}, {"environment", LightType::Environment}}};
+    static const NameTable<LightType, 6> kNames{{{"point", LightType::Point},
+                                                 {"spot", LightType::Spot},
+                                                 {"distant", LightType::Distant},
+                                                 {"quad", LightType::Quad},
+                                                 {"mesh light", LightType::Mesh},
+                                                 {"environment", LightType::Environment}}};
     std::vector<std::string> names;
     for (const LightDesc& l : lights) {
         const auto same = [&](const LightDesc& o) { return o.type == l.type; };
         const size_t before = size_t(std::count_if(lights.data(), &l, same));
         names.emplace_back(nameOf(kNames, l.type));
-        if (std::count_if(lights.begin(), lights.end(), same) > 1) names.back().append(" ").append(std::to_string(before + 1));
+        if (std::count_if(lights.begin(), lights.end(), same) > 1)
+            names.back().append(" ").append(std::to_string(before + 1));
     }
     return names;
 }
@@ -58,7 +63,8 @@ void merge(nlohmann::json& target, const nlohmann::json& patch) {
 
 }  // namespace
 
-PreviewSettings::PreviewSettings(const SceneDesc& loaded, const nlohmann::ordered_json& file) : loaded_(loaded), scene_(loaded) {
+PreviewSettings::PreviewSettings(const SceneDesc& loaded, const nlohmann::ordered_json& file)
+    : loaded_(loaded), scene_(loaded) {
     settings_["integrator"] = unordered(integratorJson(loaded.integrator));
     settings_["media"] = nlohmann::json::array();
     for (const MediumDesc& m : loaded.media) {
@@ -67,10 +73,12 @@ PreviewSettings::PreviewSettings(const SceneDesc& loaded, const nlohmann::ordere
         settings_["media"].push_back(medium);
     }
     const CameraDesc& c = loaded.camera;
-    settings_["camera"] = {{"position", triple(c.position)}, {"look_at", triple(c.lookAt)}, {"up", triple(c.up)}, {"fov", c.fov}};
+    settings_["camera"] = {
+        {"position", triple(c.position)}, {"look_at", triple(c.lookAt)}, {"up", triple(c.up)}, {"fov", c.fov}};
     settings_["lights"] = nlohmann::json::array();
     for (size_t i = 0; i < loaded.lights.size(); ++i)
-        settings_["lights"].push_back(lightSettings(loaded.lights[i], file.is_object() && file.contains("lights") ? file["lights"][i] : nullptr));
+        settings_["lights"].push_back(
+            lightSettings(loaded.lights[i], file.is_object() && file.contains("lights") ? file["lights"][i] : nullptr));
     settings_["resolution_scale"] = 1;
     initial_ = settings_;
 }
@@ -81,14 +89,16 @@ void PreviewSettings::apply(const std::string& text) {
     nlohmann::json next = settings_;
     for (const auto& [key, value] : patch.items()) {
         nlohmann::json& target = next[key];
-        if ((key == "media" || key == "lights") && value.is_array() && target.is_array() && value.size() <= target.size())
+        if ((key == "media" || key == "lights") && value.is_array() && target.is_array() &&
+            value.size() <= target.size())
             for (size_t i = 0; i < value.size(); ++i) merge(target[i], value[i]);
         else
             merge(target, value);  // an unknown key lands here and read() names it
     }
     // "radius": null goes back to k neighbours (the one tuned key a scene file may leave out).
     nlohmann::json& integrator = next["integrator"];
-    if (integrator.is_object() && integrator.contains("radius") && integrator["radius"].is_null()) integrator.erase("radius");
+    if (integrator.is_object() && integrator.contains("radius") && integrator["radius"].is_null())
+        integrator.erase("radius");
     scene_ = read(next);
     settings_ = std::move(next);
 }
@@ -97,7 +107,8 @@ std::string PreviewSettings::changesFrom(const PreviewSettings& before) const {
     std::string out;
     const auto compare = [&](const std::string& owner, const nlohmann::json& now, const nlohmann::json& was) {
         for (const auto& [key, value] : now.items())
-            if (!was.contains(key) || was[key] != value) out += (out.empty() ? "" : ", ") + owner + key + " " + value.dump();
+            if (!was.contains(key) || was[key] != value)
+                out += (out.empty() ? "" : ", ") + owner + key + " " + value.dump();
     };
     const std::vector<std::string> lights = lightNames();
     for (const auto& [key, value] : settings_.items()) {
@@ -127,7 +138,8 @@ nlohmann::ordered_json PreviewSettings::editedScene(nlohmann::ordered_json doc) 
     for (const auto& [key, value] : integrator.items())
         if (changed(integrator, wasIntegrator, key.c_str())) doc["integrator"][key] = value;
     for (const auto& [key, value] : wasIntegrator.items())
-        if (!integrator.contains(key) && doc.contains("integrator")) doc["integrator"].erase(key);  // "radius": back to k
+        if (!integrator.contains(key) && doc.contains("integrator"))
+            doc["integrator"].erase(key);  // "radius": back to k
     for (const auto& [key, value] : settings_["camera"].items())
         if (changed(settings_["camera"], initial_["camera"], key.c_str())) doc["camera"][key] = value;
     if (settings_["resolution_scale"] != initial_["resolution_scale"])
@@ -137,7 +149,8 @@ nlohmann::ordered_json PreviewSettings::editedScene(nlohmann::ordered_json doc) 
         nlohmann::ordered_json& l = doc["lights"][i];
         for (const auto& [key, value] : now.items()) {
             if (!changed(now, was, key.c_str())) continue;
-            const bool single = l.contains(key) && l[key].is_number() && value.is_array() && value[0] == value[1] && value[1] == value[2];
+            const bool single = l.contains(key) && l[key].is_number() && value.is_array() && value[0] == value[1] &&
+                                value[1] == value[2];
             l[key] = single ? value[0] : value;  // a file's single number stays one where it can
         }
     }
@@ -158,7 +171,8 @@ nlohmann::ordered_json PreviewSettings::editedScene(nlohmann::ordered_json doc) 
         };
         for (const char* key : {"g", "emission"})
             if (changed(now, was, key)) m[key] = now[key];
-        const bool zero = fileScale <= 0 && (changed(now, was, "sigma_a") || changed(now, was, "sigma_s") || changed(now, was, "scale"));
+        const bool zero = fileScale <= 0 &&
+                          (changed(now, was, "sigma_a") || changed(now, was, "sigma_s") || changed(now, was, "scale"));
         for (const char* key : {"sigma_a", "sigma_s"})
             if (zero || changed(now, was, key)) m[key] = inUnits(now[key]);
         if (zero || changed(now, was, "scale")) m["scale"] = unit * now["scale"].get<double>();
@@ -175,7 +189,10 @@ SceneDesc PreviewSettings::read(const nlohmann::json& settings) const {
         if (items.size() != s.media.size())
             media.fail("an array of at most " + std::to_string(s.media.size()) + " media, one per medium of the scene");
         for (size_t i = 0; i < items.size(); ++i) {
-            items[i].readObject([&](JsonObject& m) { readMediumCoefficients(m, s.media[i]); return 0; });
+            items[i].readObject([&](JsonObject& m) {
+                readMediumCoefficients(m, s.media[i]);
+                return 0;
+            });
             const MediumDesc& m = s.media[i];
             if (m.cavity && (m.sigmaA != RGB(0) || m.sigmaS != RGB(0) || m.emission != RGB(0)))
                 items[i].error(m.name + " is a cavity: it holds no medium to tune (its coefficients stay 0)");
@@ -187,7 +204,8 @@ SceneDesc PreviewSettings::read(const nlohmann::json& settings) const {
         const JsonValue lights = o["lights"];
         const std::vector<JsonValue> lightItems = lights.array();
         if (lightItems.size() != s.lights.size())
-            lights.fail("an array of at most " + std::to_string(s.lights.size()) + " lights, one per light of the scene");
+            lights.fail("an array of at most " + std::to_string(s.lights.size()) +
+                        " lights, one per light of the scene");
         for (size_t i = 0; i < lightItems.size(); ++i) {
             lightItems[i].readObject([&](JsonObject& l) {
                 readLightEmission(l, s.lights[i]);

@@ -1,12 +1,13 @@
 #include "cli/Progress.h"
 
+#include <unistd.h>
 #include <algorithm>
 #include <cstdio>
-#include <unistd.h>
 
 namespace tetglow::cli {
 
-Progress::Progress(std::string label, RenderPlan plan) : label_(std::move(label)), plan_(plan), terminal_(isatty(STDERR_FILENO)) {}
+Progress::Progress(std::string label, RenderPlan plan)
+    : label_(std::move(label)), plan_(plan), terminal_(isatty(STDERR_FILENO)) {}
 
 void Progress::pass(const PassReport& r) {
     // The part of the way done, by whichever limit is nearest. The noise falls as 1/passes, so
@@ -21,11 +22,12 @@ void Progress::pass(const PassReport& r) {
 
     char noise[96] = "noise: from the second pass";
     if (r.noise)
-        std::snprintf(noise, sizeof noise, "noise %.3g (relative MSE%s)", *r.noise, plan_.biased ? ", variance only: not the photon bias" : "");
+        std::snprintf(noise, sizeof noise, "noise %.3g (relative MSE%s)", *r.noise,
+                      plan_.biased ? ", variance only: not the photon bias" : "");
     const bool counted = plan_.passes > 0 && plan_.timeLimit == 0 && plan_.noiseTarget == 0;
-    std::fprintf(stderr, "%s%s: pass %d%s%s, %.1f s, %.1f s left, %s%s", terminal_ ? "\r" : "", label_.c_str(), r.passes,
-                 counted ? " of " : "", counted ? std::to_string(plan_.passes).c_str() : "", r.seconds, r.seconds * (1 - fraction) / fraction,
-                 noise, terminal_ ? "   " : "\n");
+    std::fprintf(stderr, "%s%s: pass %d%s%s, %.1f s, %.1f s left, %s%s", terminal_ ? "\r" : "", label_.c_str(),
+                 r.passes, counted ? " of " : "", counted ? std::to_string(plan_.passes).c_str() : "", r.seconds,
+                 r.seconds * (1 - fraction) / fraction, noise, terminal_ ? "   " : "\n");
     std::fflush(stderr);
     shown_ = true;
 }

@@ -11,8 +11,9 @@ namespace tetglow::cli {
 ReferenceLog::ReferenceLog(const std::string& referencePath, const std::string& csvPath, int width, int height)
     : reference_(readExr(referencePath)), csvPath_(csvPath) {
     if (reference_.width != width || reference_.height != height)
-        throw InputError(referencePath + ": the reference is " + std::to_string(reference_.width) + "x" + std::to_string(reference_.height) +
-                         ", the render " + std::to_string(width) + "x" + std::to_string(height));
+        throw InputError(referencePath + ": the reference is " + std::to_string(reference_.width) + "x" +
+                         std::to_string(reference_.height) + ", the render " + std::to_string(width) + "x" +
+                         std::to_string(height));
     csv_.open(csvPath);
     if (!csv_) throw InputError(csvPath + ": cannot write");
     csv_.precision(9);
@@ -28,6 +29,8 @@ void ReferenceLog::pass(const PassReport& r) {
     if (!csv_) throw InputError(csvPath_ + ": cannot write");
 }
 
-std::string errorLogPath(const std::string& exrPath) { return std::filesystem::path(exrPath).replace_extension(".csv").string(); }
+std::string errorLogPath(const std::string& exrPath) {
+    return std::filesystem::path(exrPath).replace_extension(".csv").string();
+}
 
 }  // namespace tetglow::cli

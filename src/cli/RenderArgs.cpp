@@ -45,7 +45,8 @@ void applyOverrides(const RenderArgs& o, SceneDesc& scene) {
     if (!o.resolution.empty()) {
         const auto [w, h] = parsePair(o.resolution, 'x');
         if (w < 1 || h < 1 || w > kMaxResolution || h > kMaxResolution)
-            throw CLI::ValidationError("--resolution", "expected WxH with W and H in 1.." + std::to_string(kMaxResolution) + ", got '" +
+            throw CLI::ValidationError("--resolution", "expected WxH with W and H in 1.." +
+                                                           std::to_string(kMaxResolution) + ", got '" +
                                                            shorten(o.resolution) + "'");
         scene.camera.width = w;
         scene.camera.height = h;
@@ -55,33 +56,49 @@ void applyOverrides(const RenderArgs& o, SceneDesc& scene) {
 }  // namespace
 
 std::vector<CLI::Option*> addRenderArgs(CLI::App* cmd, RenderArgs& o) {
-    cmd->add_option("scene", o.scene, "Scene file: JSON, or pbrt-v3 (.pbrt); see docs/FORMAT.md")->required()->check(CLI::ExistingFile);
+    cmd->add_option("scene", o.scene, "Scene file: JSON, or pbrt-v3 (.pbrt); see docs/FORMAT.md")
+        ->required()
+        ->check(CLI::ExistingFile);
     std::vector<CLI::Option*> options;
-    auto add = [&](CLI::Option* option) { options.push_back(option); return option; };
-    add(cmd->add_option("--integrator", o.integrator, "volpath (reference), single (the parity baseline's ray march) or photon")
+    auto add = [&](CLI::Option* option) {
+        options.push_back(option);
+        return option;
+    };
+    add(cmd->add_option("--integrator", o.integrator,
+                        "volpath (reference), single (the parity baseline's ray march) or photon")
             ->check(CLI::IsMember(namesOf(kIntegratorNames))));
     add(cmd->add_option("--spp", o.spp, "Samples per pixel")->check(CLI::Range(1, kMaxSpp)));
     add(cmd->add_option("--threads", o.threads, "Threads (default: all cores)")->check(CLI::Range(1, 1024)));
-    add(cmd->add_option("--seed", o.seed, "Random seed: the same seed gives the same image at any thread count")->check(inRange(kNonNegative)));
+    add(cmd->add_option("--seed", o.seed, "Random seed: the same seed gives the same image at any thread count")
+            ->check(inRange(kNonNegative)));
     add(cmd->add_option("--resolution", o.resolution, "Image size WxH")->check(kNonEmpty));
-    add(cmd->add_option("--boundary", o.boundary, "single: where the medium is: tet (exact), parity (the parity baseline's ray-parity test) or bbox")
+    add(cmd->add_option(
+               "--boundary", o.boundary,
+               "single: where the medium is: tet (exact), parity (the parity baseline's ray-parity test) or bbox")
             ->check(CLI::IsMember(namesOf(kBoundaryNames))));
     add(cmd->add_option("--step", o.step, "single: ray-march step in world units")->check(inRange(kPositive)));
     add(cmd->add_option("--max-depth", o.maxDepth, "Events per path")->check(CLI::Range(1, kMaxDepth)));
-    add(cmd->add_option("--photons", o.photons, "photon: photon paths per pass")->check(CLI::Range(int64_t(1), kMaxPhotons)));
-    auto* k = add(cmd->add_option("--k", o.k, "photon: neighbours that set the radius of each lookup (k-NN) or photon ball (beam)")
+    add(cmd->add_option("--photons", o.photons, "photon: photon paths per pass")
+            ->check(CLI::Range(int64_t(1), kMaxPhotons)));
+    auto* k = add(cmd->add_option("--k", o.k,
+                                  "photon: neighbours that set the radius of each lookup (k-NN) or photon ball (beam)")
                       ->check(CLI::Range(1, 100000)));
     add(cmd->add_option("--radius", o.radius, "photon: a fixed radius (world units) instead of --k")
             ->check(inRange(kPositive))
             ->excludes(k));
-    add(cmd->add_option("--estimate", o.estimate, "photon: knn-march (the parity baseline's march with a k-NN lookup per step) or beam")
+    add(cmd->add_option("--estimate", o.estimate,
+                        "photon: knn-march (the parity baseline's march with a k-NN lookup per step) or beam")
             ->check(CLI::IsMember(namesOf(kEstimateNames))));
-    add(cmd->add_option("--boundary-correction", o.boundaryCorrection, "photon: divide each kernel by the part of its ball inside the medium (on|off)")
+    add(cmd->add_option("--boundary-correction", o.boundaryCorrection,
+                        "photon: divide each kernel by the part of its ball inside the medium (on|off)")
             ->check(CLI::IsMember({"on", "off"})));
-    add(cmd->add_option("--final-gather", o.finalGather, "photon: diffuse surfaces seen from the eye gather indirect light by one more bounce (on|off)")
+    add(cmd->add_option("--final-gather", o.finalGather,
+                        "photon: diffuse surfaces seen from the eye gather indirect light by one more bounce (on|off)")
             ->check(CLI::IsMember({"on", "off"})));
-    auto* passes = add(cmd->add_option("--passes", o.spp, "photon: passes, each with fresh photons and one sample per pixel (the same as --spp)")
-                           ->check(CLI::Range(1, kMaxSpp)));
+    auto* passes =
+        add(cmd->add_option("--passes", o.spp,
+                            "photon: passes, each with fresh photons and one sample per pixel (the same as --spp)")
+                ->check(CLI::Range(1, kMaxSpp)));
     add(cmd->add_option("--time", o.time, "Render passes until this many seconds have passed (photon: progressive)")
             ->check(inRange(kPositive))
             ->excludes(passes));
@@ -98,8 +115,8 @@ SceneDesc loadSceneWith(const RenderArgs& args) {
 std::pair<int, int> parseRange(const std::string& option, const std::string& text, int total, const std::string& what) {
     const auto [a, b] = parsePair(text, ':');
     if (a < 0 || b <= a || b > total)
-        throw CLI::ValidationError(option, "expected A:B with 0 <= A < B <= " + std::to_string(total) + " (the scene's " + what + "), got '" +
-                                               shorten(text) + "'");
+        throw CLI::ValidationError(option, "expected A:B with 0 <= A < B <= " + std::to_string(total) +
+                                               " (the scene's " + what + "), got '" + shorten(text) + "'");
     return {a, b};
 }
 

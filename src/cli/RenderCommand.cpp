@@ -40,7 +40,8 @@ std::string outputPath(const Options& o, const SceneDesc& scene) {
 
 void run(const Options& o) {
     SceneDesc desc = loadSceneWith(o.args);
-    if (o.noise > 0 && !o.args.spp && !(o.args.time > 0)) desc.integrator.spp = kMaxSpp;  // the noise decides when to stop
+    if (o.noise > 0 && !o.args.spp && !(o.args.time > 0))
+        desc.integrator.spp = kMaxSpp;  // the noise decides when to stop
     PartInfo part;
     if (!o.passRange.empty()) {
         std::tie(part.firstPass, part.endPass) = parseRange("--pass-range", o.passRange, desc.integrator.spp, "passes");
@@ -54,7 +55,8 @@ void run(const Options& o) {
     part.frame = std::max(o.frame, 0);
     desc.camera = cameraAtFrame(desc, part.frame);
     const std::string output = outputPath(o, desc);
-    if (std::filesystem::path(output).extension() != ".exr") throw InputError(output + ": the output must be an .exr file");
+    if (std::filesystem::path(output).extension() != ".exr")
+        throw InputError(output + ": the output must be an .exr file");
     if (!o.tetsOnly) {
         prepareOutput(output, desc.inputs);
         if (o.passRange.empty()) prepareOutput(previewPath(output), desc.inputs);
@@ -67,10 +69,12 @@ void run(const Options& o) {
 
     const Scene scene(desc);
     for (const auto& m : scene.volumes())
-        std::fprintf(stderr, "medium %s: %zu tets, %zu Steiner points, %s in %.2f s\n", m.name.c_str(), m.media->mesh().tets.size(),
-                     m.steinerPoints, m.stats.fromCache ? "read from the cache" : "tetrahedralized", m.stats.seconds);
+        std::fprintf(stderr, "medium %s: %zu tets, %zu Steiner points, %s in %.2f s\n", m.name.c_str(),
+                     m.media->mesh().tets.size(), m.steinerPoints,
+                     m.stats.fromCache ? "read from the cache" : "tetrahedralized", m.stats.seconds);
     if (o.tetsOnly) return;
-    for (const std::string& w : unsampledLightWarnings(scene, desc.integrator.type)) std::fprintf(stderr, "tetglow: warning: %s\n", w.c_str());
+    for (const std::string& w : unsampledLightWarnings(scene, desc.integrator.type))
+        std::fprintf(stderr, "tetglow: warning: %s\n", w.c_str());
     const auto integrator = makeIntegrator(scene, desc.integrator);
 
     RenderOptions options;
@@ -82,8 +86,8 @@ void run(const Options& o) {
     options.threads = o.args.threads;
     options.noiseTarget = o.noise;
     options.cancel = &interrupted();
-    Progress progress("render", {(part.endPass > 0 ? part.endPass : options.spp) - part.firstPass, options.timeLimit, options.noiseTarget,
-                                 desc.integrator.type == IntegratorType::Photon});
+    Progress progress("render", {(part.endPass > 0 ? part.endPass : options.spp) - part.firstPass, options.timeLimit,
+                                 options.noiseTarget, desc.integrator.type == IntegratorType::Photon});
     options.passDone = [&](const PassReport& r) {
         progress.pass(r);
         if (reference) reference->pass(r);
@@ -97,7 +101,8 @@ void run(const Options& o) {
     if (!o.passRange.empty()) {
         // A part with an unfinished pass would merge into an image no single render gives.
         if (result.cancelled) {
-            std::fprintf(stderr, "interrupted (%s): %s (passes %s) was not written\n", interruptName(), output.c_str(), o.passRange.c_str());
+            std::fprintf(stderr, "interrupted (%s): %s (passes %s) was not written\n", interruptName(), output.c_str(),
+                         o.passRange.c_str());
             std::exit(128 + interruptSignal());
         }
         writePartial(output, {part, std::move(result.film)});
@@ -108,22 +113,28 @@ void run(const Options& o) {
     if (interrupted())
         std::fprintf(stderr, "interrupted (%s): wrote %d complete passes%s\n", interruptName(), result.passes,
                      result.cancelled ? " (and the tiles of the next)" : "");
-    if (result.droppedSamples) std::fprintf(stderr, "warning: %llu samples were NaN or Inf and were dropped\n", (unsigned long long)result.droppedSamples);
+    if (result.droppedSamples)
+        std::fprintf(stderr, "warning: %llu samples were NaN or Inf and were dropped\n",
+                     (unsigned long long)result.droppedSamples);
     if (o.passRange.empty())
-        std::printf("%s and %s: %dx%d, %d spp%s\n", output.c_str(), previewPath(output).c_str(), desc.camera.width, desc.camera.height,
-                    result.passes, result.noise ? (", noise " + std::to_string(*result.noise) + " (estimated relative MSE)").c_str() : "");
+        std::printf(
+            "%s and %s: %dx%d, %d spp%s\n", output.c_str(), previewPath(output).c_str(), desc.camera.width,
+            desc.camera.height, result.passes,
+            result.noise ? (", noise " + std::to_string(*result.noise) + " (estimated relative MSE)").c_str() : "");
     else
-        std::printf("%s: part of %s frame %d: passes %s of %d, %dx%d\n", output.c_str(), o.args.scene.c_str(), part.frame, o.passRange.c_str(),
-                    part.totalPasses, desc.camera.width, desc.camera.height);
+        std::printf("%s: part of %s frame %d: passes %s of %d, %dx%d\n", output.c_str(), o.args.scene.c_str(),
+                    part.frame, o.passRange.c_str(), part.totalPasses, desc.camera.width, desc.camera.height);
     double tracing = 0;
     if (const auto* photon = dynamic_cast<const PhotonIntegrator*>(integrator.get())) {
         const PhotonStats& s = photon->stats();
         tracing = s.tracingSeconds;
         std::printf("photons: %llu paths traced, %llu stored in media, %llu on surfaces, %.1f MB of maps per pass\n",
-                    (unsigned long long)s.paths, (unsigned long long)s.volumePhotons, (unsigned long long)s.surfacePhotons, s.bytes / 1e6);
+                    (unsigned long long)s.paths, (unsigned long long)s.volumePhotons,
+                    (unsigned long long)s.surfacePhotons, s.bytes / 1e6);
     }
     std::printf("time: tetrahedralization %.2f s, photon tracing %.2f s, rendering %.2f s (%.0f samples/s)\n",
-                scene.tetrahedralizeSeconds(), tracing, result.seconds - tracing, pixels * result.passes / result.seconds);
+                scene.tetrahedralizeSeconds(), tracing, result.seconds - tracing,
+                pixels * result.passes / result.seconds);
     if (interrupted()) {
         std::fflush(stdout);
         std::exit(128 + interruptSignal());  // the shell's code for "stopped by the signal", with the image written
@@ -134,22 +145,29 @@ void run(const Options& o) {
 
 void addRenderCommand(CLI::App& app) {
     auto o = std::make_shared<Options>();
-    auto* cmd = app.add_subcommand("render", "Tetrahedralize the scene's media (cached) and render it to OpenEXR and a PNG preview");
+    auto* cmd = app.add_subcommand(
+        "render", "Tetrahedralize the scene's media (cached) and render it to OpenEXR and a PNG preview");
     const auto renderOptions = addRenderArgs(cmd, o->args);
     cmd->add_option("-o,--output", o->output, "Output .exr (a .png preview is written beside it)")->check(kNonEmpty);
-    auto* time = *std::find_if(renderOptions.begin(), renderOptions.end(), [](const CLI::Option* x) { return x->check_name("--time"); });
+    auto* time = *std::find_if(renderOptions.begin(), renderOptions.end(),
+                               [](const CLI::Option* x) { return x->check_name("--time"); });
     cmd->add_option("--pass-range", o->passRange,
-                    "Render passes A..B-1 of the scene's (A:B), each with its own seed and radius, into a part for `tetglow merge`")
+                    "Render passes A..B-1 of the scene's (A:B), each with its own seed and radius, into a part for "
+                    "`tetglow merge`")
         ->excludes(time);
-    cmd->add_option("--frame", o->frame, "The frame of the scene's turntable to render (from 0)")->check(CLI::NonNegativeNumber);
-    cmd->add_option("--noise", o->noise,
-                    "Stop when the estimated relative MSE falls to this (from the fourth pass on; --spp and --time cap it)")
+    cmd->add_option("--frame", o->frame, "The frame of the scene's turntable to render (from 0)")
+        ->check(CLI::NonNegativeNumber);
+    cmd->add_option(
+           "--noise", o->noise,
+           "Stop when the estimated relative MSE falls to this (from the fourth pass on; --spp and --time cap it)")
         ->check(CLI::PositiveNumber)
         ->excludes("--pass-range");
-    cmd->add_option("--reference", o->reference, "After each pass, print the relative MSE against this EXR and add it to a CSV beside the image")
+    cmd->add_option("--reference", o->reference,
+                    "After each pass, print the relative MSE against this EXR and add it to a CSV beside the image")
         ->check(CLI::ExistingFile)
         ->excludes("--pass-range");
-    cmd->add_flag("--tetrahedralize-only", o->tetsOnly, "Only fill the tet cache with the scene's media, render nothing");
+    cmd->add_flag("--tetrahedralize-only", o->tetsOnly,
+                  "Only fill the tet cache with the scene's media, render nothing");
     cmd->callback([o] { run(*o); });
 }
 

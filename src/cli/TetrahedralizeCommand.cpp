@@ -33,7 +33,8 @@ void writeVtk(const TetMesh& m, const std::vector<uint32_t>& spanned, std::ostre
     const size_t cells = m.tets.size() + spanned.size();
     out << "CELLS " << cells << ' ' << 5 * m.tets.size() + 4 * spanned.size() << '\n';
     for (const auto& t : m.tets) out << "4 " << t[0] << ' ' << t[1] << ' ' << t[2] << ' ' << t[3] << '\n';
-    for (uint32_t s : spanned) out << "3 " << m.surface[s][0] << ' ' << m.surface[s][1] << ' ' << m.surface[s][2] << '\n';
+    for (uint32_t s : spanned)
+        out << "3 " << m.surface[s][0] << ' ' << m.surface[s][1] << ' ' << m.surface[s][2] << '\n';
     out << "CELL_TYPES " << cells << '\n';
     for (size_t i = 0; i < m.tets.size(); ++i) out << "10\n";
     for (size_t i = 0; i < spanned.size(); ++i) out << "5\n";
@@ -66,7 +67,8 @@ nlohmann::json positions(const std::vector<glm::dvec3>& list) {
 nlohmann::json repairJson(const RepairReport& r) {
     if (!r.applied) return nullptr;
     nlohmann::json holes = nlohmann::json::array();
-    for (const auto& h : r.holes) holes.push_back({{"centre", {h.centre.x, h.centre.y, h.centre.z}}, {"area", h.area}, {"faces", h.faces}});
+    for (const auto& h : r.holes)
+        holes.push_back({{"centre", {h.centre.x, h.centre.y, h.centre.z}}, {"area", h.area}, {"faces", h.faces}});
     return {{"reason", r.reason},
             {"summary", r.summary()},
             {"holes", holes},
@@ -145,7 +147,8 @@ void run(const Options& o) {
         nlohmann::json regionList = nlohmann::json::array();
         for (size_t r = 0; r < regions.size(); ++r)
             regionList.push_back({{"mesh", o.meshes[r]},
-                                  {"inside", mesh.regionParent[r] < 0 ? nlohmann::json(nullptr) : nlohmann::json(o.meshes[mesh.regionParent[r]])},
+                                  {"inside", mesh.regionParent[r] < 0 ? nlohmann::json(nullptr)
+                                                                      : nlohmann::json(o.meshes[mesh.regionParent[r]])},
                                   {"tets", regions[r].tets},
                                   {"tet_volume", regions[r].tetVolume},
                                   {"enclosed_volume", regions[r].enclosedVolume},
@@ -187,10 +190,12 @@ void run(const Options& o) {
         std::printf("regions          (volume enclosed: the mesh's minus the meshes nested in it)\n");
         for (size_t r = 0; r < regions.size(); ++r) {
             const auto& g = regions[r];
-            std::printf("  %s%s%s\n      tets %zu, volume: enclosed %.12g, tets %.12g, relative difference %.2e, boundary faces %zu\n",
-                        o.meshes[r].c_str(), mesh.regionParent[r] < 0 ? "" : " inside ",
-                        mesh.regionParent[r] < 0 ? "" : o.meshes[mesh.regionParent[r]].c_str(), g.tets, g.enclosedVolume,
-                        g.tetVolume, g.relError, g.boundaryFaces);
+            std::printf(
+                "  %s%s%s\n      tets %zu, volume: enclosed %.12g, tets %.12g, relative difference %.2e, boundary "
+                "faces %zu\n",
+                o.meshes[r].c_str(), mesh.regionParent[r] < 0 ? "" : " inside ",
+                mesh.regionParent[r] < 0 ? "" : o.meshes[mesh.regionParent[r]].c_str(), g.tets, g.enclosedVolume,
+                g.tetVolume, g.relError, g.boundaryFaces);
         }
     }
     std::printf("time             %.3f s%s\n", stats.seconds, stats.fromCache ? " (from cache)" : "");
@@ -201,17 +206,24 @@ void run(const Options& o) {
 
 void addTetrahedralizeCommand(CLI::App& app) {
     auto o = std::make_shared<Options>();
-    CLI::App* cmd = app.add_subcommand("tetrahedralize", "Validate closed meshes and tetrahedralize their interiors as regions");
-    cmd->add_option("mesh", o->meshes, "Closed triangle meshes (OBJ, OFF, PLY, STL, glTF, GLB, FBX, Collada), nested or touching along shared triangles")->required();
-    cmd->add_option("-o,--output", o->output, "Write the tet mesh (.vtk: legacy VTK for ParaView; else tetglow's binary)")->check(kNonEmpty);
+    CLI::App* cmd =
+        app.add_subcommand("tetrahedralize", "Validate closed meshes and tetrahedralize their interiors as regions");
+    cmd->add_option("mesh", o->meshes,
+                    "Closed triangle meshes (OBJ, OFF, PLY, STL, glTF, GLB, FBX, Collada), nested or touching along "
+                    "shared triangles")
+        ->required();
+    cmd->add_option("-o,--output", o->output,
+                    "Write the tet mesh (.vtk: legacy VTK for ParaView; else tetglow's binary)")
+        ->check(kNonEmpty);
     cmd->add_flag("--json", o->json, "Print the report as one JSON object");
     cmd->add_option("--quality", o->tet.radiusEdgeRatio, "Radius-edge ratio bound (TetGen -q); adds Steiner points")
         ->check(inRange({.lo = 1, .hi = 1e9}));
     cmd->add_option("--max-volume", o->tet.maxVolume, "Largest tet volume (TetGen -a); adds Steiner points")
         ->check(inRange(kPositive));
     cmd->add_flag("--no-cache", o->noCache, "Always run TetGen, do not read or write the cache");
-    cmd->add_flag("--strict", o->tet.strict, "Refuse a mesh that is not closed, manifold and free of self-intersections "
-                                             "instead of repairing it; the error counts and locates every problem");
+    cmd->add_flag("--strict", o->tet.strict,
+                  "Refuse a mesh that is not closed, manifold and free of self-intersections "
+                  "instead of repairing it; the error counts and locates every problem");
     cmd->callback([o] { run(*o); });
 }
 

@@ -28,7 +28,8 @@ std::vector<InsideTest> insideTests(const TetVolume* tets, const SurfaceBVH& bvh
     std::vector<InsideTest> tests;
     if (tets) tests.push_back({"tets", [tets](const glm::dvec3& p) { return tets->locate(p) >= 0; }});
     for (int rays : {1, 3, 5})
-        tests.push_back({"parity " + std::to_string(rays), [&bvh, rays](const glm::dvec3& p) { return insideByParity(bvh, p, rays); }});
+        tests.push_back({"parity " + std::to_string(rays),
+                         [&bvh, rays](const glm::dvec3& p) { return insideByParity(bvh, p, rays); }});
     tests.push_back({"bbox", [box](const glm::dvec3& p) { return box.contains(p); }});
     return tests;
 }
@@ -40,7 +41,8 @@ std::vector<PointRegion> samplePoints(const TriangleMesh& surface, const std::ve
     std::vector<double> cdf;  // triangle areas, summed
     double area = 0;
     for (uint32_t t = 0; t < surface.triangles.size(); ++t)
-        cdf.push_back(area += glm::length(glm::cross(surface.corner(t, 1) - surface.corner(t, 0), surface.corner(t, 2) - surface.corner(t, 0))));
+        cdf.push_back(area += glm::length(glm::cross(surface.corner(t, 1) - surface.corner(t, 0),
+                                                     surface.corner(t, 2) - surface.corner(t, 0))));
     std::vector<PointRegion> regions;
     for (size_t r = 0; r <= offsets.size(); ++r) {
         PointRegion region;
@@ -56,7 +58,8 @@ std::vector<PointRegion> samplePoints(const TriangleMesh& surface, const std::ve
             const glm::dvec2 b = sampleUniformTriangle({u.y, u.z});
             const glm::dvec3 a = surface.corner(t, 0), e1 = surface.corner(t, 1) - a, e2 = surface.corner(t, 2) - a;
             const double side = rng.uniform() < 0.5 ? -1 : 1;
-            region.points.push_back(a + b.x * e1 + b.y * e2 + glm::normalize(glm::cross(e1, e2)) * (side * region.offset * diagonal));
+            region.points.push_back(a + b.x * e1 + b.y * e2 +
+                                    glm::normalize(glm::cross(e1, e2)) * (side * region.offset * diagonal));
         }
         regions.push_back(std::move(region));
     }
@@ -105,8 +108,13 @@ std::vector<Line> sampleLines(const Bounds3& box, size_t count, uint64_t seed) {
 
 double tetChord(const TetVolume& tets, const Line& line) {
     double length = 0;
-    tets.traverse(line.ray, 0, INFINITY, [&](const WalkSegment& s) { length += s.tOut - s.tIn; return true; },
-                  TetVolume::kOutside);
+    tets.traverse(
+        line.ray, 0, INFINITY,
+        [&](const WalkSegment& s) {
+            length += s.tOut - s.tIn;
+            return true;
+        },
+        TetVolume::kOutside);
     return length;
 }
 
@@ -155,22 +163,27 @@ ChordTable compareChords(const std::vector<Line>& lines, const std::vector<Chord
     return table;
 }
 
-BoundaryComparison compareBoundary(const TetVolume& volume, const ComparisonOptions& options, const TriangleMesh* input) {
+BoundaryComparison compareBoundary(const TetVolume& volume, const ComparisonOptions& options,
+                                   const TriangleMesh* input) {
     const TriangleMesh surface = volume.mesh().surfaceMesh();
     const Bounds3& box = volume.bounds();
     // A repaired mesh: parity on the input as it was, beside its winding number.
-    std::unique_ptr<SurfaceBVH> inputBvh = input ? std::make_unique<SurfaceBVH>(input->positions, input->triangles) : nullptr;
+    std::unique_ptr<SurfaceBVH> inputBvh =
+        input ? std::make_unique<SurfaceBVH>(input->positions, input->triangles) : nullptr;
     const SurfaceBVH& bvh = inputBvh ? *inputBvh : volume.bvh();
     auto tests = insideTests(&volume, bvh, box);
     std::unique_ptr<WindingNumber> winding = input ? std::make_unique<WindingNumber>(*input) : nullptr;
-    if (winding) tests.push_back({"winding number", [&winding](const glm::dvec3& p) { return winding->classify(p) > 0.5; }});
+    if (winding)
+        tests.push_back({"winding number", [&winding](const glm::dvec3& p) { return winding->classify(p) > 0.5; }});
     BoundaryComparison result;
-    result.classification = compareClassification(samplePoints(surface, options.shells, options.points, options.seed), tests,
-                                                  [&](const glm::dvec3& p) { return std::optional(volume.locate(p) >= 0); });
+    result.classification =
+        compareClassification(samplePoints(surface, options.shells, options.points, options.seed), tests,
+                              [&](const glm::dvec3& p) { return std::optional(volume.locate(p) >= 0); });
     std::vector<double> steps = options.steps;
     if (steps.empty())
         for (double fraction : {1.0 / 20, 1.0 / 100, 1.0 / 500}) steps.push_back(fraction * box.diagonal());
-    for (double h : steps) checkMarchStep("--steps", h, box.diagonal(), resolutionOf(box, box.lo));  // lines within the box
+    for (double h : steps)
+        checkMarchStep("--steps", h, box.diagonal(), resolutionOf(box, box.lo));  // lines within the box
     result.chords = compareChords(sampleLines(box, options.rays, options.seed), chordTests(&volume, bvh, steps),
                                   [&](const Line& line) { return tetChord(volume, line); });
     return result;

@@ -70,7 +70,7 @@ struct ChordScore {
     std::string method;
     double step = 0;
     double meanAbsError = 0, maxAbsError = 0, meanError = 0;  // length units; meanError is the bias
-    double relativeError = 0;  // sum |error| / sum of true lengths
+    double relativeError = 0;                                 // sum |error| / sum of true lengths
     double secondsPerRay = 0;
 };
 struct ChordTable {
@@ -96,6 +96,7 @@ struct BoundaryComparison {
 
 // Every method against the tets. With `input` (a broken mesh the tets repaired), the parity
 // tests use the input as it was, and the input's winding number (> 1/2) joins them.
-BoundaryComparison compareBoundary(const TetVolume& volume, const ComparisonOptions& options, const TriangleMesh* input = nullptr);
+BoundaryComparison compareBoundary(const TetVolume& volume, const ComparisonOptions& options,
+                                   const TriangleMesh* input = nullptr);
 
 }  // namespace tetglow

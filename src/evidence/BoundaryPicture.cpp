@@ -40,14 +40,17 @@ BoundaryPicture renderBoundaryPicture(const Camera& camera, const std::vector<co
                     tet = media[m]->locate(p, tet);
                     const bool byTets = tet >= 0, byParity = insideByParity(media[m]->bvh(), p, parityRays);
                     ++c.samples;
-                    if (byTets != byParity) ++disagreements;
-                    else (byTets ? inside : boxOnly) += step;
+                    if (byTets != byParity)
+                        ++disagreements;
+                    else
+                        (byTets ? inside : boxOnly) += step;
                 }
             }
             c.disagreements += disagreements;
             c.pixels += disagreements > 0;
-            picture.image.at(x, y) = disagreements ? glm::vec3(1, 0, 1)
-                                                   : glm::vec3(0.3 * (1 - std::exp(-boxOnly / scale)), 1 - std::exp(-inside / scale), 0);
+            picture.image.at(x, y) =
+                disagreements ? glm::vec3(1, 0, 1)
+                              : glm::vec3(0.3 * (1 - std::exp(-boxOnly / scale)), 1 - std::exp(-inside / scale), 0);
         }
     });
     for (const Counts& c : rows) {

@@ -56,7 +56,8 @@ SlabResult simulateSlab(const SlabParams& p) {
     // are a negligible fraction (they are counted apart, as `lost`).
     const double width = 200;
     const TriangleMesh slab = box({-width / 2, -width / 2, -1}, {width / 2, width / 2, 0});
-    const RegionMedia medium({RGB(p.tau * (1 - p.albedo)), RGB(p.tau * p.albedo), p.g, RGB(0)}, tetrahedralize(slab, options));
+    const RegionMedia medium({RGB(p.tau * (1 - p.albedo)), RGB(p.tau * p.albedo), p.g, RGB(0)},
+                             tetrahedralize(slab, options));
     const TetMesh& mesh = medium.mesh();
     // The lit face is z = 0; entry triangles are found once by Embree, then each photon's walk
     // starts there. Entry points are spread over the middle of the face (the slab is
@@ -73,7 +74,8 @@ SlabResult simulateSlab(const SlabParams& p) {
     std::atomic<bool> stuck{false}, late{false};
     std::atomic<uint64_t> traced{0};
     const auto pastTime = [&] {
-        return p.timeLimit > 0 && std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > p.timeLimit;
+        return p.timeLimit > 0 &&
+               std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > p.timeLimit;
     };
     tbb::task_arena arena(p.threads > 0 ? p.threads : tbb::task_arena::automatic);
     for (uint64_t first = 0; first < blocks && !stuck && !late; first += kBlocksAtOnce) {
@@ -91,9 +93,9 @@ SlabResult simulateSlab(const SlabParams& p) {
                     double x4[4] = {};
                     if (entry) {
                         SpectralPath path(0);
-                        const WalkResult r = photonWalk(medium, Ray{ray.at(entry->t), ray.d}, WalkStart::surface(entry->triangle),
-                                                        RGB(1), path, rng, kMaxSlabEvents, [](const Ray&) { return INFINITY; },
-                                                        [](const PhotonEvent&) {});
+                        const WalkResult r = photonWalk(
+                            medium, Ray{ray.at(entry->t), ray.d}, WalkStart::surface(entry->triangle), RGB(1), path,
+                            rng, kMaxSlabEvents, [](const Ray&) { return INFINITY; }, [](const PhotonEvent&) {});
                         if (r.events >= kMaxSlabEvents) stuck = true;
                         x4[2] = r.absorbedFlux.x;
                         if (r.exit.left) {
@@ -109,11 +111,12 @@ SlabResult simulateSlab(const SlabParams& p) {
         for (uint64_t b = 0; b < count; ++b) total.add(blockSums[b]);
     }
     if (stuck)
-        throw InputError("slab: a photon scattered " + std::to_string(kMaxSlabEvents) + " times without leaving or being absorbed (--tau " +
-                         number(p.tau) + ", --albedo " + number(p.albedo) + ", --g " + number(p.g) + "): too thick to simulate; use a smaller --tau");
+        throw InputError("slab: a photon scattered " + std::to_string(kMaxSlabEvents) +
+                         " times without leaving or being absorbed (--tau " + number(p.tau) + ", --albedo " +
+                         number(p.albedo) + ", --g " + number(p.g) + "): too thick to simulate; use a smaller --tau");
     if (late)
-        throw InputError("slab: " + std::to_string(traced.load()) + " of " + std::to_string(p.photons) + " photons traced in --time " +
-                         number(p.timeLimit) + " s: ask for fewer photons or more time");
+        throw InputError("slab: " + std::to_string(traced.load()) + " of " + std::to_string(p.photons) +
+                         " photons traced in --time " + number(p.timeLimit) + " s: ask for fewer photons or more time");
     SlabResult result;
     const double n = double(p.photons);
     result.reflectance = tally(total.value[0], total.square[0], n);

@@ -9,7 +9,7 @@ namespace tetglow {
 struct SlabParams {
     double tau = 2, albedo = 0.9, g = 0.75;
     uint64_t photons = 1000000, seed = 1;
-    int threads = 0;  // 0: all cores
+    int threads = 0;       // 0: all cores
     double timeLimit = 0;  // > 0: an InputError when the photons are not all traced by then (seconds)
 };
 
@@ -18,9 +18,9 @@ struct Tally {
 };
 
 struct SlabResult {
-    Tally reflectance;    // diffuse reflectance Rd: flux leaving through the lit face
-    Tally transmittance;  // total transmittance Tt: through the far face, unscattered light included
-    Tally absorbed, lost; // absorbed by the medium; left through the side faces (should be ~0)
+    Tally reflectance;     // diffuse reflectance Rd: flux leaving through the lit face
+    Tally transmittance;   // total transmittance Tt: through the far face, unscattered light included
+    Tally absorbed, lost;  // absorbed by the medium; left through the side faces (should be ~0)
     uint64_t tets = 0;
     double seconds = 0;
 };

@@ -19,7 +19,8 @@ struct Scattering {
 // sampling, which must then count emitters it hits with lightPdf() (the constant environment,
 // never chosen then, with weight 1); without it, phase/BSDF rays must not count them at all.
 template <class ScatterFn, class VisibilityFn>
-RGB sampleDirect(const Scene& scene, const glm::dvec3& p, Rng& rng, bool mis, ScatterFn&& scatter, VisibilityFn&& visibility) {
+RGB sampleDirect(const Scene& scene, const glm::dvec3& p, Rng& rng, bool mis, ScatterFn&& scatter,
+                 VisibilityFn&& visibility) {
     if (scene.lights().empty()) return RGB(0);
     const LightChoice choice = chooseLight(scene.lights(), p, mis, rng.uniform());
     const double u0 = rng.uniform(), u1 = rng.uniform();
@@ -51,8 +52,9 @@ inline RGB directInMedium(const Scene& scene, int v, const glm::dvec3& p, const 
                           bool roulette = true) {
     if (scene.sealed(v)) return RGB(0);  // no shadow ray from inside reaches a light
     const VolumeState here{v, WalkStart::inside(tet)};
-    return sampleDirect(scene, p, rng, false, phaseScattering(scene.volumes()[v].media->at(tet).phase, d),
-                        [&](const Ray& r, double t) { return transmittance(scene, r, t, here, roulette ? &rng : nullptr); });
+    return sampleDirect(
+        scene, p, rng, false, phaseScattering(scene.volumes()[v].media->at(tet).phase, d),
+        [&](const Ray& r, double t) { return transmittance(scene, r, t, here, roulette ? &rng : nullptr); });
 }
 
 // The pdf with which sampleDirect would have chosen the point a phase/BSDF ray reached on a

@@ -10,7 +10,8 @@
 namespace tetglow {
 
 std::unique_ptr<Integrator> makeIntegrator(const Scene& scene, const IntegratorDesc& desc) {
-    if (desc.type == IntegratorType::Single || (desc.type == IntegratorType::Photon && desc.estimate == PhotonEstimate::KnnMarch)) {
+    if (desc.type == IntegratorType::Single ||
+        (desc.type == IntegratorType::Photon && desc.estimate == PhotonEstimate::KnnMarch)) {
         double diagonal = 0;
         for (const auto& m : scene.volumes()) diagonal = std::max(diagonal, m.media->volume().bounds().diagonal());
         // Rays start anywhere in the scene: the coordinates resolve what the scene's ray offset does.

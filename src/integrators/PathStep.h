@@ -18,16 +18,16 @@ inline constexpr int kMaxCrossings = 100000;
 
 // How a straight stretch of a path ends.
 enum class StretchEnd {
-    Escaped,   // no hit: the environment, if any, is what the path sees
-    Emitter,   // an area light, which absorbs
-    Crossed,   // an index-matched boundary: ray and state now go on beyond it
-    Surface,   // a material event at *hit
+    Escaped,  // no hit: the environment, if any, is what the path sees
+    Emitter,  // an area light, which absorbs
+    Crossed,  // an index-matched boundary: ray and state now go on beyond it
+    Surface,  // a material event at *hit
 };
 
 // Ends a stretch that began in `state`: where the walk through the medium left the volume or
-// stopped at a dielectric interface (exit.left; a default exit outside media), the walk's exit face is the surface, not the
-// float hit. On Crossed, ray and state are the ones beyond the boundary.
-// *moved receives how far along the old ray the new one starts (0 when it keeps its origin).
+// stopped at a dielectric interface (exit.left; a default exit outside media), the walk's exit face is the surface, not
+// the float hit. On Crossed, ray and state are the ones beyond the boundary. *moved receives how far along the old ray
+// the new one starts (0 when it keeps its origin).
 StretchEnd endStretch(const Scene& scene, std::optional<Intersection>& hit, const WalkExit& exit, Ray& ray,
                       VolumeState& state, double* moved = nullptr);
 

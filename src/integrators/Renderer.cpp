@@ -15,7 +15,8 @@ RenderResult render(const Scene& scene, Integrator& integrator, const RenderOpti
     const auto start = std::chrono::steady_clock::now();
     const Camera& camera = scene.camera();
     // The film and its first half-image, the image made from it and the PNG preview's bytes.
-    checkMemory(double(camera.width()) * camera.height() * 2 * (sizeof(FixedSum) + 3 * sizeof(uint32_t) + sizeof(glm::vec3) + 3),
+    checkMemory(double(camera.width()) * camera.height() * 2 *
+                    (sizeof(FixedSum) + 3 * sizeof(uint32_t) + sizeof(glm::vec3) + 3),
                 "an image of " + std::to_string(camera.width()) + "x" + std::to_string(camera.height()) + " pixels");
     Film film(camera.width(), camera.height()), half(camera.width(), camera.height());
     RenderResult result;
@@ -28,24 +29,26 @@ RenderResult render(const Scene& scene, Integrator& integrator, const RenderOpti
         if (pass > options.firstPass && options.timeLimit > 0 && elapsed() >= options.timeLimit) break;
         arena.execute([&] {
             integrator.beginPass(uint64_t(pass), options.cancel);
-            tbb::parallel_for(tbb::blocked_range2d<int>(0, camera.height(), 16, 0, camera.width(), 16), [&](const auto& tile) {
-                if (cancelled()) return;
-                for (int y = tile.rows().begin(); y < tile.rows().end(); ++y)
-                    for (int x = tile.cols().begin(); x < tile.cols().end(); ++x) {
-                        // The pass is the sample's index in the pixel's sequence: passes stratify.
-                        Rng rng = Rng::pixelSample(options.seed, uint64_t(y) * camera.width() + x, uint32_t(pass));
-                        const double jx = rng.uniform(), jy = rng.uniform();
-                        const RGB L = integrator.radiance(camera.generateRay(x + jx, y + jy), rng);
-                        film.add(x, y, L);
-                        if (inFirstHalf(pass)) half.add(x, y, L);
-                    }
-            });
+            tbb::parallel_for(
+                tbb::blocked_range2d<int>(0, camera.height(), 16, 0, camera.width(), 16), [&](const auto& tile) {
+                    if (cancelled()) return;
+                    for (int y = tile.rows().begin(); y < tile.rows().end(); ++y)
+                        for (int x = tile.cols().begin(); x < tile.cols().end(); ++x) {
+                            // The pass is the sample's index in the pixel's sequence: passes stratify.
+                            Rng rng = Rng::pixelSample(options.seed, uint64_t(y) * camera.width() + x, uint32_t(pass));
+                            const double jx = rng.uniform(), jy = rng.uniform();
+                            const RGB L = integrator.radiance(camera.generateRay(x + jx, y + jy), rng);
+                            film.add(x, y, L);
+                            if (inFirstHalf(pass)) half.add(x, y, L);
+                        }
+                });
         });
         if (cancelled()) break;
         result.passes = pass + 1 - options.firstPass;
         result.noise = estimateRelMse(film, half);
         if (options.passDone) options.passDone({film, result.passes, elapsed(), result.noise});
-        if (options.noiseTarget > 0 && result.passes >= 4 && result.noise && *result.noise <= options.noiseTarget) break;
+        if (options.noiseTarget > 0 && result.passes >= 4 && result.noise && *result.noise <= options.noiseTarget)
+            break;
     }
     result.cancelled = cancelled();
     result.image = film.image();

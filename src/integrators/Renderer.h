@@ -12,9 +12,9 @@ namespace tetglow {
 // What the renderer knows after each complete pass.
 struct PassReport {
     const Film& film;
-    int passes = 0;                // complete passes so far
+    int passes = 0;  // complete passes so far
     double seconds = 0;
-    std::optional<double> noise;   // estimateRelMse (render/NoiseEstimate.h), from the second pass on
+    std::optional<double> noise;  // estimateRelMse (render/NoiseEstimate.h), from the second pass on
 };
 
 struct RenderOptions {
@@ -23,7 +23,7 @@ struct RenderOptions {
     // (its seeds, its photon radius), so parts rendered apart merge into the full render.
     int firstPass = 0, endPass = 0;
     uint64_t seed = 0;
-    int threads = 0;  // 0: all cores
+    int threads = 0;       // 0: all cores
     double timeLimit = 0;  // > 0: no pass starts after this many seconds (at least one runs)
     // > 0: stop after the first complete pass (from the fourth on) whose noise estimate is at
     // most this. Decided between passes from exact sums, so the same seed stops at the same pass
@@ -36,8 +36,8 @@ struct RenderOptions {
 
 struct RenderResult {
     Image image;
-    Film film{0, 0};         // the exact sums behind `image`, for partial renders
-    int passes = 0;          // complete passes (samples per pixel)
+    Film film{0, 0};  // the exact sums behind `image`, for partial renders
+    int passes = 0;   // complete passes (samples per pixel)
     bool cancelled = false;
     uint64_t droppedSamples = 0;  // NaN or Inf radiance, discarded
     double seconds = 0;

@@ -11,10 +11,15 @@
 namespace tetglow {
 
 SingleScatterIntegrator::SingleScatterIntegrator(const Scene& scene, const IntegratorDesc& desc)
-    : scene_(scene), mode_(desc.boundary), step_(desc.stepSize), parityRays_(desc.parityRays), maxDepth_(desc.maxDepth) {
+    : scene_(scene),
+      mode_(desc.boundary),
+      step_(desc.stepSize),
+      parityRays_(desc.parityRays),
+      maxDepth_(desc.maxDepth) {
     for (const SceneVolume& v : scene.volumes()) {
         if (mode_ != BoundaryMode::Tet && !v.media->homogeneous())
-            throw InputError(v.name + ": the parity and bbox boundary modes need a homogeneous medium (no per-vertex density)");
+            throw InputError(v.name +
+                             ": the parity and bbox boundary modes need a homogeneous medium (no per-vertex density)");
         boxes_.push_back(v.media->volume().bounds());
         const TetMesh& mesh = v.media->mesh();
         std::vector<int> depth(v.regionMedium.size(), 0);
@@ -31,7 +36,8 @@ SingleScatterIntegrator::SingleScatterIntegrator(const Scene& scene, const Integ
         TriangleMesh own = m.boundary;
         prepareSurface(own, m.tetOptions.strict);  // the mesh as its tets have it (repaired where broken)
         mediumBoxes_.push_back(bounds(own));
-        parity_.push_back(mode_ == BoundaryMode::Parity ? std::make_unique<SurfaceBVH>(own.positions, own.triangles) : nullptr);
+        parity_.push_back(mode_ == BoundaryMode::Parity ? std::make_unique<SurfaceBVH>(own.positions, own.triangles)
+                                                        : nullptr);
     }
 }
 
@@ -39,7 +45,8 @@ SingleScatterIntegrator::~SingleScatterIntegrator() = default;
 
 int SingleScatterIntegrator::pick(size_t v, const glm::dvec3& p) const {
     for (int m : innermostFirst_[v]) {
-        if (mode_ == BoundaryMode::Bbox ? mediumBoxes_[m].contains(p) : insideByParity(*parity_[m], p, parityRays_)) return m;
+        if (mode_ == BoundaryMode::Bbox ? mediumBoxes_[m].contains(p) : insideByParity(*parity_[m], p, parityRays_))
+            return m;
     }
     return -1;
 }
@@ -69,12 +76,14 @@ RGB SingleScatterIntegrator::visibility(const Ray& ray, double tMax, Rng& rng) c
             continue;
         }
         for (double t = t0 + rng.uniform() * step_; t < t1; t += step_)
-            if (const int m = pick(v, ray.at(t)); m >= 0) tau += scene_.volumes()[v].media->region(scene_.media()[m].region).sigmaT * step_;
+            if (const int m = pick(v, ray.at(t)); m >= 0)
+                tau += scene_.volumes()[v].media->region(scene_.media()[m].region).sigmaT * step_;
     }
     return exp(-tau);
 }
 
-RGB SingleScatterIntegrator::inScattered(size_t v, const RegionOptics& optics, const glm::dvec3& p, const glm::dvec3& d, int64_t tet, Rng& rng) const {
+RGB SingleScatterIntegrator::inScattered(size_t v, const RegionOptics& optics, const glm::dvec3& p, const glm::dvec3& d,
+                                         int64_t tet, Rng& rng) const {
     // Exact transmittance: the parity baseline's march is the baseline, compared mode against mode.
     if (mode_ == BoundaryMode::Tet) return directInMedium(scene_, int(v), p, d, uint32_t(tet), rng, false);
     return sampleDirect(scene_, p, rng, false, phaseScattering(optics.phase, d),
@@ -105,7 +114,8 @@ RGB SingleScatterIntegrator::marchTets(size_t v, const Ray& ray, double tMax, co
     return tr;
 }
 
-RGB SingleScatterIntegrator::marchSteps(size_t v, const Ray& ray, double tMax, const RGB& beta, Rng& rng, RGB& L) const {
+RGB SingleScatterIntegrator::marchSteps(size_t v, const Ray& ray, double tMax, const RGB& beta, Rng& rng,
+                                        RGB& L) const {
     double t0 = 0, t1 = tMax;
     if (!clip(boxes_[v], ray, t0, t1)) return RGB(1);
     const RegionMedia& medium = *scene_.volumes()[v].media;
@@ -117,7 +127,8 @@ RGB SingleScatterIntegrator::marchSteps(size_t v, const Ray& ray, double tMax, c
         if (m < 0) continue;
         const RegionOptics& optics = medium.region(scene_.media()[m].region);
         tau += optics.sigmaT * step_;
-        L += beta * exp(-tau) * step_ * (optics.params.sigmaS * inScattered(v, optics, p, ray.d, -1, rng) + optics.params.emission);
+        L += beta * exp(-tau) * step_ *
+             (optics.params.sigmaS * inScattered(v, optics, p, ray.d, -1, rng) + optics.params.emission);
     }
     return exp(-tau);
 }
@@ -125,7 +136,8 @@ RGB SingleScatterIntegrator::marchSteps(size_t v, const Ray& ray, double tMax, c
 RGB SingleScatterIntegrator::march(const Ray& ray, double tMax, const RGB& beta, Rng& rng, RGB& L) const {
     RGB tr(1);
     for (size_t v = 0; v < boxes_.size(); ++v)
-        tr *= mode_ == BoundaryMode::Tet ? marchTets(v, ray, tMax, beta * tr, rng, L) : marchSteps(v, ray, tMax, beta * tr, rng, L);
+        tr *= mode_ == BoundaryMode::Tet ? marchTets(v, ray, tMax, beta * tr, rng, L)
+                                         : marchSteps(v, ray, tMax, beta * tr, rng, L);
     return tr;
 }
 
@@ -141,9 +153,12 @@ RGB SingleScatterIntegrator::radiance(const Ray& cameraRay, Rng& rng) const {
         }
         const MaterialDesc& material = scene_.material(*hit);
         if (!isSpecular(material)) {
-            L += beta * sampleDirect(scene_, hit->p, rng, false, [&](const glm::dvec3& wi) {
-                return Scattering{evaluateMaterial(material, ray.d, hit->n, wi), 0};
-            }, [&](const Ray& r, double t) { return visibility(r, t, rng); });
+            L += beta * sampleDirect(
+                            scene_, hit->p, rng, false,
+                            [&](const glm::dvec3& wi) {
+                                return Scattering{evaluateMaterial(material, ray.d, hit->n, wi), 0};
+                            },
+                            [&](const Ray& r, double t) { return visibility(r, t, rng); });
             break;
         }
         const double u0 = rng.uniform(), u1 = rng.uniform();

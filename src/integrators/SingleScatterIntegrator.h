@@ -30,17 +30,18 @@ private:
     RGB marchTets(size_t v, const Ray& ray, double tMax, const RGB& beta, Rng& rng, RGB& L) const;
     RGB marchSteps(size_t v, const Ray& ray, double tMax, const RGB& beta, Rng& rng, RGB& L) const;
     // Light from one light sample scattered at p towards -d, by the mode's visibility.
-    RGB inScattered(size_t v, const RegionOptics& optics, const glm::dvec3& p, const glm::dvec3& d, int64_t tet, Rng& rng) const;
+    RGB inScattered(size_t v, const RegionOptics& optics, const glm::dvec3& p, const glm::dvec3& d, int64_t tet,
+                    Rng& rng) const;
     RGB visibility(const Ray& ray, double tMax, Rng& rng) const;
 
     const Scene& scene_;
     BoundaryMode mode_;
     double step_;
     int parityRays_, maxDepth_;
-    std::vector<Bounds3> boxes_;                      // per volume
-    std::vector<Bounds3> mediumBoxes_;                // per scene medium: its own mesh's box
-    std::vector<std::unique_ptr<SurfaceBVH>> parity_; // per scene medium: its own mesh (parity)
-    std::vector<std::vector<int>> innermostFirst_;    // per volume: its media, deepest first
+    std::vector<Bounds3> boxes_;                       // per volume
+    std::vector<Bounds3> mediumBoxes_;                 // per scene medium: its own mesh's box
+    std::vector<std::unique_ptr<SurfaceBVH>> parity_;  // per scene medium: its own mesh (parity)
+    std::vector<std::vector<int>> innermostFirst_;     // per volume: its media, deepest first
 };
 
 }  // namespace tetglow

@@ -11,7 +11,9 @@ namespace tetglow {
 VolPathIntegrator::VolPathIntegrator(const Scene& scene, int maxDepth)
     : scene_(scene), maxDepth_(maxDepth), cameraMedium_(scene.mediumAt(scene.camera().position())) {}
 
-RGB VolPathIntegrator::radiance(const Ray& cameraRay, Rng& rng) const { return continuePath(cameraRay, cameraMedium_, 0, true, rng); }
+RGB VolPathIntegrator::radiance(const Ray& cameraRay, Rng& rng) const {
+    return continuePath(cameraRay, cameraMedium_, 0, true, rng);
+}
 
 RGB VolPathIntegrator::continuePath(const Ray& start, VolumeState state, int depth, bool emittersSeen, Rng& rng) const {
     RGB L(0);
@@ -61,7 +63,8 @@ RGB VolPathIntegrator::continuePath(const Ray& start, VolumeState state, int dep
                     const glm::dvec3 p = ray.at(flight.t);
                     const VolumeState here{state.volume, WalkStart::inside(flight.tet)};
                     if (!scene_.sealed(state.volume))
-                        L += path.weight() * sampleDirect(scene_, p, rng, true, phaseScattering(optics.phase, ray.d), visibility(here));
+                        L += path.weight() *
+                             sampleDirect(scene_, p, rng, true, phaseScattering(optics.phase, ray.d), visibility(here));
                     const double u0 = rng.uniform(), u1 = rng.uniform();
                     const glm::dvec3 wi = optics.phase.sample(ray.d, {u0, u1});
                     specular = false;
@@ -90,9 +93,13 @@ RGB VolPathIntegrator::continuePath(const Ray& start, VolumeState state, int dep
         if (++depth >= maxDepth_) break;
         if (!isSpecular(material)) {
             const VolumeState here = scene_.afterHit(*hit, ray.d, state);
-            L += path.weight() * sampleDirect(scene_, hit->p, rng, true, [&](const glm::dvec3& wi) {
-                return Scattering{evaluateMaterial(material, ray.d, hit->n, wi), materialPdf(material, ray.d, hit->n, wi)};
-            }, visibility(here));
+            L += path.weight() * sampleDirect(
+                                     scene_, hit->p, rng, true,
+                                     [&](const glm::dvec3& wi) {
+                                         return Scattering{evaluateMaterial(material, ray.d, hit->n, wi),
+                                                           materialPdf(material, ray.d, hit->n, wi)};
+                                     },
+                                     visibility(here));
         }
         const double u0 = rng.uniform(), u1 = rng.uniform();
         const BsdfSample bs = sampleMaterial(material, ray.d, hit->n, {u0, u1});

@@ -17,7 +17,8 @@ RGB transmittedOver(double length, const RGB& trIn, const RGB& depth) {
 
 }  // namespace
 
-ColumnProfile::ColumnProfile(const RegionMedia& medium, const Ray& ray, WalkStart start, double tMax) : medium_(medium), ray_(ray) {
+ColumnProfile::ColumnProfile(const RegionMedia& medium, const Ray& ray, WalkStart start, double tMax)
+    : medium_(medium), ray_(ray) {
     const TetWalk walk = medium.walk(ray, start, [&](const WalkSegment& s) {
         const double tIn = std::max(s.tIn, 0.0), tOut = std::min(s.tOut, tMax);
         if (tOut > tIn) {
@@ -34,7 +35,8 @@ ColumnProfile::ColumnProfile(const RegionMedia& medium, const Ray& ray, WalkStar
 }
 
 const ColumnProfile::Piece* ColumnProfile::pieceAt(double t) const {
-    const auto it = std::upper_bound(pieces_.begin(), pieces_.end(), t, [](double x, const Piece& p) { return x < p.tIn; });
+    const auto it =
+        std::upper_bound(pieces_.begin(), pieces_.end(), t, [](double x, const Piece& p) { return x < p.tIn; });
     return it == pieces_.begin() ? nullptr : &*(it - 1);
 }
 
@@ -47,7 +49,8 @@ double ColumnProfile::column(double t) const {
 RGB ColumnProfile::transmittance(double t) const {
     const Piece* p = pieceAt(t);
     if (!p) return RGB(1);
-    return exp(-(p->depthIn + medium_.at(p->tet).sigmaT * medium_.densityIntegral(p->tet, ray_, p->tIn, std::min(t, p->tOut))));
+    return exp(-(p->depthIn +
+                 medium_.at(p->tet).sigmaT * medium_.densityIntegral(p->tet, ray_, p->tIn, std::min(t, p->tOut))));
 }
 
 RGB ColumnProfile::transmitted(double t) const {
@@ -68,7 +71,8 @@ RGB ColumnProfile::transmitted(double a, double b) const {
 
 std::optional<ColumnProfile::Event> ColumnProfile::atDepth(int c, double depth) const {
     // The last piece starting at or before that depth: depths only grow along the ray.
-    const auto it = std::upper_bound(pieces_.begin(), pieces_.end(), depth, [c](double d, const Piece& p) { return d < p.depthIn[c]; });
+    const auto it = std::upper_bound(pieces_.begin(), pieces_.end(), depth,
+                                     [c](double d, const Piece& p) { return d < p.depthIn[c]; });
     if (it == pieces_.begin()) return std::nullopt;
     const Piece& p = *(it - 1);
     const double sigma = medium_.at(p.tet).sigmaT[c];

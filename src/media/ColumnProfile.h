@@ -15,8 +15,8 @@ public:
     struct Piece {
         double tIn, tOut;
         uint32_t tet;
-        double columnIn;  // from the start to tIn
-        RGB depthIn;      // optical depth from the start to tIn
+        double columnIn;    // from the start to tIn
+        RGB depthIn;        // optical depth from the start to tIn
         RGB transmittedIn;  // transmittance integrated over [start, tIn] (a length)
     };
     // From `start` to tMax or to where the ray leaves the medium or stops at an interface (unit
@@ -27,7 +27,7 @@ public:
     double begin() const { return pieces_.empty() ? 0 : pieces_.front().tIn; }
     double end() const { return pieces_.empty() ? 0 : pieces_.back().tOut; }
     double total() const { return total_; }
-    RGB depth() const { return depth_; }  // optical depth of the whole stretch
+    RGB depth() const { return depth_; }            // optical depth of the whole stretch
     const WalkExit& exit() const { return exit_; }  // where the walk left or stopped, if before tMax
     // Column from the start to t, clamped to [begin, end].
     double column(double t) const;

@@ -18,11 +18,11 @@ struct PhotonEvent {
 };
 
 struct WalkResult {
-    bool absorbed = false;    // ended inside (roulette or the event cap); otherwise `ray` flew out
-    Ray ray;                  // the last flight: from the last event (or the start), unit direction
-    WalkExit exit;            // where that flight left the medium or stopped
-    RGB absorbedFlux{0};      // flux absorbed by the medium on the way (expected value per event)
-    int events = 0;           // scattering events
+    bool absorbed = false;  // ended inside (roulette or the event cap); otherwise `ray` flew out
+    Ray ray;                // the last flight: from the last event (or the start), unit direction
+    WalkExit exit;          // where that flight left the medium or stopped
+    RGB absorbedFlux{0};    // flux absorbed by the medium on the way (expected value per event)
+    int events = 0;         // scattering events
 };
 
 // `path` carries the photon's flux as path.weight() * flux; `flux` is what the light emitted.
@@ -30,8 +30,8 @@ struct WalkResult {
 // (INFINITY where there is none). onScatter(event) is called at every scattering event, before
 // the new direction is drawn.
 template <class Limit, class OnScatter>
-WalkResult photonWalk(const RegionMedia& medium, Ray ray, WalkStart start, const RGB& flux, SpectralPath& path, Rng& rng,
-                      int maxEvents, Limit&& limit, OnScatter&& onScatter) {
+WalkResult photonWalk(const RegionMedia& medium, Ray ray, WalkStart start, const RGB& flux, SpectralPath& path,
+                      Rng& rng, int maxEvents, Limit&& limit, OnScatter&& onScatter) {
     WalkResult result;
     for (; result.events < maxEvents; ++result.events) {
         const FreeFlight flight = medium.sampleFlight(ray, start, limit(ray), path.hero, rng.uniform());

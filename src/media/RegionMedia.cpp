@@ -26,17 +26,21 @@ glm::dvec4 affineThrough(const TetMesh& mesh, uint32_t t, const std::vector<doub
 
 }  // namespace
 
-RegionMedia::RegionMedia(const MediumParams& params, TetMesh mesh, std::vector<double> vertexDensity) : volume_(std::move(mesh)) {
+RegionMedia::RegionMedia(const MediumParams& params, TetMesh mesh, std::vector<double> vertexDensity)
+    : volume_(std::move(mesh)) {
     std::vector<RegionMedium> regions(std::max<size_t>(1, this->mesh().regionCount()), RegionMedium{params, {}});
     for (RegionMedium& r : regions) r.vertexDensity = vertexDensity;
     setRegions(std::move(regions));
 }
 
-RegionMedia::RegionMedia(TetMesh mesh, std::vector<RegionMedium> regions) : volume_(std::move(mesh)) { setRegions(std::move(regions)); }
+RegionMedia::RegionMedia(TetMesh mesh, std::vector<RegionMedium> regions) : volume_(std::move(mesh)) {
+    setRegions(std::move(regions));
+}
 
 void RegionMedia::setRegions(std::vector<RegionMedium> regions) {
     const TetMesh& m = volume_.mesh();
-    if (regions.size() != std::max<size_t>(1, m.regionCount())) throw std::invalid_argument("RegionMedia: one medium per region expected");
+    if (regions.size() != std::max<size_t>(1, m.regionCount()))
+        throw std::invalid_argument("RegionMedia: one medium per region expected");
     regions_.clear();
     emissive_ = scatters_ = false;
     bool varying = false;
@@ -75,10 +79,12 @@ double RegionMedia::columnDistance(uint32_t tet, const Ray& ray, double tIn, dou
 }
 
 TetWalk RegionMedia::beginWalk(const Ray& ray, WalkStart start) const {
-    return start.throughSurface ? TetWalk::enter(mesh(), ray, start.index) : TetWalk::start(mesh(), ray, start.index, 0);
+    return start.throughSurface ? TetWalk::enter(mesh(), ray, start.index)
+                                : TetWalk::start(mesh(), ray, start.index, 0);
 }
 
-FreeFlight RegionMedia::sampleFlight(const Ray& ray, WalkStart start, double tMax, int hero, double u, const RGB& ratios) const {
+FreeFlight RegionMedia::sampleFlight(const Ray& ray, WalkStart start, double tMax, int hero, double u,
+                                     const RGB& ratios) const {
     // The distance solves the hero channel's optical depth = -ln(1 - u), region by region.
     const double target = -std::log1p(-u);
     RGB depth(0);  // optical depth so far

@@ -24,8 +24,8 @@ struct MediumParams {
 
 // Where a walk through the medium begins.
 struct WalkStart {
-    uint32_t index = 0;          // a surface triangle, or a tet
-    bool throughSurface = false; // true: the ray enters through that triangle; false: starts inside that tet
+    uint32_t index = 0;           // a surface triangle, or a tet
+    bool throughSurface = false;  // true: the ray enters through that triangle; false: starts inside that tet
     static WalkStart surface(uint32_t triangle) { return {triangle, true}; }
     static WalkStart inside(uint32_t tet) { return {tet, false}; }
 };
@@ -56,12 +56,12 @@ struct FreeFlight {
     bool scattered = false;  // an interaction at t (in tet); otherwise the ray passed tMax or left the medium
     double t = 0;
     uint32_t tet = 0;
-    double density = 1;      // at the interaction
-    RGB transmittance{1};    // from the start to the interaction, or to where the flight ended
+    double density = 1;    // at the interaction
+    RGB transmittance{1};  // from the start to the interaction, or to where the flight ended
     // Emission collected exactly on the way, in the regions without extinction (where the
     // transmittance stays what it was on entering them): emission times density, integrated.
     RGB glow{0};
-    WalkExit exit;           // without an interaction
+    WalkExit exit;  // without an interaction
 };
 
 // What one region holds: its coefficients, and its density as one value >= 0 per tet vertex
@@ -108,7 +108,8 @@ public:
     // Free flight along `ray` (unit direction) from `start` up to tMax, the distance sampled
     // exactly for the hero channel's extinction (see SpectralPath). `ratios` are the path's
     // pdf ratios (SpectralPath::r), for the spectral MIS weight of FreeFlight::glow.
-    FreeFlight sampleFlight(const Ray& ray, WalkStart start, double tMax, int hero, double u, const RGB& ratios = RGB(1)) const;
+    FreeFlight sampleFlight(const Ray& ray, WalkStart start, double tMax, int hero, double u,
+                            const RGB& ratios = RGB(1)) const;
     // exp(-optical depth) from `start` to tMax or to where the ray leaves the medium (or
     // stops at an interface).
     RGB transmittance(const Ray& ray, WalkStart start, double tMax) const;

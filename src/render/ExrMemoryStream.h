@@ -22,7 +22,8 @@ class ExrMemoryStream : public Imf::IStream {
 public:
     ExrMemoryStream(const std::string& data, const std::string& name) : Imf::IStream(name.c_str()), data_(data) {}
     bool read(char c[], int n) override {
-        if (n < 0 || pos_ > data_.size() || uint64_t(n) > data_.size() - pos_) throw Iex::InputExc("unexpected end of file");
+        if (n < 0 || pos_ > data_.size() || uint64_t(n) > data_.size() - pos_)
+            throw Iex::InputExc("unexpected end of file");
         std::memcpy(c, data_.data() + pos_, size_t(n));
         pos_ += uint64_t(n);
         return pos_ < data_.size();

@@ -21,9 +21,10 @@ Image Film::image() const {
     Image image(width_, height_);
     for (size_t i = 0; i < sum_.size(); ++i) {
         if (tooBright_[i])
-            throw InputError("pixel (" + std::to_string(i % width_) + ", " + std::to_string(i / width_) +
-                             ") received radiance beyond the film's range (at most 4.29497e9 per sample): the lights or the "
-                             "emission are too bright; scale them down");
+            throw InputError(
+                "pixel (" + std::to_string(i % width_) + ", " + std::to_string(i / width_) +
+                ") received radiance beyond the film's range (at most 4.29497e9 per sample): the lights or the "
+                "emission are too bright; scale them down");
         if (count_[i])
             for (int c = 0; c < 3; ++c) image.pixels[i][c] = float(double(sum_[i][c]) / kFixedUnit / double(count_[i]));
     }

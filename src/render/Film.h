@@ -16,7 +16,7 @@ namespace tetglow {
 // at most kMaxSample per channel (larger ones are dropped like NaN) and a pixel has fewer than
 // 2^32 samples, so |sum| < 2^32 * 2^32 * 2^60 = 2^124 < 2^127.
 using FixedSum = std::array<__int128, 3>;
-inline constexpr double kFixedUnit = 0x1p60;   // fixed-point units per radiance unit
+inline constexpr double kFixedUnit = 0x1p60;  // fixed-point units per radiance unit
 inline constexpr double kMaxSample = 0x1p32;  // the largest radiance a sample may carry
 
 class Film {

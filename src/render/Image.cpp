@@ -16,7 +16,8 @@ std::string sizeText(const Image& image) { return std::to_string(image.width) + 
 
 void checkComparable(const Image& test, const Image& reference) {
     if (test.width != reference.width || test.height != reference.height)
-        throw InputError("image sizes differ: " + sizeText(test) + " (test) and " + sizeText(reference) + " (reference)");
+        throw InputError("image sizes differ: " + sizeText(test) + " (test) and " + sizeText(reference) +
+                         " (reference)");
     for (int y = 0; y < reference.height; ++y)
         for (int x = 0; x < reference.width; ++x)
             if (!isFinite(reference.at(x, y)))

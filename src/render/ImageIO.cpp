@@ -47,7 +47,8 @@ void checkChannels(const std::string& path, const Imf::ChannelList& channels, co
     for (const auto& name : channelNames(layer))
         if (!channels.findChannel(name)) missing += (missing.empty() ? "" : ", ") + name;
     if (missing.empty()) return;
-    for (auto it = channels.begin(); it != channels.end(); ++it) present += (present.empty() ? "" : ", ") + std::string(it.name());
+    for (auto it = channels.begin(); it != channels.end(); ++it)
+        present += (present.empty() ? "" : ", ") + std::string(it.name());
     throw InputError(path + ": missing channels " + missing + " (the file has " +
                      (present.empty() ? std::string("none") : present) + ")");
 }
@@ -109,8 +110,9 @@ void writeExr(const std::string& path, const Image& rgb, const std::vector<Image
 
 void writeExrAndPng(const std::string& exrPath, const Image& rgb, double exposure) {
     checkLayers(exrPath, rgb, {});
-    writeTogether({{exrPath, [&](const std::string& temporary) { writeExrFile(temporary, rgb, {}); }},
-                   {previewPath(exrPath), [&](const std::string& temporary) { writePngFile(temporary, rgb, exposure); }}});
+    writeTogether(
+        {{exrPath, [&](const std::string& temporary) { writeExrFile(temporary, rgb, {}); }},
+         {previewPath(exrPath), [&](const std::string& temporary) { writePngFile(temporary, rgb, exposure); }}});
 }
 
 Image readExr(const std::string& path, const std::string& layer) {
@@ -152,9 +154,11 @@ std::vector<uint8_t> encodePng(const Image& rgb, double exposure) {
     image.height = rgb.height;
     image.format = PNG_FORMAT_RGB;
     png_alloc_size_t size = 0;  // asked for first, then written
-    if (!png_image_write_get_memory_size(image, size, 0, bytes.data(), 0, nullptr)) throw std::runtime_error(image.message);
+    if (!png_image_write_get_memory_size(image, size, 0, bytes.data(), 0, nullptr))
+        throw std::runtime_error(image.message);
     std::vector<uint8_t> png(size);
-    if (!png_image_write_to_memory(&image, png.data(), &size, 0, bytes.data(), 0, nullptr)) throw std::runtime_error(image.message);
+    if (!png_image_write_to_memory(&image, png.data(), &size, 0, bytes.data(), 0, nullptr))
+        throw std::runtime_error(image.message);
     png.resize(size);
     return png;
 }

@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <optional>
 #include <numbers>
+#include <optional>
 #include <tuple>
 
 #include <glm/geometric.hpp>
@@ -71,7 +71,9 @@ class DistantLight : public Light {
 public:
     DistantLight(const glm::dvec3& direction, const RGB& irradiance, const Bounds3& sceneBounds)
         : direction_(glm::normalize(direction)), irradiance_(irradiance), frame_(direction_), disk_(sceneBounds) {}
-    LightSample sample(const glm::dvec3&, const glm::dvec2&) const override { return {irradiance_, -direction_, INFINITY, 1, true}; }
+    LightSample sample(const glm::dvec3&, const glm::dvec2&) const override {
+        return {irradiance_, -direction_, INFINITY, 1, true};
+    }
     double pdf(const glm::dvec3&, const glm::dvec3&, const glm::dvec3&, uint32_t) const override { return 0; }
     RGB emitted(const glm::dvec3&, uint32_t) const override { return RGB(0); }
     PhotonEmission emitPhoton(const glm::dvec2& u, const glm::dvec2&) const override {
@@ -94,12 +96,14 @@ private:
 // conditioned.
 class AreaLight : public Light {
 public:
-    AreaLight(TriangleMesh mesh, const RGB& radiance, bool twoSided) : mesh_(std::move(mesh)), radiance_(radiance), twoSided_(twoSided) {
+    AreaLight(TriangleMesh mesh, const RGB& radiance, bool twoSided)
+        : mesh_(std::move(mesh)), radiance_(radiance), twoSided_(twoSided) {
         // Float-exact, as Embree sees them, so sampled points lie on the triangles rays hit.
         for (auto& p : mesh_.positions) p = {roundToFloat(p.x), roundToFloat(p.y), roundToFloat(p.z)};
         double total = 0;
         for (uint32_t t = 0; t < mesh_.triangles.size(); ++t) {
-            const glm::dvec3 n = glm::cross(mesh_.corner(t, 1) - mesh_.corner(t, 0), mesh_.corner(t, 2) - mesh_.corner(t, 0));
+            const glm::dvec3 n =
+                glm::cross(mesh_.corner(t, 1) - mesh_.corner(t, 0), mesh_.corner(t, 2) - mesh_.corner(t, 0));
             normals_.push_back(glm::normalize(n));
             const double a = 0.5 * glm::length(n);
             cdf_.push_back(total += a);
@@ -108,19 +112,25 @@ public:
         area_ = total;
         centroid_ /= area_;
     }
-    void setSpot(const SpotProfile& profile, const RGB& intensity) { spot_ = profile; radiance_ = intensity / area_; }
+    void setSpot(const SpotProfile& profile, const RGB& intensity) {
+        spot_ = profile;
+        radiance_ = intensity / area_;
+    }
     // The mesh is the rectangle positions[0] + a (positions[1] - positions[0]) + b (positions[3]
     // - positions[0]); its edges are made exactly orthogonal (they are to float rounding).
     void setRectangle() {
-        const glm::dvec3 corner = mesh_.positions[0], ex = mesh_.positions[1] - corner, ey = mesh_.positions[3] - corner;
+        const glm::dvec3 corner = mesh_.positions[0], ex = mesh_.positions[1] - corner,
+                         ey = mesh_.positions[3] - corner;
         rectangle_ = {corner, ex, ey - glm::dot(ey, ex) / glm::dot(ex, ex) * ex};
     }
 
     LightSample sample(const glm::dvec3& p, const glm::dvec2& u) const override {
         uint32_t tri = 0;
         glm::dvec3 q;
-        if (const auto r = sphericalRectangle(p)) q = r->sample(u);
-        else std::tie(tri, q) = samplePoint(u);
+        if (const auto r = sphericalRectangle(p))
+            q = r->sample(u);
+        else
+            std::tie(tri, q) = samplePoint(u);
         LightSample s = towards(p, q, RGB(0));
         s.delta = false;
         s.pdf = pdf(p, s.wi, q, tri);
@@ -186,7 +196,8 @@ private:
     // reused).
     std::pair<uint32_t, glm::dvec3> samplePoint(const glm::dvec2& u) const {
         const auto tri = uint32_t(sampleCdf(cdf_, u.x));
-        const double lo = tri ? cdf_[tri - 1] : 0, ux = std::clamp((u.x * area_ - lo) / (cdf_[tri] - lo), 0.0, 1.0 - 1e-16);
+        const double lo = tri ? cdf_[tri - 1] : 0,
+                     ux = std::clamp((u.x * area_ - lo) / (cdf_[tri] - lo), 0.0, 1.0 - 1e-16);
         const glm::dvec2 b = sampleUniformTriangle({ux, u.y});
         return {tri, b.x * mesh_.corner(tri, 0) + b.y * mesh_.corner(tri, 1) + (1 - b.x - b.y) * mesh_.corner(tri, 2)};
     }
@@ -228,9 +239,13 @@ private:
 }  // namespace
 
 SpotProfile::SpotProfile(const glm::dvec3& axis, double coneAngleDeg, double coneDeltaDeg)
-    : axis(glm::normalize(axis)), cosTotal(std::cos(radians(coneAngleDeg))), cosStart(std::cos(radians(coneAngleDeg - coneDeltaDeg))) {}
+    : axis(glm::normalize(axis)),
+      cosTotal(std::cos(radians(coneAngleDeg))),
+      cosStart(std::cos(radians(coneAngleDeg - coneDeltaDeg))) {}
 
-glm::dvec3 SpotProfile::sampleCone(const glm::dvec2& u) const { return Frame(axis).toWorld(1 - u.x * (1 - cosTotal), 2 * kPi * u.y); }
+glm::dvec3 SpotProfile::sampleCone(const glm::dvec2& u) const {
+    return Frame(axis).toWorld(1 - u.x * (1 - cosTotal), 2 * kPi * u.y);
+}
 
 double SpotProfile::conePdf() const { return 1 / (2 * kPi * (1 - cosTotal)); }
 
@@ -257,8 +272,10 @@ std::unique_ptr<Light> makeLight(const LightDesc& desc, const Bounds3& sceneBoun
             return light;
         }
         case LightType::Quad: {
-            auto light = std::make_unique<AreaLight>(quad(desc.corner, desc.edge0, desc.edge1), desc.radiance, desc.twoSided);
-            const double skew = glm::dot(desc.edge0, desc.edge1), lengths = glm::length(desc.edge0) * glm::length(desc.edge1);
+            auto light =
+                std::make_unique<AreaLight>(quad(desc.corner, desc.edge0, desc.edge1), desc.radiance, desc.twoSided);
+            const double skew = glm::dot(desc.edge0, desc.edge1),
+                         lengths = glm::length(desc.edge0) * glm::length(desc.edge1);
             if (std::abs(skew) <= 1e-9 * lengths) light->setRectangle();
             return light;
         }

@@ -13,8 +13,8 @@
 namespace tetglow {
 
 struct LightSample {
-    RGB L{0};          // radiance arriving along -wi (delta lights: intensity / distance^2)
-    glm::dvec3 wi{0};  // unit, from the receiving point towards the light
+    RGB L{0};             // radiance arriving along -wi (delta lights: intensity / distance^2)
+    glm::dvec3 wi{0};     // unit, from the receiving point towards the light
     double distance = 0;  // to the sampled point on the light (infinite for the environment)
     double pdf = 0;       // solid angle; 1 for delta lights
     bool delta = false;

@@ -4,7 +4,9 @@ namespace tetglow {
 
 namespace {
 
-double weight(const Light& light, const glm::dvec3& p, bool mis) { return mis && light.isEnvironment() ? 0 : light.importance(p); }
+double weight(const Light& light, const glm::dvec3& p, bool mis) {
+    return mis && light.isEnvironment() ? 0 : light.importance(p);
+}
 
 double totalWeight(const std::vector<std::unique_ptr<Light>>& lights, const glm::dvec3& p, bool mis) {
     double total = 0;

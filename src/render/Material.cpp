@@ -41,7 +41,8 @@ BsdfSample sampleDielectric(double ior, const glm::dvec3& d, const glm::dvec3& n
 
 }  // namespace
 
-BsdfSample sampleMaterial(const MaterialDesc& m, const glm::dvec3& d, const glm::dvec3& n, const glm::dvec2& u, TransportMode mode) {
+BsdfSample sampleMaterial(const MaterialDesc& m, const glm::dvec3& d, const glm::dvec3& n, const glm::dvec2& u,
+                          TransportMode mode) {
     switch (m.type) {
         case MaterialType::Interface:
             return {d, RGB(1), 0, true, true};

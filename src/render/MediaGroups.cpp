@@ -18,7 +18,8 @@ std::vector<std::vector<int>> groupMedia(const std::vector<MediumDesc>& media, c
     };
     std::vector<int32_t> parent(n, -1);
     if (n > 1 || (n == 1 && media[0].cavity)) {
-        if (found && found->parent.size() != media.size()) throw std::logic_error("groupMedia: a nesting of other media");
+        if (found && found->parent.size() != media.size())
+            throw std::logic_error("groupMedia: a nesting of other media");
         const MediaNesting nesting = found ? *found : nestMedia(media);
         parent = nesting.parent;
         for (int i = 0; i < n; ++i)
@@ -66,7 +67,8 @@ void interfaceMaterials(const TetMesh& mesh, const std::vector<MediumDesc>& medi
     materials.clear();
     for (const auto& [behind, front] : mesh.surfaceRegions) {
         const double a = ior(behind), b = ior(front);
-        const MaterialDesc m = a == b ? MaterialDesc{MaterialType::Interface} : MaterialDesc{MaterialType::Dielectric, RGB(0.5), a / b};
+        const MaterialDesc m =
+            a == b ? MaterialDesc{MaterialType::Interface} : MaterialDesc{MaterialType::Dielectric, RGB(0.5), a / b};
         uint32_t k = 0;
         while (k < materials.size() && !(materials[k].type == m.type && materials[k].ior == m.ior)) ++k;
         if (k == materials.size()) materials.push_back(m);

@@ -27,7 +27,9 @@ static_assert(sizeof(FixedSum) == 3 * 16);
 
 const char* const kRgb[3] = {"R", "G", "B"};
 
-std::string passRange(const PartInfo& info) { return std::to_string(info.firstPass) + ":" + std::to_string(info.endPass); }
+std::string passRange(const PartInfo& info) {
+    return std::to_string(info.firstPass) + ":" + std::to_string(info.endPass);
+}
 
 std::string wordChannel(int c, int w) { return std::string("sum.") + kRgb[c] + "." + std::to_string(w); }
 
@@ -35,13 +37,16 @@ std::string wordChannel(int c, int w) { return std::string("sum.") + kRgb[c] + "
 void insertFilmSlices(Imf::FrameBuffer& fb, Film& film, Image* mean, const Imath::Box2i& window) {
     const size_t row = size_t(film.width());
     for (int c = 0; c < 3; ++c) {
-        if (mean) fb.insert(kRgb[c], Imf::Slice::Make(Imf::FLOAT, &mean->pixels[0][c], window, sizeof(glm::vec3), sizeof(glm::vec3) * row));
+        if (mean)
+            fb.insert(kRgb[c], Imf::Slice::Make(Imf::FLOAT, &mean->pixels[0][c], window, sizeof(glm::vec3),
+                                                sizeof(glm::vec3) * row));
         for (int w = 0; w < 4; ++w)
-            fb.insert(wordChannel(c, w), Imf::Slice::Make(Imf::UINT, reinterpret_cast<char*>(&film.sum(0)[c]) + 4 * w, window,
-                                                          sizeof(FixedSum), sizeof(FixedSum) * row));
+            fb.insert(wordChannel(c, w), Imf::Slice::Make(Imf::UINT, reinterpret_cast<char*>(&film.sum(0)[c]) + 4 * w,
+                                                          window, sizeof(FixedSum), sizeof(FixedSum) * row));
     }
     fb.insert("count", Imf::Slice::Make(Imf::UINT, &film.count(0), window, sizeof(uint32_t), sizeof(uint32_t) * row));
-    fb.insert("dropped", Imf::Slice::Make(Imf::UINT, &film.dropped(0), window, sizeof(uint32_t), sizeof(uint32_t) * row));
+    fb.insert("dropped",
+              Imf::Slice::Make(Imf::UINT, &film.dropped(0), window, sizeof(uint32_t), sizeof(uint32_t) * row));
 }
 
 template <class Attribute>
@@ -93,15 +98,18 @@ PartialRender readPartial(const std::string& path, double heldBytes) {
         part.info.endPass = attribute<Imf::IntAttribute>(path, header, "tetglowEndPass");
         part.info.totalPasses = attribute<Imf::IntAttribute>(path, header, "tetglowTotalPasses");
         part.info.frame = attribute<Imf::IntAttribute>(path, header, "tetglowFrame");
-        if (part.info.firstPass < 0 || part.info.endPass <= part.info.firstPass || part.info.endPass > part.info.totalPasses)
+        if (part.info.firstPass < 0 || part.info.endPass <= part.info.firstPass ||
+            part.info.endPass > part.info.totalPasses)
             throw InputError(path + ": passes " + passRange(part.info) + " are not a range of the render's " +
                              std::to_string(part.info.totalPasses));
         for (int c = 0; c < 3; ++c)
             for (int w = 0; w < 4; ++w)
-                if (header.channels().findChannel(wordChannel(c, w)) == nullptr || header.channels().findChannel(wordChannel(c, w))->type != Imf::UINT)
+                if (header.channels().findChannel(wordChannel(c, w)) == nullptr ||
+                    header.channels().findChannel(wordChannel(c, w))->type != Imf::UINT)
                     throw InputError(path + ": not a partial render: no 32-bit integer channel " + wordChannel(c, w));
         for (const char* name : {"count", "dropped"})
-            if (header.channels().findChannel(name) == nullptr || header.channels().findChannel(name)->type != Imf::UINT)
+            if (header.channels().findChannel(name) == nullptr ||
+                header.channels().findChannel(name)->type != Imf::UINT)
                 throw InputError(path + ": not a partial render: no 32-bit integer channel " + std::string(name));
         const Imath::Box2i window = header.dataWindow();
         const int width = window.max.x - window.min.x + 1, height = window.max.y - window.min.y + 1;
@@ -138,34 +146,39 @@ PartialRender mergeParts(const std::vector<std::string>& paths) {
         const PartialRender part = readPartial(path, double(whole.film.pixelCount()) * kFilmBytesPerPixel);
         const PartInfo& b = part.info;
         if (b.build != first.build)
-            throw InputError(path + ": made by another tetglow build than " + paths.front() + " (build " + b.build + " vs " + first.build +
-                             "): render every part with one binary");
+            throw InputError(path + ": made by another tetglow build than " + paths.front() + " (build " + b.build +
+                             " vs " + first.build + "): render every part with one binary");
         if (b.fingerprint != first.fingerprint || b.totalPasses != first.totalPasses)
-            throw InputError(path + ": a different scene or different settings from " + paths.front() + " (" + b.scene + " vs " +
-                             first.scene + ", fingerprint " + b.fingerprint + " vs " + first.fingerprint + ")");
+            throw InputError(path + ": a different scene or different settings from " + paths.front() + " (" + b.scene +
+                             " vs " + first.scene + ", fingerprint " + b.fingerprint + " vs " + first.fingerprint +
+                             ")");
         if (b.frame != first.frame)
-            throw InputError(path + ": frame " + std::to_string(b.frame) + ", but " + paths.front() + " is frame " + std::to_string(first.frame));
+            throw InputError(path + ": frame " + std::to_string(b.frame) + ", but " + paths.front() + " is frame " +
+                             std::to_string(first.frame));
         if (!whole.film.merge(part.film))
-            throw InputError(path + ": " + std::to_string(part.film.width()) + "x" + std::to_string(part.film.height()) + " pixels, but " +
-                             paths.front() + " has " + std::to_string(whole.film.width()) + "x" + std::to_string(whole.film.height()));
+            throw InputError(path + ": " + std::to_string(part.film.width()) + "x" +
+                             std::to_string(part.film.height()) + " pixels, but " + paths.front() + " has " +
+                             std::to_string(whole.film.width()) + "x" + std::to_string(whole.film.height()));
         read.push_back({path, b});
     }
-    std::stable_sort(read.begin(), read.end(), [](const Read& a, const Read& b) { return a.info.firstPass < b.info.firstPass; });
+    std::stable_sort(read.begin(), read.end(),
+                     [](const Read& a, const Read& b) { return a.info.firstPass < b.info.firstPass; });
     int covered = 0;  // passes 0 .. covered - 1 are in the parts checked so far
     for (size_t i = 0; i < read.size(); ++i) {
         const PartInfo& info = read[i].info;
         if (info.firstPass < covered)
-            throw InputError(read[i].path + ": passes " + passRange(info) + " overlap passes " + passRange(read[i - 1].info) + " of " +
-                             read[i - 1].path);
+            throw InputError(read[i].path + ": passes " + passRange(info) + " overlap passes " +
+                             passRange(read[i - 1].info) + " of " + read[i - 1].path);
         if (info.firstPass > covered)
-            throw InputError(read[i].path + ": passes " + std::to_string(covered) + ":" + std::to_string(info.firstPass) +
-                             " before its " + passRange(info) + " are in no part");
+            throw InputError(read[i].path + ": passes " + std::to_string(covered) + ":" +
+                             std::to_string(info.firstPass) + " before its " + passRange(info) + " are in no part");
         covered = info.endPass;
     }
     const Read& last = read.back();
     if (covered < last.info.totalPasses)
-        throw InputError(last.path + ": passes " + std::to_string(covered) + ":" + std::to_string(last.info.totalPasses) + " after its " +
-                         passRange(last.info) + " are in no part");
+        throw InputError(last.path + ": passes " + std::to_string(covered) + ":" +
+                         std::to_string(last.info.totalPasses) + " after its " + passRange(last.info) +
+                         " are in no part");
     whole.info.firstPass = 0;
     whole.info.endPass = whole.info.totalPasses;
     return whole;

@@ -14,9 +14,9 @@
 namespace tetglow {
 
 struct PartInfo {
-    std::string fingerprint;  // the scene and every setting that changes the image (sceneFingerprint)
+    std::string fingerprint;        // the scene and every setting that changes the image (sceneFingerprint)
     std::string build = buildId();  // the binary that rendered it: another build may sample differently
-    std::string scene;        // the scene file, for messages
+    std::string scene;              // the scene file, for messages
     int firstPass = 0, endPass = 0, totalPasses = 0;
     int frame = 0;
 };

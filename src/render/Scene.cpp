@@ -13,18 +13,21 @@ namespace tetglow {
 
 namespace {
 
-std::vector<glm::dvec3> unitNormals(const std::vector<glm::dvec3>& positions, const std::vector<std::array<uint32_t, 3>>& triangles) {
+std::vector<glm::dvec3> unitNormals(const std::vector<glm::dvec3>& positions,
+                                    const std::vector<std::array<uint32_t, 3>>& triangles) {
     std::vector<glm::dvec3> normals;
     normals.reserve(triangles.size());
     for (const auto& t : triangles)
-        normals.push_back(glm::normalize(glm::cross(positions[t[1]] - positions[t[0]], positions[t[2]] - positions[t[0]])));
+        normals.push_back(
+            glm::normalize(glm::cross(positions[t[1]] - positions[t[0]], positions[t[2]] - positions[t[0]])));
     return normals;
 }
 
 double sceneScale(const SceneDesc& desc) {
     double scale = glm::length(desc.camera.position);
     auto extend = [&](const TriangleMesh& mesh) {
-        for (const auto& p : mesh.positions) scale = std::max(scale, std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}));
+        for (const auto& p : mesh.positions)
+            scale = std::max(scale, std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}));
     };
     for (const auto& s : desc.surfaces) extend(s.mesh);
     for (const auto& m : desc.media) extend(m.boundary);
@@ -77,7 +80,8 @@ void Scene::buildVolumes() {
             interfaceMaterials(mesh, media, group, v.triangleMaterial, v.materials);
             std::vector<bool> stops;
             for (size_t s = 0; s < mesh.surface.size(); ++s)
-                stops.push_back(mesh.surfaceRegions[s][1] >= 0 && v.materials[v.triangleMaterial[s]].type != MaterialType::Interface);
+                stops.push_back(mesh.surfaceRegions[s][1] >= 0 &&
+                                v.materials[v.triangleMaterial[s]].type != MaterialType::Interface);
             v.media = std::make_unique<RegionMedia>(MediumParams{}, std::move(mesh));
             v.media->setStops(std::move(stops));
         } catch (const InputError& e) {
@@ -110,7 +114,8 @@ void Scene::classifyVolumes() {
         const TetMesh& mesh = v.media->mesh();
         bool refracting = true;  // every outer boundary triangle
         for (size_t s = 0; s < mesh.surface.size() && refracting; ++s)
-            if (mesh.surfaceRegions[s][1] < 0) refracting = v.materials[v.triangleMaterial[s]].type == MaterialType::Dielectric;
+            if (mesh.surfaceRegions[s][1] < 0)
+                refracting = v.materials[v.triangleMaterial[s]].type == MaterialType::Dielectric;
         sealed_.push_back(refracting && !lightWithin);
     }
 }
@@ -130,7 +135,8 @@ Scene::Scene(const SceneDesc& desc) : desc_(desc), camera_(desc.camera) {
     surfaces_ = rtcNewScene(embreeDevice());
     all_ = rtcNewScene(embreeDevice());
     for (RTCScene s : {surfaces_, all_}) rtcSetSceneFlags(s, RTC_SCENE_FLAG_ROBUST);
-    const auto attach = [](RTCScene scene, std::vector<Geometry>& table, const Geometry& g, const std::vector<glm::dvec3>& positions,
+    const auto attach = [](RTCScene scene, std::vector<Geometry>& table, const Geometry& g,
+                           const std::vector<glm::dvec3>& positions,
                            const std::vector<std::array<uint32_t, 3>>& triangles) {
         const unsigned id = attachTriangles(scene, positions, triangles);
         if (table.size() <= id) table.resize(id + 1);
@@ -177,8 +183,8 @@ void Scene::retuneMedia(const std::vector<MediumDesc>& media) {
         const MediumDesc& old = desc_.media[i];
         const MediumDesc& m = media[i];
         if (m.boundary.positions != old.boundary.positions || m.boundary.triangles != old.boundary.triangles ||
-            m.tetOptions.radiusEdgeRatio != old.tetOptions.radiusEdgeRatio || m.tetOptions.maxVolume != old.tetOptions.maxVolume ||
-            m.cavity != old.cavity)
+            m.tetOptions.radiusEdgeRatio != old.tetOptions.radiusEdgeRatio ||
+            m.tetOptions.maxVolume != old.tetOptions.maxVolume || m.cavity != old.cavity)
             throw std::invalid_argument("Scene::retuneMedia: medium " + m.name + " has other tets");
         desc_.media[i] = m;
     }
@@ -200,7 +206,8 @@ void Scene::makeLights() {
     for (const auto& l : desc_.lights)
         if (l.type == LightType::Environment) sky.radiance += lit(l).radiance;
     for (const auto& l : desc_.lights) {
-        if (l.type != LightType::Environment) lights_.push_back(makeLight(lit(l), geometry_));
+        if (l.type != LightType::Environment)
+            lights_.push_back(makeLight(lit(l), geometry_));
         else if (!environment_) {
             lights_.push_back(makeLight(sky, geometry_));
             environment_ = lights_.back().get();
@@ -209,10 +216,12 @@ void Scene::makeLights() {
 }
 
 void Scene::retuneLights(const std::vector<LightDesc>& lights) {
-    if (lights.size() != desc_.lights.size()) throw std::invalid_argument("Scene::retuneLights: a different number of lights");
+    if (lights.size() != desc_.lights.size())
+        throw std::invalid_argument("Scene::retuneLights: a different number of lights");
     for (size_t i = 0; i < lights.size(); ++i) {
         LightDesc& l = desc_.lights[i];
-        if (lights[i].type != l.type) throw std::invalid_argument("Scene::retuneLights: light " + std::to_string(i) + " has another type");
+        if (lights[i].type != l.type)
+            throw std::invalid_argument("Scene::retuneLights: light " + std::to_string(i) + " has another type");
         emissionOf(l) = emissionOf(lights[i]);
         l.on = lights[i].on;
     }
@@ -234,7 +243,8 @@ void Scene::setCamera(const CameraDesc& camera) {
     }
 }
 
-std::optional<Intersection> Scene::intersect(RTCScene scene, const std::vector<Geometry>& geometries, const Ray& ray, double tMax) const {
+std::optional<Intersection> Scene::intersect(RTCScene scene, const std::vector<Geometry>& geometries, const Ray& ray,
+                                             double tMax) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRayHit rh{};
@@ -266,8 +276,8 @@ std::optional<Intersection> Scene::intersect(const Ray& ray, double tMax) const 
     for (size_t v = 0; v < volumes_.size(); ++v) {
         const auto entry = volumes_[v].media->volume().firstEntry(ray, epsilon_, hit ? hit->t : tMax);
         if (!entry) continue;
-        hit = Intersection{entry->exitT(), ray.at(entry->exitT()), volumes_[v].normals[entry->entryTriangle()], entry->entryTriangle(),
-                           HitKind::MediumBoundary, uint32_t(v)};
+        hit = Intersection{entry->exitT(),         ray.at(entry->exitT()),  volumes_[v].normals[entry->entryTriangle()],
+                           entry->entryTriangle(), HitKind::MediumBoundary, uint32_t(v)};
     }
     return hit;
 }
@@ -293,12 +303,14 @@ const MaterialDesc& Scene::material(const Intersection& hit) const {
     static const MaterialDesc black{MaterialType::Diffuse, RGB(0)}, pass{MaterialType::Interface};
     if (hit.touch) return pass;
     switch (hit.kind) {
-        case HitKind::Surface: return desc_.surfaces[hit.index].material;
+        case HitKind::Surface:
+            return desc_.surfaces[hit.index].material;
         case HitKind::MediumBoundary: {
             const SceneVolume& v = volumes_[hit.index];
             return v.materials[v.triangleMaterial[hit.triangle]];
         }
-        case HitKind::Light: return black;
+        case HitKind::Light:
+            return black;
     }
     return black;
 }
@@ -311,7 +323,8 @@ VolumeState Scene::afterHit(const Intersection& hit, const glm::dvec3& d, const 
         if (mesh.surfaceRegions[hit.triangle][behind ? 0 : 1] < 0) return {};
         // From outside, the walk enters through the triangle by its exact tests; from a walk's
         // exit face, it starts in the tet on the chosen side.
-        if (!before.inside() && mesh.surfaceRegions[hit.triangle][1] < 0) return {int(hit.index), WalkStart::surface(hit.triangle)};
+        if (!before.inside() && mesh.surfaceRegions[hit.triangle][1] < 0)
+            return {int(hit.index), WalkStart::surface(hit.triangle)};
         const uint32_t face = behind ? mesh.surfaceFace[hit.triangle] : mesh.surfaceFaceFront[hit.triangle];
         return {int(hit.index), WalkStart::inside(face >> 2)};
     }
@@ -339,7 +352,8 @@ RGB Scene::emitted(const Ray& ray, const Intersection* hit) const {
 
 VolumeState Scene::mediumAt(const glm::dvec3& p) const {
     for (size_t v = 0; v < volumes_.size(); ++v)
-        if (const int64_t tet = volumes_[v].media->volume().locate(p); tet >= 0) return {int(v), WalkStart::inside(uint32_t(tet))};
+        if (const int64_t tet = volumes_[v].media->volume().locate(p); tet >= 0)
+            return {int(v), WalkStart::inside(uint32_t(tet))};
     return {};
 }
 

@@ -25,8 +25,8 @@ struct Intersection {
     glm::dvec3 p{0}, n{0};  // n: unit geometric normal, outward for a medium boundary
     uint32_t triangle = 0;
     HitKind kind = HitKind::Surface;
-    uint32_t index = 0;     // which surface, volume or light
-    bool touch = false;     // a walk found that the ray only touches this volume here: it passes
+    uint32_t index = 0;  // which surface, volume or light
+    bool touch = false;  // a walk found that the ray only touches this volume here: it passes
 };
 
 // The volume a path is in, and where its next walk through that volume's tets begins.
@@ -46,7 +46,7 @@ struct SceneRegion {
 // Media that nest or touch, found from their meshes and tetrahedralized together: one RegionMedia
 // whose region r is the scene medium regionMedium[r]. A medium apart from all others is a volume alone.
 struct SceneVolume {
-    std::string name;  // its media's names, joined by " + "
+    std::string name;                    // its media's names, joined by " + "
     std::unique_ptr<RegionMedia> media;  // the tets, and each region's medium on them
     std::vector<int> regionMedium;       // per region: its medium's place in the description
     TetStats stats;
@@ -130,7 +130,8 @@ private:
     const std::vector<glm::dvec3>& normals(const Geometry& g) const {
         return g.kind == HitKind::MediumBoundary ? volumes_[g.index].normals : normals_[g.shape];
     }
-    std::optional<Intersection> intersect(RTCScene scene, const std::vector<Geometry>& geometries, const Ray& ray, double tMax) const;
+    std::optional<Intersection> intersect(RTCScene scene, const std::vector<Geometry>& geometries, const Ray& ray,
+                                          double tMax) const;
     void buildVolumes();
     // surfacesWithin_ and sealed_, from the surfaces' and area lights' bounds and the lights.
     void classifyVolumes();
@@ -141,7 +142,7 @@ private:
     Camera camera_;
     std::vector<std::unique_ptr<Light>> lights_;
     const Light* environment_ = nullptr;
-    Bounds3 geometry_;  // of the surfaces and media: where lights at infinity aim their photons
+    Bounds3 geometry_;          // of the surfaces and media: where lights at infinity aim their photons
     bool lightsAlone_ = false;  // no surface or medium: geometry_ is the camera's position
     std::vector<std::pair<Bounds3, HitKind>> shapeBounds_;  // the surfaces' and area lights' meshes
     std::vector<SceneRegion> media_;

@@ -8,7 +8,8 @@
 
 namespace tetglow {
 
-SphericalRectangle::SphericalRectangle(const glm::dvec3& o, const glm::dvec3& corner, const glm::dvec3& ex, const glm::dvec3& ey)
+SphericalRectangle::SphericalRectangle(const glm::dvec3& o, const glm::dvec3& corner, const glm::dvec3& ex,
+                                       const glm::dvec3& ey)
     : o_(o) {
     const double exl = glm::length(ex), eyl = glm::length(ey);
     x_ = ex / exl;
@@ -29,7 +30,9 @@ SphericalRectangle::SphericalRectangle(const glm::dvec3& o, const glm::dvec3& co
     const glm::dvec3 v00(x0_, y0_, z0_), v01(x0_, y1_, z0_), v10(x1_, y0_, z0_), v11(x1_, y1_, z0_);
     const glm::dvec3 n0 = glm::normalize(glm::cross(v00, v10)), n1 = glm::normalize(glm::cross(v10, v11));
     const glm::dvec3 n2 = glm::normalize(glm::cross(v11, v01)), n3 = glm::normalize(glm::cross(v01, v00));
-    auto angle = [](const glm::dvec3& a, const glm::dvec3& b) { return std::acos(std::clamp(-glm::dot(a, b), -1.0, 1.0)); };
+    auto angle = [](const glm::dvec3& a, const glm::dvec3& b) {
+        return std::acos(std::clamp(-glm::dot(a, b), -1.0, 1.0));
+    };
     const double g0 = angle(n0, n1), g1 = angle(n1, n2), g2 = angle(n2, n3), g3 = angle(n3, n0);
     b0_ = n0.z;
     b1_ = n2.z;

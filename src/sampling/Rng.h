@@ -55,7 +55,8 @@ public:
     }
     // Uniform in [0, 1): 53 random bits, or a Sobol point's 32.
     double uniform() {
-        if (dimension_ < sobolDimensions_) [[unlikely]] return sobolUniform();
+        if (dimension_ < sobolDimensions_) [[unlikely]]
+            return sobolUniform();
         const uint64_t hi = next(), lo = next();
         return double(((hi << 32) | lo) >> 11) * 0x1.0p-53;
     }

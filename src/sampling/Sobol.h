@@ -57,6 +57,8 @@ inline uint32_t laineKarrasPermutation(uint32_t v, uint32_t seed) {
 
 // An Owen scramble of a point's 32 bits (the higher bits decide how the lower ones flip), or a
 // shuffle of sample indices that maps every aligned block of 2^k indices onto another one.
-inline uint32_t nestedUniformScramble(uint32_t v, uint32_t seed) { return reverseBits(laineKarrasPermutation(reverseBits(v), seed)); }
+inline uint32_t nestedUniformScramble(uint32_t v, uint32_t seed) {
+    return reverseBits(laineKarrasPermutation(reverseBits(v), seed));
+}
 
 }  // namespace tetglow

@@ -6,12 +6,12 @@
 #include <filesystem>
 #include <map>
 
-#include <assimp/IOStream.hpp>
-#include <assimp/IOSystem.hpp>
-#include <assimp/Importer.hpp>
 #include <assimp/config.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+#include <assimp/IOStream.hpp>
+#include <assimp/IOSystem.hpp>
+#include <assimp/Importer.hpp>
 #include <glm/mat4x4.hpp>
 #include <glm/matrix.hpp>
 
@@ -56,7 +56,9 @@ private:
 // and once all files together exceed the mesh limit.
 class FileSystem : public Assimp::IOSystem {
 public:
-    FileSystem(const std::string& mainName, std::string data) : total_(data.size()) { files_[mainName] = std::move(data); }
+    FileSystem(const std::string& mainName, std::string data) : total_(data.size()) {
+        files_[mainName] = std::move(data);
+    }
     bool Exists(const char* name) const override {
         std::error_code ec;
         return files_.count(name) || std::filesystem::exists(name, ec);
@@ -67,7 +69,8 @@ public:
         auto it = files_.find(name);
         if (it == files_.end()) {
             try {
-                std::string data = readInputFile(name, kMaxMeshFileBytes - std::min(kMaxMeshFileBytes, total_), "the rest of a mesh's files (1024 MiB in all)");
+                std::string data = readInputFile(name, kMaxMeshFileBytes - std::min(kMaxMeshFileBytes, total_),
+                                                 "the rest of a mesh's files (1024 MiB in all)");
                 total_ += data.size();
                 read_.push_back(name);
                 it = files_.emplace(name, std::move(data)).first;
@@ -111,9 +114,11 @@ std::vector<Placed> placeNodes(const aiNode* root, const std::string& path) {
         const Placed p = stack.back();
         stack.pop_back();
         nodes.push_back(p);
-        if (nodes.size() > kMaxSceneMeshTriangles) throw InputError(path + ": more than " + std::to_string(kMaxSceneMeshTriangles) + " nodes");
+        if (nodes.size() > kMaxSceneMeshTriangles)
+            throw InputError(path + ": more than " + std::to_string(kMaxSceneMeshTriangles) + " nodes");
         for (unsigned c = p.node->mNumChildren; c-- > 0;)  // the first child on top: the file's order
-            if (const aiNode* child = p.node->mChildren[c]) stack.push_back({child, p.world * toGlm(child->mTransformation)});
+            if (const aiNode* child = p.node->mChildren[c])
+                stack.push_back({child, p.world * toGlm(child->mTransformation)});
     }
     return nodes;
 }
@@ -135,11 +140,13 @@ const aiNode* findNode(const std::vector<Placed>& nodes, const std::string& name
             found = p.node;
             ++count;
         }
-        if (p.node->mNumMeshes && named.size() < 200) named += std::string(named.empty() ? "" : ", ") + "'" + p.node->mName.C_Str() + "'";
+        if (p.node->mNumMeshes && named.size() < 200)
+            named += std::string(named.empty() ? "" : ", ") + "'" + p.node->mName.C_Str() + "'";
     }
     if (count > 1) throw InputError(path + ": " + std::to_string(count) + " nodes are named '" + shorten(name) + "'");
     if (!found)
-        throw InputError(path + ": no node named '" + shorten(name) + "' (nodes with meshes: " + (named.empty() ? "none" : shorten(named, 200)) + ")");
+        throw InputError(path + ": no node named '" + shorten(name) +
+                         "' (nodes with meshes: " + (named.empty() ? "none" : shorten(named, 200)) + ")");
     return found;
 }
 
@@ -147,10 +154,13 @@ const aiNode* findNode(const std::vector<Placed>& nodes, const std::string& name
 TriangleMesh nodeMesh(const aiScene& scene, const aiNode& node, const std::string& path, size_t& skipped) {
     TriangleMesh local;
     for (unsigned i = 0; i < node.mNumMeshes; ++i) {
-        if (node.mMeshes[i] >= scene.mNumMeshes) throw InputError(path + ": a node names mesh " + std::to_string(node.mMeshes[i]) + " of " + std::to_string(scene.mNumMeshes));
+        if (node.mMeshes[i] >= scene.mNumMeshes)
+            throw InputError(path + ": a node names mesh " + std::to_string(node.mMeshes[i]) + " of " +
+                             std::to_string(scene.mNumMeshes));
         const aiMesh& m = *scene.mMeshes[node.mMeshes[i]];
         const uint32_t base = uint32_t(local.positions.size());
-        for (unsigned v = 0; v < m.mNumVertices; ++v) local.positions.emplace_back(m.mVertices[v].x, m.mVertices[v].y, m.mVertices[v].z);
+        for (unsigned v = 0; v < m.mNumVertices; ++v)
+            local.positions.emplace_back(m.mVertices[v].x, m.mVertices[v].y, m.mVertices[v].z);
         for (unsigned f = 0; f < m.mNumFaces; ++f) {
             const aiFace& face = m.mFaces[f];
             if (face.mNumIndices != 3) {
@@ -159,8 +169,9 @@ TriangleMesh nodeMesh(const aiScene& scene, const aiNode& node, const std::strin
             }
             for (unsigned k = 0; k < 3; ++k)
                 if (face.mIndices[k] >= m.mNumVertices)
-                    throw InputError(path + ": mesh '" + shorten(m.mName.C_Str()) + "': face " + std::to_string(f) + ": vertex index " +
-                                     std::to_string(face.mIndices[k]) + " out of range (" + std::to_string(m.mNumVertices) + " vertices)");
+                    throw InputError(path + ": mesh '" + shorten(m.mName.C_Str()) + "': face " + std::to_string(f) +
+                                     ": vertex index " + std::to_string(face.mIndices[k]) + " out of range (" +
+                                     std::to_string(m.mNumVertices) + " vertices)");
             local.triangles.push_back({base + face.mIndices[0], base + face.mIndices[1], base + face.mIndices[2]});
         }
     }
@@ -182,10 +193,14 @@ void append(TriangleMesh& out, TriangleMesh local, const glm::dmat4& world) {
 
 const char* extension(SceneMeshFormat f) {
     switch (f) {
-        case SceneMeshFormat::Gltf: return "gltf";
-        case SceneMeshFormat::Glb: return "glb";
-        case SceneMeshFormat::Fbx: return "fbx";
-        case SceneMeshFormat::Collada: return "dae";
+        case SceneMeshFormat::Gltf:
+            return "gltf";
+        case SceneMeshFormat::Glb:
+            return "glb";
+        case SceneMeshFormat::Fbx:
+            return "fbx";
+        case SceneMeshFormat::Collada:
+            return "dae";
     }
     return "";
 }
@@ -197,14 +212,16 @@ struct Imported {
 
 Imported import(std::string data, const std::string& path, SceneMeshFormat format, const std::string& node) {
     // Named beside the real file, so that the names inside it resolve against its folder.
-    const std::string name = (std::filesystem::path(path).parent_path() / ".tetglow-mesh.").string() + extension(format);
+    const std::string name =
+        (std::filesystem::path(path).parent_path() / ".tetglow-mesh.").string() + extension(format);
     Assimp::Importer importer;
     auto* files = new FileSystem(name, std::move(data));
     importer.SetIOHandler(files);  // the importer owns it
     // Only geometry: no textures, materials, animations, cameras or lights; FBX pivots folded
     // into their nodes (else helper nodes stand between a node and its name).
-    for (const char* key : {AI_CONFIG_IMPORT_FBX_READ_TEXTURES, AI_CONFIG_IMPORT_FBX_READ_MATERIALS, AI_CONFIG_IMPORT_FBX_READ_ANIMATIONS,
-                            AI_CONFIG_IMPORT_FBX_READ_CAMERAS, AI_CONFIG_IMPORT_FBX_READ_LIGHTS, AI_CONFIG_IMPORT_FBX_PRESERVE_PIVOTS})
+    for (const char* key :
+         {AI_CONFIG_IMPORT_FBX_READ_TEXTURES, AI_CONFIG_IMPORT_FBX_READ_MATERIALS, AI_CONFIG_IMPORT_FBX_READ_ANIMATIONS,
+          AI_CONFIG_IMPORT_FBX_READ_CAMERAS, AI_CONFIG_IMPORT_FBX_READ_LIGHTS, AI_CONFIG_IMPORT_FBX_PRESERVE_PIVOTS})
         importer.SetPropertyBool(key, false);
     const aiScene* scene = importer.ReadFile(name, aiProcess_Triangulate);
     if (!scene || !scene->mRootNode) {
@@ -222,22 +239,29 @@ Imported import(std::string data, const std::string& path, SceneMeshFormat forma
     for (const Placed& p : nodes) {
         if (!p.node->mNumMeshes || !within(p.node, top)) continue;
         const double det = glm::determinant(glm::dmat3(p.world));
-        if (!std::isfinite(det)) throw InputError(path + ": node '" + shorten(p.node->mName.C_Str()) + "' has a transform that is not finite");
+        if (!std::isfinite(det))
+            throw InputError(path + ": node '" + shorten(p.node->mName.C_Str()) +
+                             "' has a transform that is not finite");
         if (det == 0) {
             ++singular;
             continue;
         }
         TriangleMesh local = nodeMesh(*scene, *p.node, path, skipped);
         if (local.triangles.size() > kMaxSceneMeshTriangles - out.triangles.size())
-            throw InputError(path + ": more than " + std::to_string(kMaxSceneMeshTriangles) + " triangles once every node's meshes are placed");
+            throw InputError(path + ": more than " + std::to_string(kMaxSceneMeshTriangles) +
+                             " triangles once every node's meshes are placed");
         append(out, std::move(local), p.world);
     }
-    if (skipped) addWarning(result.warnings, path + ": skipped " + std::to_string(skipped) + " points and lines (only triangles bound a medium)");
-    if (singular) addWarning(result.warnings, path + ": skipped " + std::to_string(singular) + " nodes whose transform flattens them (scale 0)");
-    if (out.triangles.empty()) throw InputError(path + ": no triangles" + (node.empty() ? "" : " in node '" + shorten(node) + "'"));
+    if (skipped)
+        addWarning(result.warnings,
+                   path + ": skipped " + std::to_string(skipped) + " points and lines (only triangles bound a medium)");
+    if (singular)
+        addWarning(result.warnings,
+                   path + ": skipped " + std::to_string(singular) + " nodes whose transform flattens them (scale 0)");
+    if (out.triangles.empty())
+        throw InputError(path + ": no triangles" + (node.empty() ? "" : " in node '" + shorten(node) + "'"));
     return result;
 }
-
 
 }  // namespace
 
@@ -247,8 +271,8 @@ Imported import(std::string data, const std::string& path, SceneMeshFormat forma
 // crash or its limit is an error here. The time grows with the file: a 36 MB GLB of 2 million
 // triangles takes 1.5 s a MB on a busy machine (import, placing, welding and the answer), and
 // a file's buffers read in the child are not counted, so 5 s a MB leaves a wide margin.
-TriangleMesh parseSceneMeshes(std::string data, const std::string& path, SceneMeshFormat format, const std::string& node,
-                              std::vector<std::string>* warnings) {
+TriangleMesh parseSceneMeshes(std::string data, const std::string& path, SceneMeshFormat format,
+                              const std::string& node, std::vector<std::string>* warnings) {
     const ChildLimits limits{defaultChildMemory(), 10 + 5 * double(data.size()) / 1e6};
     const std::string importer = std::string("the ") + extension(format) + " importer (Assimp)";
     std::string answer;
@@ -265,7 +289,8 @@ TriangleMesh parseSceneMeshes(std::string data, const std::string& path, SceneMe
             limits);
     } catch (const ChildFailure& e) {
         if (e.kind == ChildFailure::Kind::Signal)
-            throw InputError(path + ": " + importer + " crashed on this file (" + e.detail + "), as it does on one nested too deep");
+            throw InputError(path + ": " + importer + " crashed on this file (" + e.detail +
+                             "), as it does on one nested too deep");
         throw InputError(path + ": " + importer + " " + e.what());
     }
     ByteReader reply(std::move(answer), "the mesh importer");

@@ -22,7 +22,7 @@ enum class SceneMeshFormat { Gltf, Glb, Fbx, Collada };
 
 // The meshes of the scene file `data` read from `path`. `node`: "" for every mesh, else the
 // meshes of the node of that name and of the nodes below it. Throws InputError "<path>: <problem>".
-TriangleMesh parseSceneMeshes(std::string data, const std::string& path, SceneMeshFormat format, const std::string& node,
-                              std::vector<std::string>* warnings);
+TriangleMesh parseSceneMeshes(std::string data, const std::string& path, SceneMeshFormat format,
+                              const std::string& node, std::vector<std::string>* warnings);
 
 }  // namespace tetglow

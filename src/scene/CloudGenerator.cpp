@@ -71,8 +71,8 @@ std::vector<Bump> puffs(const CloudParams& p) {
     constexpr int kSmallPuffs = 64;
     for (int i = 0; i < kSmallPuffs; ++i) {
         y = rng.uniform(-1, 1);
-        out.push_back({direction(y, rng.uniform(0, 2 * kPi)), p.roughness * rng.uniform(0.5, 1.5),
-                       rng.uniform(0.12, 0.2)});
+        out.push_back(
+            {direction(y, rng.uniform(0, 2 * kPi)), p.roughness * rng.uniform(0.5, 1.5), rng.uniform(0.12, 0.2)});
     }
     return out;
 }

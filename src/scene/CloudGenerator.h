@@ -16,12 +16,11 @@ struct CloudParams {
 // Exactly 2 units wide along x and 1.2 tall along y, up to float rounding, and 1 to 2 deep along
 // z (the longer horizontal side is turned to x). Star-shaped about the origin, which lies inside
 // about a quarter of the way up: every ray from the origin leaves through the surface once, at a
-// radius that is a smooth positive function of the ray's direction. That function moves the icosphere's vertices radially, so
-// every triangle keeps facing away from the origin and no two can cross, at any resolution and
-// seed. The mesh is closed, 2-manifold, outward-wound and free of degenerate triangles, with
-// positions rounded to float. The same parameters give the same mesh (no standard-library
-// distributions, whose numbers differ between implementations). Throws InputError for
-// parameters outside the ranges above.
+// radius that is a smooth positive function of the ray's direction. That function moves the icosphere's vertices
+// radially, so every triangle keeps facing away from the origin and no two can cross, at any resolution and seed. The
+// mesh is closed, 2-manifold, outward-wound and free of degenerate triangles, with positions rounded to float. The same
+// parameters give the same mesh (no standard-library distributions, whose numbers differ between implementations).
+// Throws InputError for parameters outside the ranges above.
 TriangleMesh makeCloud(const CloudParams& params = {});
 
 }  // namespace tetglow

@@ -40,7 +40,8 @@ double evaluateDensity(const DensityDesc& density, const glm::dvec3& p) {
         case DensityDesc::Type::Linear:
             return std::max(0.0, density.offset + glm::dot(density.gradient, p));
         case DensityDesc::Type::Noise:
-            return std::max(0.0, density.offset * (1 + density.amplitude * valueNoise(density.frequency * p, density.seed)));
+            return std::max(0.0,
+                            density.offset * (1 + density.amplitude * valueNoise(density.frequency * p, density.seed)));
     }
     return 0;
 }

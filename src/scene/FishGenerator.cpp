@@ -483,8 +483,8 @@ glm::dvec3 insideBody(double s, double up, double side, const FishParams& p) {
 }
 
 // Organs as icospheres, every vertex checked against `container` exactly (classifyPoint).
-TriangleMesh organs(const std::vector<glm::dvec3>& centres, double radius, int subdivisions, const TriangleMesh& container,
-                    const FishParams& p, const char* what) {
+TriangleMesh organs(const std::vector<glm::dvec3>& centres, double radius, int subdivisions,
+                    const TriangleMesh& container, const FishParams& p, const char* what) {
     TriangleMesh mesh;
     for (const auto& c : centres) {
         const TriangleMesh sphere = icosphere(subdivisions, radius, c);

@@ -55,8 +55,8 @@ private:
     bool open(bool array) {
         // Printing a value in an error message recurses once per level: a bound keeps the stack safe.
         if (levels_.size() >= kMaxJsonDepth)
-            throw InputError(file_ + ": " + pointer().to_string() + ": nested deeper than " + std::to_string(kMaxJsonDepth) +
-                             " arrays and objects");
+            throw InputError(file_ + ": " + pointer().to_string() + ": nested deeper than " +
+                             std::to_string(kMaxJsonDepth) + " arrays and objects");
         levels_.emplace_back().array = array;
         return true;
     }
@@ -68,17 +68,22 @@ private:
     bool value() {
         if (levels_.empty()) return true;
         Level& level = levels_.back();
-        if (level.array) ++level.index;
-        else level.key.reset();
+        if (level.array)
+            ++level.index;
+        else
+            level.key.reset();
         return true;
     }
 
     Pointer pointer() const {
         Pointer p;
         for (const Level& level : levels_) {
-            if (level.array) p /= level.index;
-            else if (level.key) p /= *level.key;
-            else break;
+            if (level.array)
+                p /= level.index;
+            else if (level.key)
+                p /= *level.key;
+            else
+                break;
         }
         return p;
     }
@@ -126,7 +131,8 @@ std::string shortDump(const Json& json) {
 
 bool isArrayOfNumbers(const Json* json, size_t count, const Range& range) {
     return json && json->is_array() && json->size() == count &&
-           std::all_of(json->begin(), json->end(), [&](const Json& x) { return x.is_number() && range.contains(x.get<double>()); });
+           std::all_of(json->begin(), json->end(),
+                       [&](const Json& x) { return x.is_number() && range.contains(x.get<double>()); });
 }
 
 }  // namespace
@@ -181,7 +187,8 @@ int64_t JsonValue::integer(int64_t lo, int64_t hi) const {
                     json_->get<int64_t>() >= lo;
     if (!ok) {
         const bool unbounded = hi == std::numeric_limits<int64_t>::max();
-        fail("an integer " + (unbounded ? ">= " + std::to_string(lo) : "in " + std::to_string(lo) + ".." + std::to_string(hi)));
+        fail("an integer " +
+             (unbounded ? ">= " + std::to_string(lo) : "in " + std::to_string(lo) + ".." + std::to_string(hi)));
     }
     return json_->get<int64_t>();
 }
@@ -197,7 +204,8 @@ std::string JsonValue::string() const {
 }
 
 std::vector<double> JsonValue::numbers(size_t count, const Range& range) const {
-    if (!isArrayOfNumbers(json_, count, range)) fail("an array of " + std::to_string(count) + " " + range.describe(true));
+    if (!isArrayOfNumbers(json_, count, range))
+        fail("an array of " + std::to_string(count) + " " + range.describe(true));
     return json_->get<std::vector<double>>();
 }
 

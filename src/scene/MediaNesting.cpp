@@ -14,7 +14,8 @@ MediaNesting nestMedia(const std::vector<MediumDesc>& media) {
         surfaces.push_back(m.boundary);
         names.push_back(m.name);
     }
-    const bool strict = std::any_of(media.begin(), media.end(), [](const MediumDesc& m) { return m.tetOptions.strict; });
+    const bool strict =
+        std::any_of(media.begin(), media.end(), [](const MediumDesc& m) { return m.tetOptions.strict; });
     const RegionComplex complex = validatedComplex(std::move(surfaces), names, strict);
     std::set<std::pair<int32_t, int32_t>> touching;
     for (const auto& [behind, front] : complex.sides)

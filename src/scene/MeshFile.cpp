@@ -16,15 +16,22 @@ enum class Format { Obj, Off, Ply, Stl, Gltf, Glb, Fbx, Collada };
 
 const char* name(Format f) {
     switch (f) {
-        case Format::Obj: return "an OBJ";
-        case Format::Off: return "an OFF";
-        case Format::Ply: return "a PLY";
-        case Format::Stl: return "an STL";
-        default: return "a scene";
+        case Format::Obj:
+            return "an OBJ";
+        case Format::Off:
+            return "an OFF";
+        case Format::Ply:
+            return "a PLY";
+        case Format::Stl:
+            return "an STL";
+        default:
+            return "a scene";
     }
 }
 
-bool startsWith(const std::string& data, size_t at, const char* prefix) { return data.compare(at, std::strlen(prefix), prefix) == 0; }
+bool startsWith(const std::string& data, size_t at, const char* prefix) {
+    return data.compare(at, std::strlen(prefix), prefix) == 0;
+}
 
 // The format by the file's first bytes; by the extension where they do not say.
 Format formatOf(const std::string& data, const std::string& path) {
@@ -42,13 +49,16 @@ Format formatOf(const std::string& data, const std::string& path) {
     if (startsWith(head, text, "; FBX")) return Format::Fbx;
     std::string ext = std::filesystem::path(path).extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
-    const std::pair<const char*, Format> byExtension[] = {{".off", Format::Off}, {".stl", Format::Stl},   {".gltf", Format::Gltf},
-                                                          {".glb", Format::Glb}, {".fbx", Format::Fbx}, {".dae", Format::Collada}};
+    const std::pair<const char*, Format> byExtension[] = {{".off", Format::Off},   {".stl", Format::Stl},
+                                                          {".gltf", Format::Gltf}, {".glb", Format::Glb},
+                                                          {".fbx", Format::Fbx},   {".dae", Format::Collada}};
     for (const auto& [e, f] : byExtension)
         if (ext == e) return f;
     // Control characters other than whitespace do not occur in OBJ text.
-    if (std::any_of(head.begin(), head.end(), [](char c) { return (unsigned char)c < 32 && !std::isspace((unsigned char)c); }))
-        throw InputError(path + ": binary file, not a mesh tetglow reads (OBJ, OFF, PLY, STL, glTF, GLB, FBX, Collada)");
+    if (std::any_of(head.begin(), head.end(),
+                    [](char c) { return (unsigned char)c < 32 && !std::isspace((unsigned char)c); }))
+        throw InputError(path +
+                         ": binary file, not a mesh tetglow reads (OBJ, OFF, PLY, STL, glTF, GLB, FBX, Collada)");
     return Format::Obj;
 }
 
@@ -62,14 +72,30 @@ MeshFile readMeshFile(const std::string& path, const std::string& node, std::vec
                          "' from (only glTF, GLB, FBX and Collada files have)");
     MeshFile out;
     switch (format) {
-        case Format::Obj: out.mesh = parseObj(data, path, warnings); break;
-        case Format::Off: out.mesh = parseOff(data, path); break;
-        case Format::Ply: out = parsePly(data, path); break;
-        case Format::Stl: out.mesh = parseStl(data, path); break;
-        case Format::Gltf: out.mesh = parseSceneMeshes(std::move(data), path, SceneMeshFormat::Gltf, node, warnings); break;
-        case Format::Glb: out.mesh = parseSceneMeshes(std::move(data), path, SceneMeshFormat::Glb, node, warnings); break;
-        case Format::Fbx: out.mesh = parseSceneMeshes(std::move(data), path, SceneMeshFormat::Fbx, node, warnings); break;
-        case Format::Collada: out.mesh = parseSceneMeshes(std::move(data), path, SceneMeshFormat::Collada, node, warnings); break;
+        case Format::Obj:
+            out.mesh = parseObj(data, path, warnings);
+            break;
+        case Format::Off:
+            out.mesh = parseOff(data, path);
+            break;
+        case Format::Ply:
+            out = parsePly(data, path);
+            break;
+        case Format::Stl:
+            out.mesh = parseStl(data, path);
+            break;
+        case Format::Gltf:
+            out.mesh = parseSceneMeshes(std::move(data), path, SceneMeshFormat::Gltf, node, warnings);
+            break;
+        case Format::Glb:
+            out.mesh = parseSceneMeshes(std::move(data), path, SceneMeshFormat::Glb, node, warnings);
+            break;
+        case Format::Fbx:
+            out.mesh = parseSceneMeshes(std::move(data), path, SceneMeshFormat::Fbx, node, warnings);
+            break;
+        case Format::Collada:
+            out.mesh = parseSceneMeshes(std::move(data), path, SceneMeshFormat::Collada, node, warnings);
+            break;
     }
     if (out.mesh.triangles.empty()) throw InputError(path + ": no triangles (empty file or not a mesh)");
     return out;

@@ -21,10 +21,12 @@ struct MeshFile {
 // names). `node`: for glTF, GLB, FBX and Collada, "" takes every mesh, a name the meshes of that
 // node and the nodes below it; other formats have no nodes, and a name is an error. Throws
 // InputError "<path>: <problem>" (with the line for text formats); warnings go to `warnings`.
-MeshFile readMeshFile(const std::string& path, const std::string& node = "", std::vector<std::string>* warnings = nullptr);
+MeshFile readMeshFile(const std::string& path, const std::string& node = "",
+                      std::vector<std::string>* warnings = nullptr);
 
 // readMeshFile's mesh alone.
-inline TriangleMesh readMesh(const std::string& path, std::vector<std::string>* warnings = nullptr, const std::string& node = "") {
+inline TriangleMesh readMesh(const std::string& path, std::vector<std::string>* warnings = nullptr,
+                             const std::string& node = "") {
     return readMeshFile(path, node, warnings).mesh;
 }
 

@@ -13,7 +13,6 @@ namespace {
 
 using Class = PbrtParamClass;
 
-
 // An error naming the parameter when it is given at all.
 void reject(PbrtParams& p, const std::string& name, Class cls, const std::string& why) {
     if (const PbrtParam* given = p.find(name, cls)) p.fail(*given, why);
@@ -27,16 +26,19 @@ struct Film {
 Film readFilm(PbrtCall* call) {
     Film f;
     if (!call) return f;
-    if (call->type != "image") pbrtError(call->where, "Film \"" + call->type + "\" is not supported (supported: image)");
+    if (call->type != "image")
+        pbrtError(call->where, "Film \"" + call->type + "\" is not supported (supported: image)");
     PbrtParams& p = call->params;
     f.width = p.getInt("xresolution", f.width);
     f.height = p.getInt("yresolution", f.height);
     for (const char* name : {"xresolution", "yresolution"})
-        if (const PbrtParam* r = p.find(name, Class::Integer); r && (r->numbers[0] < 1 || r->numbers[0] > kMaxResolution))
+        if (const PbrtParam* r = p.find(name, Class::Integer);
+            r && (r->numbers[0] < 1 || r->numbers[0] > kMaxResolution))
             p.fail(*r, "must be in 1.." + std::to_string(kMaxResolution));
     f.filename = p.getString("filename", f.filename);
     const std::vector<double> crop = p.getFloats("cropwindow");
-    if (!crop.empty() && crop != std::vector<double>{0, 1, 0, 1}) p.fail(*p.find("cropwindow", Class::Float), "cropping is not supported");
+    if (!crop.empty() && crop != std::vector<double>{0, 1, 0, 1})
+        p.fail(*p.find("cropwindow", Class::Float), "cropping is not supported");
     reject(p, "pixelbounds", Class::Integer, "cropping is not supported");
     reject(p, "maxsampleluminance", Class::Float, "clamping samples is not supported");
     if (p.getFloat("scale", 1) != 1) p.fail(*p.find("scale", Class::Float), "only 1 is supported");
@@ -51,11 +53,13 @@ CameraDesc readCamera(PbrtCall* call, const glm::dmat4& cameraToWorld, const Fil
     PbrtParams none;
     PbrtParams& p = call ? call->params : none;
     const PbrtLocation at = call ? call->where : where;
-    if (call && call->type != "perspective") pbrtError(at, "Camera \"" + call->type + "\" is not supported (supported: perspective)");
+    if (call && call->type != "perspective")
+        pbrtError(at, "Camera \"" + call->type + "\" is not supported (supported: perspective)");
     c.fov = p.getFloat("fov", 90);
     if (const double half = p.getFloat("halffov", -1); half > 0) c.fov = 2 * half;
     if (!(c.fov > 0 && c.fov < 180)) pbrtError(at, "Camera: the field of view must be in (0, 180) degrees");
-    if (p.getFloat("lensradius", 0) != 0) p.fail(*p.find("lensradius", Class::Float), "depth of field is not supported (only 0)");
+    if (p.getFloat("lensradius", 0) != 0)
+        p.fail(*p.find("lensradius", Class::Float), "depth of field is not supported (only 0)");
     p.find("focaldistance", Class::Float);
     p.find("shutteropen", Class::Float);
     p.find("shutterclose", Class::Float);
@@ -81,14 +85,17 @@ int samplesPerPixel(PbrtCall& call) {
     p.find("dimensions", Class::Integer);
     p.find("jitter", Class::Bool);
     // In 64 bits: 65536 x 65537 samples must not wrap.
-    if (call.type == "stratified") return int(std::min<int64_t>(int64_t(p.getInt("xsamples", 4)) * p.getInt("ysamples", 4), kMaxSpp + 1));
+    if (call.type == "stratified")
+        return int(std::min<int64_t>(int64_t(p.getInt("xsamples", 4)) * p.getInt("ysamples", 4), kMaxSpp + 1));
     if (call.type == "random") return p.getInt("pixelsamples", 4);
     const int n = p.getInt("pixelsamples", 16);
     if (call.type == "halton") return n;
     // These round up to a power of two (samplers/sobol.cpp, zerotwosequence.cpp, maxmin.cpp).
     if (call.type == "sobol" || call.type == "02sequence" || call.type == "lowdiscrepancy" || call.type == "maxmindist")
         return n > 0 && n <= kMaxSpp ? int(std::bit_ceil(unsigned(n))) : n;
-    pbrtError(call.where, "Sampler \"" + call.type + "\" is not supported (supported: halton, sobol, random, stratified, 02sequence, maxmindist)");
+    pbrtError(call.where,
+              "Sampler \"" + call.type +
+                  "\" is not supported (supported: halton, sobol, random, stratified, 02sequence, maxmindist)");
 }
 
 IntegratorDesc readIntegrator(PbrtCall* sampler, PbrtCall* integrator, std::vector<std::string>& warnings) {
@@ -98,20 +105,22 @@ IntegratorDesc readIntegrator(PbrtCall* sampler, PbrtCall* integrator, std::vect
     if (sampler) {
         d.spp = samplesPerPixel(*sampler);
         if (d.spp < 1 || d.spp > kMaxSpp)
-            pbrtError(sampler->where, "Sampler: the number of samples per pixel must be in 1.." + std::to_string(kMaxSpp) + ", got " + std::to_string(d.spp));
+            pbrtError(sampler->where, "Sampler: the number of samples per pixel must be in 1.." +
+                                          std::to_string(kMaxSpp) + ", got " + std::to_string(d.spp));
         const int seed = sampler->params.getInt("seed", 0);
         if (seed < 0) sampler->params.fail(*sampler->params.find("seed", Class::Integer), "must not be negative");
         d.seed = uint64_t(seed);
         sampler->params.reportUnused(warnings);
         pbrtWarn(warnings, sampler->where,
-                 "Sampler \"" + sampler->type + "\": tetglow draws its own random numbers; only the count, " + std::to_string(d.spp) +
-                     " samples per pixel, is used",
+                 "Sampler \"" + sampler->type + "\": tetglow draws its own random numbers; only the count, " +
+                     std::to_string(d.spp) + " samples per pixel, is used",
                  "note");
     }
     int maxDepth = 5;  // pbrt-v3's default
     if (integrator) {
         if (integrator->type != "volpath" && integrator->type != "path")
-            pbrtError(integrator->where, "Integrator \"" + integrator->type + "\" is not supported (supported: volpath, path)");
+            pbrtError(integrator->where,
+                      "Integrator \"" + integrator->type + "\" is not supported (supported: volpath, path)");
         PbrtParams& p = integrator->params;
         maxDepth = p.getInt("maxdepth", maxDepth);
         // tetglow counts one more event than pbrt-v3 (below): the top of int's range would wrap.
@@ -134,16 +143,20 @@ void checkFilter(PbrtCall* filter, std::vector<std::string>& warnings) {
     const bool box = filter->type == "box" && p.getFloat("xwidth", 0.5) == 0.5 && p.getFloat("ywidth", 0.5) == 0.5;
     if (!box)
         pbrtWarn(warnings, filter->where,
-                 "PixelFilter \"" + filter->type + "\": tetglow averages the samples in each pixel (pbrt-v3's \"box\" of width 0.5), so the image is a little sharper than pbrt-v3's");
+                 "PixelFilter \"" + filter->type +
+                     "\": tetglow averages the samples in each pixel (pbrt-v3's \"box\" of width 0.5), so the image is "
+                     "a little sharper than pbrt-v3's");
 }
 
 // pbrt-v3's "path" ignores media: it sees glass boundaries as glass and index-matched ones not at all.
 void dropMedia(SceneDesc& scene, const PbrtLocation& where, std::vector<std::string>& warnings) {
     if (scene.media.empty()) return;
     pbrtWarn(warnings, where,
-             "Integrator \"path\" ignores the " + std::to_string(scene.media.size()) + " media, as pbrt-v3 does; use \"volpath\" to render them");
+             "Integrator \"path\" ignores the " + std::to_string(scene.media.size()) +
+                 " media, as pbrt-v3 does; use \"volpath\" to render them");
     for (MediumDesc& m : scene.media)
-        if (m.boundaryMaterial.type == MaterialType::Dielectric) scene.surfaces.push_back({m.name, std::move(m.boundary), m.boundaryMaterial});
+        if (m.boundaryMaterial.type == MaterialType::Dielectric)
+            scene.surfaces.push_back({m.name, std::move(m.boundary), m.boundaryMaterial});
     scene.media.clear();
 }
 
@@ -160,9 +173,11 @@ void applyPbrtOptions(PbrtOptions& o, SceneDesc& scene, std::vector<std::string>
         pbrtWarn(warnings, film->where, "Film: tetglow writes OpenEXR: " + scene.output + " instead of " + f.filename);
     }
     if (film) film->params.reportUnused(warnings);
-    scene.integrator = readIntegrator(o.sampler ? &*o.sampler : nullptr, o.integrator ? &*o.integrator : nullptr, warnings);
+    scene.integrator =
+        readIntegrator(o.sampler ? &*o.sampler : nullptr, o.integrator ? &*o.integrator : nullptr, warnings);
     checkFilter(o.filter ? &*o.filter : nullptr, warnings);
-    if (!o.integrator || o.integrator->type == "path") dropMedia(scene, o.integrator ? o.integrator->where : o.worldBegin, warnings);
+    if (!o.integrator || o.integrator->type == "path")
+        dropMedia(scene, o.integrator ? o.integrator->where : o.worldBegin, warnings);
 }
 
 }  // namespace tetglow

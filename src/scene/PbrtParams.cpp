@@ -15,11 +15,12 @@ using Class = PbrtParamClass;
 // pbrt-v3's type names (parser.cpp lookupType).
 Class classOf(const std::string& type, const PbrtLocation& at, const std::string& directive) {
     static const std::pair<const char*, Class> kTypes[] = {
-        {"integer", Class::Integer}, {"float", Class::Float},     {"bool", Class::Bool},         {"point2", Class::Point2},
-        {"vector2", Class::Vector2}, {"point3", Class::Point3},   {"point", Class::Point3},      {"vector3", Class::Vector3},
-        {"vector", Class::Vector3},  {"normal", Class::Normal},   {"string", Class::String},     {"texture", Class::Texture},
-        {"rgb", Class::Spectrum},    {"color", Class::Spectrum},  {"xyz", Class::Spectrum},      {"blackbody", Class::Spectrum},
-        {"spectrum", Class::Spectrum}};
+        {"integer", Class::Integer},    {"float", Class::Float},      {"bool", Class::Bool},
+        {"point2", Class::Point2},      {"vector2", Class::Vector2},  {"point3", Class::Point3},
+        {"point", Class::Point3},       {"vector3", Class::Vector3},  {"vector", Class::Vector3},
+        {"normal", Class::Normal},      {"string", Class::String},    {"texture", Class::Texture},
+        {"rgb", Class::Spectrum},       {"color", Class::Spectrum},   {"xyz", Class::Spectrum},
+        {"blackbody", Class::Spectrum}, {"spectrum", Class::Spectrum}};
     for (const auto& [name, cls] : kTypes)
         if (type == name) return cls;
     pbrtError(at, directive + ": unknown parameter type \"" + type + "\"");
@@ -30,10 +31,17 @@ bool takesStrings(Class c) { return c == Class::Bool || c == Class::String || c 
 // How many numbers make one value of the type.
 size_t groupSize(const PbrtParam& p) {
     switch (p.cls) {
-        case Class::Point2: case Class::Vector2: return 2;
-        case Class::Point3: case Class::Vector3: case Class::Normal: return 3;
-        case Class::Spectrum: return p.type == "rgb" || p.type == "color" || p.type == "xyz" ? 3 : 2;
-        default: return 1;
+        case Class::Point2:
+        case Class::Vector2:
+            return 2;
+        case Class::Point3:
+        case Class::Vector3:
+        case Class::Normal:
+            return 3;
+        case Class::Spectrum:
+            return p.type == "rgb" || p.type == "color" || p.type == "xyz" ? 3 : 2;
+        default:
+            return 1;
     }
 }
 
@@ -59,7 +67,8 @@ void check(const PbrtParam& p, const PbrtParams& owner) {
     if (takesStrings(p.cls) && !strings) owner.fail(p, "expected quoted strings");
     if (!takesStrings(p.cls) && strings && p.type != "spectrum") owner.fail(p, "expected numbers, not strings");
     if (p.numbers.size() % groupSize(p) != 0)
-        owner.fail(p, "expected a multiple of " + std::to_string(groupSize(p)) + " numbers, got " + std::to_string(p.numbers.size()));
+        owner.fail(p, "expected a multiple of " + std::to_string(groupSize(p)) + " numbers, got " +
+                          std::to_string(p.numbers.size()));
     if (p.cls == Class::Integer)
         for (double x : p.numbers)
             if (x != std::floor(x) || std::abs(x) > 2147483647) owner.fail(p, "expected integers");
@@ -88,7 +97,8 @@ PbrtParams::PbrtParams(PbrtTokenizer& tokens, std::string directive) : directive
         auto value = tokens.next();
         if (!value) fail(p, "the file ends before its value");
         if (value->kind == PbrtToken::Kind::Open) {
-            for (value = tokens.next(); value && value->kind != PbrtToken::Kind::Close; value = tokens.next()) addValue(p, *value, *this);
+            for (value = tokens.next(); value && value->kind != PbrtToken::Kind::Close; value = tokens.next())
+                addValue(p, *value, *this);
             if (!value) fail(p, "the file ends before ']'");
         } else {
             addValue(p, *value, *this);
@@ -112,7 +122,8 @@ PbrtParam* PbrtParams::findOne(const std::string& name, PbrtParamClass cls, size
     const size_t size = p && takesStrings(cls) ? p->strings.size() : p ? p->numbers.size() : 0;
     if (p && size != count) {
         const std::string noun = takesStrings(cls) ? "string" : "number";
-        fail(*p, "expected " + std::to_string(count) + " " + noun + (count > 1 ? "s" : "") + ", got " + std::to_string(size));
+        fail(*p, "expected " + std::to_string(count) + " " + noun + (count > 1 ? "s" : "") + ", got " +
+                     std::to_string(size));
     }
     return p;
 }
@@ -163,7 +174,8 @@ std::vector<int> PbrtParams::getInts(const std::string& name) {
 std::vector<glm::dvec3> PbrtParams::getTriples(const std::string& name, PbrtParamClass cls) {
     std::vector<glm::dvec3> triples;
     if (const PbrtParam* p = find(name, cls))
-        for (size_t i = 0; i + 2 < p->numbers.size(); i += 3) triples.emplace_back(p->numbers[i], p->numbers[i + 1], p->numbers[i + 2]);
+        for (size_t i = 0; i + 2 < p->numbers.size(); i += 3)
+            triples.emplace_back(p->numbers[i], p->numbers[i + 1], p->numbers[i + 2]);
     return triples;
 }
 
@@ -174,7 +186,8 @@ void PbrtParams::fail(const PbrtParam& p, const std::string& message) const {
 void PbrtParams::reportUnused(std::vector<std::string>& warnings) const {
     for (const PbrtParam& p : params_)
         if (!p.used)
-            pbrtWarn(warnings, p.where, directive_ + ": parameter " + p.declaration() + " is not used (pbrt-v3 ignores it too)");
+            pbrtWarn(warnings, p.where,
+                     directive_ + ": parameter " + p.declaration() + " is not used (pbrt-v3 ignores it too)");
 }
 
 }  // namespace tetglow

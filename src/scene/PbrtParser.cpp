@@ -29,7 +29,11 @@ using Handler = void (Parser::*)(const PbrtToken&);
 class Parser {
 public:
     Parser(const std::string& path, std::vector<std::string>& warnings)
-        : path_(path), tokens_(path), searchDir_(fs::path(path).parent_path()), warnings_(warnings), world_(searchDir_, warnings) {}
+        : path_(path),
+          tokens_(path),
+          searchDir_(fs::path(path).parent_path()),
+          warnings_(warnings),
+          world_(searchDir_, warnings) {}
 
     SceneDesc run();
     static const std::map<std::string_view, Handler>& handlers();
@@ -140,11 +144,14 @@ SceneDesc Parser::run() {
         last_ = t->where;
         const auto handler = handlers().find(t->text);
         if (t->kind != PbrtToken::Kind::Word || handler == handlers().end())
-            pbrtError(t->where, t->kind == PbrtToken::Kind::Word ? "unknown directive \"" + t->text + "\"" : "expected a directive, got '" + t->text + "'");
-        if (block_ == Block::Done) pbrtError(t->where, t->text + " after WorldEnd: tetglow renders one WorldBegin/WorldEnd block per file");
+            pbrtError(t->where, t->kind == PbrtToken::Kind::Word ? "unknown directive \"" + t->text + "\""
+                                                                 : "expected a directive, got '" + t->text + "'");
+        if (block_ == Block::Done)
+            pbrtError(t->where, t->text + " after WorldEnd: tetglow renders one WorldBegin/WorldEnd block per file");
         (this->*handler->second)(*t);
     }
-    if (block_ != Block::Done) pbrtError(last_, block_ == Block::Options ? "the file has no WorldBegin" : "the file ends without WorldEnd");
+    if (block_ != Block::Done)
+        pbrtError(last_, block_ == Block::Options ? "the file has no WorldBegin" : "the file ends without WorldEnd");
     SceneDesc s;
     s.path = path_;
     s.lights = std::move(world_.lights);
@@ -157,7 +164,8 @@ SceneDesc Parser::run() {
 }
 
 std::vector<double> Parser::numbers(const PbrtToken& d, int count, bool bracketed) {
-    const std::string expected = d.text + " expects " + (bracketed ? "[" : "") + std::to_string(count) + " numbers" + (bracketed ? "]" : "");
+    const std::string expected =
+        d.text + " expects " + (bracketed ? "[" : "") + std::to_string(count) + " numbers" + (bracketed ? "]" : "");
     auto next = [&](PbrtToken::Kind kind) {
         auto t = tokens_.next();
         if (!t || t->kind != kind) pbrtError(d.where, expected + (t ? ", got '" + t->text + "'" : ""));
@@ -191,7 +199,8 @@ PbrtCall Parser::call(const PbrtToken& d) {
 
 void Parser::require(Block block, const PbrtToken& d) const {
     if (block_ == block) return;
-    pbrtError(d.where, d.text + (block == Block::World ? " is only allowed between WorldBegin and WorldEnd" : " is only allowed before WorldBegin"));
+    pbrtError(d.where, d.text + (block == Block::World ? " is only allowed between WorldBegin and WorldEnd"
+                                                       : " is only allowed before WorldBegin"));
 }
 
 void Parser::translate(const PbrtToken& d) {
@@ -256,10 +265,14 @@ void Parser::camera(const PbrtToken& d) {
 void Parser::option(const PbrtToken& d) {
     require(Block::Options, d);
     PbrtCall c = call(d);
-    if (d.text == "Film") options_.film = std::move(c);
-    else if (d.text == "Sampler") options_.sampler = std::move(c);
-    else if (d.text == "Integrator") options_.integrator = std::move(c);
-    else if (d.text == "PixelFilter") options_.filter = std::move(c);
+    if (d.text == "Film")
+        options_.film = std::move(c);
+    else if (d.text == "Sampler")
+        options_.sampler = std::move(c);
+    else if (d.text == "Integrator")
+        options_.integrator = std::move(c);
+    else if (d.text == "PixelFilter")
+        options_.filter = std::move(c);
     // Accelerator: how pbrt-v3 finds hits, not what it finds
 }
 
@@ -274,7 +287,8 @@ void Parser::worldBegin(const PbrtToken& d) {
 void Parser::worldEnd(const PbrtToken& d) {
     require(Block::World, d);
     for (auto it = stack_.rbegin(); it != stack_.rend(); ++it)
-        pbrtWarn(warnings_, it->where, std::string(it->attributes ? "AttributeBegin" : "TransformBegin") + " without an end before WorldEnd");
+        pbrtWarn(warnings_, it->where,
+                 std::string(it->attributes ? "AttributeBegin" : "TransformBegin") + " without an end before WorldEnd");
     block_ = Block::Done;
 }
 
@@ -283,7 +297,8 @@ void Parser::begin(const PbrtToken& d) {
     // Each level keeps a copy of the graphics state: a file of nothing but AttributeBegin took
     // 1.4 GB for 2 million of them. Real scenes nest a few dozen deep.
     if (stack_.size() >= kMaxBlockDepth)
-        pbrtError(d.where, d.text + " nested more than " + std::to_string(kMaxBlockDepth) + " deep (AttributeBegin and TransformBegin together)");
+        pbrtError(d.where, d.text + " nested more than " + std::to_string(kMaxBlockDepth) +
+                               " deep (AttributeBegin and TransformBegin together)");
     stack_.push_back({d.text == "AttributeBegin", ctm_, attributes_, d.where});
 }
 
@@ -293,7 +308,8 @@ void Parser::end(const PbrtToken& d) {
     const char* opener = attributes ? "AttributeBegin" : "TransformBegin";
     if (stack_.empty()) pbrtError(d.where, d.text + " without " + opener);
     if (stack_.back().attributes != attributes)
-        pbrtError(d.where, d.text + " closes the " + (attributes ? "TransformBegin" : "AttributeBegin") + " at " + stack_.back().where.str());
+        pbrtError(d.where, d.text + " closes the " + (attributes ? "TransformBegin" : "AttributeBegin") + " at " +
+                               stack_.back().where.str());
     ctm_ = stack_.back().ctm;
     if (attributes) attributes_ = std::move(stack_.back().state);
     stack_.pop_back();
@@ -396,9 +412,12 @@ SceneDesc loadPbrtScene(const std::string& path, std::vector<std::string>* warni
 bool looksLikePbrt(const std::string& text) {
     size_t i = 0;
     while (i < text.size()) {
-        if (std::isspace((unsigned char)text[i])) ++i;
-        else if (text[i] == '#') i = std::min(text.find('\n', i), text.size());
-        else break;
+        if (std::isspace((unsigned char)text[i]))
+            ++i;
+        else if (text[i] == '#')
+            i = std::min(text.find('\n', i), text.size());
+        else
+            break;
     }
     size_t end = i;
     while (end < text.size() && std::isalpha((unsigned char)text[end])) ++end;

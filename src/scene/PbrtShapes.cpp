@@ -5,8 +5,8 @@
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 
-#include "scene/PbrtTransform.h"
 #include "scene/MeshFile.h"
+#include "scene/PbrtTransform.h"
 #include "scene/SceneShapes.h"
 
 namespace tetglow {
@@ -31,14 +31,18 @@ ObjectMesh readTriangleMesh(PbrtParams& p, const PbrtLocation& where) {
         indices = {0, 1, 2};
     }
     if (const PbrtParam* given = p.find("indices", Class::Integer)) {
-        if (indices.size() % 3) p.fail(*given, "expected a multiple of 3 indices, got " + std::to_string(indices.size()));
+        if (indices.size() % 3)
+            p.fail(*given, "expected a multiple of 3 indices, got " + std::to_string(indices.size()));
         for (int i : indices)
-            if (i < 0 || size_t(i) >= n) p.fail(*given, "index " + std::to_string(i) + " out of range (" + std::to_string(n) + " points)");
+            if (i < 0 || size_t(i) >= n)
+                p.fail(*given, "index " + std::to_string(i) + " out of range (" + std::to_string(n) + " points)");
     }
-    for (size_t i = 0; i < indices.size(); i += 3) m.mesh.triangles.push_back({uint32_t(indices[i]), uint32_t(indices[i + 1]), uint32_t(indices[i + 2])});
+    for (size_t i = 0; i < indices.size(); i += 3)
+        m.mesh.triangles.push_back({uint32_t(indices[i]), uint32_t(indices[i + 1]), uint32_t(indices[i + 2])});
     m.normals = p.getTriples("N", Class::Normal);
     if (!m.normals.empty() && m.normals.size() != n)
-        p.fail(*p.find("N", Class::Normal), "expected one normal per point (" + std::to_string(n) + "), got " + std::to_string(m.normals.size()));
+        p.fail(*p.find("N", Class::Normal),
+               "expected one normal per point (" + std::to_string(n) + "), got " + std::to_string(m.normals.size()));
     // Texture coordinates, tangents and face indices only feed textures: no effect here.
     for (const char* name : {"uv", "st"}) {
         p.find(name, Class::Point2);
@@ -66,24 +70,30 @@ ObjectMesh readPlyMesh(PbrtParams& p, const PbrtLocation& where, const std::file
 // pbrt-v3 cuts holes where "alpha" or "shadowalpha" is 0; only opaque shapes are supported.
 void requireOpaque(PbrtParams& p) {
     for (const char* name : {"alpha", "shadowalpha"}) {
-        if (const PbrtParam* texture = p.find(name, Class::Texture)) p.fail(*texture, "alpha textures are not supported");
+        if (const PbrtParam* texture = p.find(name, Class::Texture))
+            p.fail(*texture, "alpha textures are not supported");
         if (p.getFloat(name, 1) != 1) p.fail(*p.find(name, Class::Float), "only 1 (opaque) is supported");
     }
 }
 
 }  // namespace
 
-PbrtMesh readPbrtMesh(const std::string& type, PbrtParams& params, const PbrtLocation& where, const glm::dmat4& objectToWorld,
-                      bool reverseOrientation, const std::filesystem::path& searchDir, std::vector<std::string>& warnings) {
+PbrtMesh readPbrtMesh(const std::string& type, PbrtParams& params, const PbrtLocation& where,
+                      const glm::dmat4& objectToWorld, bool reverseOrientation, const std::filesystem::path& searchDir,
+                      std::vector<std::string>& warnings) {
     ObjectMesh object;
-    if (type == "trianglemesh") object = readTriangleMesh(params, where);
-    else if (type == "plymesh") object = readPlyMesh(params, where, searchDir, warnings);
-    else pbrtError(where, "Shape \"" + type + "\" is not supported (supported: trianglemesh, plymesh)");
+    if (type == "trianglemesh")
+        object = readTriangleMesh(params, where);
+    else if (type == "plymesh")
+        object = readPlyMesh(params, where, searchDir, warnings);
+    else
+        pbrtError(where, "Shape \"" + type + "\" is not supported (supported: trianglemesh, plymesh)");
     requireOpaque(params);
 
     const glm::dmat3 linear(objectToWorld);
     const double det = glm::determinant(linear);
-    if (!isAffine(objectToWorld) || !(std::abs(det) > 0)) pbrtError(where, params.directive() + ": the transform is singular or projective");
+    if (!isAffine(objectToWorld) || !(std::abs(det) > 0))
+        pbrtError(where, params.directive() + ": the transform is singular or projective");
     PbrtMesh out;
     out.hasNormals = !object.normals.empty();
     out.swapsHandedness = det < 0;
@@ -96,10 +106,12 @@ PbrtMesh readPbrtMesh(const std::string& type, PbrtParams& params, const PbrtLoc
     const double sign = reverseOrientation != out.swapsHandedness ? -1 : 1;
     const glm::dmat3 normalToWorld = glm::transpose(glm::inverse(linear));
     for (auto t : object.mesh.triangles) {
-        const glm::dvec3 ccw = glm::cross(out.mesh.positions[t[1]] - out.mesh.positions[t[0]], out.mesh.positions[t[2]] - out.mesh.positions[t[0]]);
+        const glm::dvec3 ccw = glm::cross(out.mesh.positions[t[1]] - out.mesh.positions[t[0]],
+                                          out.mesh.positions[t[2]] - out.mesh.positions[t[0]]);
         bool flip = sign < 0;
         if (out.hasNormals) {
-            const glm::dvec3 shading = normalToWorld * (object.normals[t[0]] + object.normals[t[1]] + object.normals[t[2]]);
+            const glm::dvec3 shading =
+                normalToWorld * (object.normals[t[0]] + object.normals[t[1]] + object.normals[t[2]]);
             flip = glm::dot(ccw, sign * shading) < 0;
         }
         if (flip) std::swap(t[1], t[2]);

@@ -14,13 +14,14 @@
 namespace tetglow {
 
 struct PbrtMesh {
-    TriangleMesh mesh;     // world space, every coordinate a float
+    TriangleMesh mesh;             // world space, every coordinate a float
     bool hasNormals = false;       // "N" (or the PLY file's nx, ny, nz) was given
     bool swapsHandedness = false;  // the transform mirrors
 };
 
 // `type`: the Shape's type; `objectToWorld`: the CTM; files relative to `searchDir`.
-PbrtMesh readPbrtMesh(const std::string& type, PbrtParams& params, const PbrtLocation& where, const glm::dmat4& objectToWorld,
-                      bool reverseOrientation, const std::filesystem::path& searchDir, std::vector<std::string>& warnings);
+PbrtMesh readPbrtMesh(const std::string& type, PbrtParams& params, const PbrtLocation& where,
+                      const glm::dmat4& objectToWorld, bool reverseOrientation, const std::filesystem::path& searchDir,
+                      std::vector<std::string>& warnings);
 
 }  // namespace tetglow

@@ -15,12 +15,20 @@ bool isSpace(char c) { return c == ' ' || c == '\n' || c == '\t' || c == '\r'; }
 // pbrt-v3's escapes in quoted strings.
 char unescape(char c, const PbrtLocation& at) {
     switch (c) {
-        case 'b': return '\b';
-        case 'f': return '\f';
-        case 'n': return '\n';
-        case 'r': return '\r';
-        case 't': return '\t';
-        case '\\': case '\'': case '"': return c;
+        case 'b':
+            return '\b';
+        case 'f':
+            return '\f';
+        case 'n':
+            return '\n';
+        case 'r':
+            return '\r';
+        case 't':
+            return '\t';
+        case '\\':
+        case '\'':
+        case '"':
+            return c;
     }
     pbrtError(at, std::string("unknown escape \\") + c + " in a string");
 }
@@ -29,14 +37,18 @@ char unescape(char c, const PbrtLocation& at) {
 
 void pbrtError(const PbrtLocation& at, const std::string& message) { throw InputError(at.str() + ": " + message); }
 
-void pbrtWarn(std::vector<std::string>& warnings, const PbrtLocation& at, const std::string& message, const char* kind) {
+void pbrtWarn(std::vector<std::string>& warnings, const PbrtLocation& at, const std::string& message,
+              const char* kind) {
     addWarning(warnings, at.str() + ": " + kind + ": " + message);
 }
 
-PbrtTokenizer::PbrtTokenizer(const std::string& path) { files_.push_back({path, readInputFile(path, kMaxSceneFileBytes, "a pbrt file")}); }
+PbrtTokenizer::PbrtTokenizer(const std::string& path) {
+    files_.push_back({path, readInputFile(path, kMaxSceneFileBytes, "a pbrt file")});
+}
 
 void PbrtTokenizer::include(const std::string& path, const PbrtLocation& from) {
-    if (files_.size() >= kMaxIncludeDepth) pbrtError(from, "Include nested more than 64 deep (does a file include itself?)");
+    if (files_.size() >= kMaxIncludeDepth)
+        pbrtError(from, "Include nested more than 64 deep (does a file include itself?)");
     try {
         files_.push_back({path, readInputFile(path, kMaxSceneFileBytes, "a pbrt file")});
     } catch (const InputError& e) {
@@ -89,7 +101,8 @@ std::optional<PbrtToken> PbrtTokenizer::scan(Source& s) {
             return PbrtToken{PbrtToken::Kind::String, std::move(text), at};
         } else {
             const size_t start = s.pos;
-            while (s.pos < t.size() && !isSpace(t[s.pos]) && t[s.pos] != '"' && t[s.pos] != '[' && t[s.pos] != ']') ++s.pos;
+            while (s.pos < t.size() && !isSpace(t[s.pos]) && t[s.pos] != '"' && t[s.pos] != '[' && t[s.pos] != ']')
+                ++s.pos;
             return PbrtToken{PbrtToken::Kind::Word, t.substr(start, s.pos - start), at};
         }
     }

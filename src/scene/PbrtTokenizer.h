@@ -16,7 +16,8 @@ struct PbrtLocation {
 // Throws InputError "<file>:<line>: <message>".
 [[noreturn]] void pbrtError(const PbrtLocation& at, const std::string& message);
 // Adds "file:line: kind: message" to the warnings the caller prints.
-void pbrtWarn(std::vector<std::string>& warnings, const PbrtLocation& at, const std::string& message, const char* kind = "warning");
+void pbrtWarn(std::vector<std::string>& warnings, const PbrtLocation& at, const std::string& message,
+              const char* kind = "warning");
 
 struct PbrtToken {
     enum class Kind { Word, String, Open, Close };  // a directive or number; "..."; [; ]

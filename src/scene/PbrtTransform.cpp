@@ -30,7 +30,8 @@ bool isSimilarity(const glm::dmat3& m) {
     const double scale = std::max({l0, l1, l2});
     if (!(scale > 0)) return false;
     return std::abs(l0 - l1) <= kTolerance * scale && std::abs(l1 - l2) <= kTolerance * scale &&
-           std::abs(glm::dot(m[0], m[1])) <= kTolerance * scale * scale && std::abs(glm::dot(m[1], m[2])) <= kTolerance * scale * scale &&
+           std::abs(glm::dot(m[0], m[1])) <= kTolerance * scale * scale &&
+           std::abs(glm::dot(m[1], m[2])) <= kTolerance * scale * scale &&
            std::abs(glm::dot(m[0], m[2])) <= kTolerance * scale * scale;
 }
 

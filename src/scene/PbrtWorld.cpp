@@ -29,7 +29,8 @@ public:
     MaterialLookup(PbrtParams& first, PbrtParams* second) : first_(first), second_(second) {}
     PbrtParams& from(const std::string& name, Class cls) {
         for (PbrtParams* p : {&first_, second_})
-            if (const PbrtParam* texture = p ? p->find(name, Class::Texture) : nullptr) p->fail(*texture, "textures are not supported");
+            if (const PbrtParam* texture = p ? p->find(name, Class::Texture) : nullptr)
+                p->fail(*texture, "textures are not supported");
         return first_.find(name, cls) || !second_ ? first_ : *second_;
     }
 
@@ -54,14 +55,16 @@ MaterialDesc readMaterial(const std::string& type, const PbrtLocation& where, Ma
             kd.fail(*kd.find("Kd", Class::Spectrum), "a reflectance above 1 is not supported");
         PbrtParams& sigma = p.from("sigma", Class::Float);
         if (sigma.getFloat("sigma", 0) != 0)
-            sigma.fail(*sigma.find("sigma", Class::Float), "Oren-Nayar roughness is not supported (only 0: Lambertian)");
+            sigma.fail(*sigma.find("sigma", Class::Float),
+                       "Oren-Nayar roughness is not supported (only 0: Lambertian)");
         return m;
     }
     if (type == "glass") {
         m.type = MaterialType::Dielectric;
         for (const char* name : {"Kr", "Kt"}) {
             PbrtParams& k = p.from(name, Class::Spectrum);
-            if (k.getSpectrum(name, RGB(1)) != RGB(1)) k.fail(*k.find(name, Class::Spectrum), "only 1 (clear glass) is supported");
+            if (k.getSpectrum(name, RGB(1)) != RGB(1))
+                k.fail(*k.find(name, Class::Spectrum), "only 1 (clear glass) is supported");
         }
         // pbrt-v3 reads "eta", and "index" when there is no "eta".
         PbrtParams& eta = p.from("eta", Class::Float);
@@ -71,7 +74,8 @@ MaterialDesc readMaterial(const std::string& type, const PbrtLocation& where, Ma
         if (!(m.ior > 0)) holder.fail(*holder.find(name, Class::Float), "must be positive");
         for (const char* rough : {"uroughness", "vroughness"}) {
             PbrtParams& r = p.from(rough, Class::Float);
-            if (r.getFloat(rough, 0) != 0) r.fail(*r.find(rough, Class::Float), "rough glass is not supported (only 0)");
+            if (r.getFloat(rough, 0) != 0)
+                r.fail(*r.find(rough, Class::Float), "rough glass is not supported (only 0)");
         }
         p.from("remaproughness", Class::Bool);
         return m;
@@ -87,10 +91,12 @@ void requireOutward(const TriangleMesh& mesh, const PbrtLocation& where, const s
         for (int k = 0; k < 3; ++k)
             if (!edges.insert({t[k], t[(k + 1) % 3]}).second)
                 pbrtError(where, "Shape: the triangles around medium \"" + medium +
-                                     "\" are not wound consistently, so pbrt-v3 would put the medium on different sides of different triangles");
+                                     "\" are not wound consistently, so pbrt-v3 would put the medium on different "
+                                     "sides of different triangles");
     if (signedVolume(mesh) < 0)
         pbrtError(where, "Shape: the normals around medium \"" + medium +
-                             "\" point inwards (after ReverseOrientation, mirroring and \"N\"), so pbrt-v3 would put the medium outside the mesh; tetglow's media fill the inside");
+                             "\" point inwards (after ReverseOrientation, mirroring and \"N\"), so pbrt-v3 would put "
+                             "the medium outside the mesh; tetglow's media fill the inside");
 }
 
 }  // namespace
@@ -112,7 +118,10 @@ void PbrtWorld::lightSource(PbrtCall& c, const glm::dmat4& lightToWorld) {
         l.intensity = color(p, "I", RGB(1)) * scale;
         const glm::dvec3 from = p.getPoint("from", glm::dvec3(0)), to = p.getPoint("to", glm::dvec3(0, 0, 1));
         if (from == to) pbrtError(c.where, "LightSource \"spot\": \"from\" and \"to\" must differ");
-        if (!isSimilarity(linear)) pbrtError(c.where, "LightSource \"spot\": under a non-uniform scale or shear the cone would not be round; not supported");
+        if (!isSimilarity(linear))
+            pbrtError(
+                c.where,
+                "LightSource \"spot\": under a non-uniform scale or shear the cone would not be round; not supported");
         l.position = glm::dvec3(lightToWorld * glm::dvec4(from, 1));
         l.lookAt = l.position + linear * glm::normalize(to - from);
         const double angle = p.getFloat("coneangle", 30), delta = p.getFloat("conedeltaangle", 5);
@@ -126,13 +135,16 @@ void PbrtWorld::lightSource(PbrtCall& c, const glm::dmat4& lightToWorld) {
         l.irradiance = color(p, "L", RGB(1)) * scale;
         const glm::dvec3 from = p.getPoint("from", glm::dvec3(0)), to = p.getPoint("to", glm::dvec3(0, 0, 1));
         l.direction = linear * (to - from);  // the way the light travels
-        if (!(glm::length(l.direction) > 0)) pbrtError(c.where, "LightSource \"distant\": \"from\" and \"to\" must differ");
+        if (!(glm::length(l.direction) > 0))
+            pbrtError(c.where, "LightSource \"distant\": \"from\" and \"to\" must differ");
     } else if (c.type == "infinite" || c.type == "exinfinite") {
         l.type = LightType::Environment;
         l.radiance = color(p, "L", RGB(1)) * scale;
-        if (const PbrtParam* map = p.find("mapname", Class::String)) p.fail(*map, "environment maps are not supported (only a constant \"L\")");
+        if (const PbrtParam* map = p.find("mapname", Class::String))
+            p.fail(*map, "environment maps are not supported (only a constant \"L\")");
     } else {
-        pbrtError(c.where, "LightSource \"" + c.type + "\" is not supported (supported: point, spot, distant, infinite)");
+        pbrtError(c.where,
+                  "LightSource \"" + c.type + "\" is not supported (supported: point, spot, distant, infinite)");
     }
     p.find("samples", Class::Integer);
     p.find("nsamples", Class::Integer);  // only the noise
@@ -141,7 +153,8 @@ void PbrtWorld::lightSource(PbrtCall& c, const glm::dmat4& lightToWorld) {
 }
 
 PbrtAttributes::AreaLight PbrtWorld::areaLightSource(PbrtCall& c) {
-    if (c.type != "diffuse" && c.type != "area") pbrtError(c.where, "AreaLightSource \"" + c.type + "\" is not supported (supported: diffuse)");
+    if (c.type != "diffuse" && c.type != "area")
+        pbrtError(c.where, "AreaLightSource \"" + c.type + "\" is not supported (supported: diffuse)");
     PbrtParams& p = c.params;
     PbrtAttributes::AreaLight a;
     a.radiance = color(p, "L", RGB(1)) * color(p, "scale", RGB(1));
@@ -159,7 +172,8 @@ void PbrtWorld::checkMaterial(PbrtCall& c) {
 
 MaterialDesc PbrtWorld::namedMaterial(PbrtCall& c) {
     const std::string type = c.params.getString("type", "");
-    if (!c.params.find("type", Class::String)) pbrtError(c.where, "MakeNamedMaterial \"" + c.type + "\": \"string type\" is required");
+    if (!c.params.find("type", Class::String))
+        pbrtError(c.where, "MakeNamedMaterial \"" + c.type + "\": \"string type\" is required");
     const MaterialDesc m = readMaterial(type, c.where, MaterialLookup(c.params, nullptr));
     c.params.reportUnused(warnings_);
     return m;
@@ -169,9 +183,12 @@ void PbrtWorld::namedMedium(PbrtCall& c) {
     PbrtParams& p = c.params;
     const std::string type = p.getString("type", "");
     if (type != "homogeneous")
-        pbrtError(c.where, "MakeNamedMedium \"" + c.type + "\": " + (type.empty() ? "\"string type\" is required" : "type \"" + type + "\" is not supported") +
-                               " (supported: homogeneous)");
-    if (const PbrtParam* preset = p.find("preset", Class::String)) p.fail(*preset, "named presets are not supported: give sigma_a and sigma_s");
+        pbrtError(c.where,
+                  "MakeNamedMedium \"" + c.type + "\": " +
+                      (type.empty() ? "\"string type\" is required" : "type \"" + type + "\" is not supported") +
+                      " (supported: homogeneous)");
+    if (const PbrtParam* preset = p.find("preset", Class::String))
+        p.fail(*preset, "named presets are not supported: give sigma_a and sigma_s");
     const double scale = p.getFloat("scale", 1);
     if (scale < 0) p.fail(*p.find("scale", Class::Float), "must not be negative");
     Medium m;
@@ -187,7 +204,9 @@ void PbrtWorld::namedMedium(PbrtCall& c) {
 MaterialDesc PbrtWorld::material(PbrtCall& shape, const PbrtAttributes& a) {
     if (!a.namedMaterial.empty()) {
         const auto it = a.namedMaterials.find(a.namedMaterial);
-        if (it == a.namedMaterials.end()) pbrtError(shape.where, "Shape: NamedMaterial \"" + a.namedMaterial + "\" was not made by MakeNamedMaterial");
+        if (it == a.namedMaterials.end())
+            pbrtError(shape.where,
+                      "Shape: NamedMaterial \"" + a.namedMaterial + "\" was not made by MakeNamedMaterial");
         return it->second;
     }
     if (!a.material) return readMaterial("matte", shape.where, MaterialLookup(shape.params, nullptr));
@@ -201,7 +220,9 @@ void PbrtWorld::shape(PbrtCall& c, const glm::dmat4& objectToWorld, const PbrtAt
     c.params.reportUnused(warnings_);
     const std::string name = c.where.str() + " (Shape \"" + c.type + "\")";
     if (m.hasNormals && mat.type != MaterialType::Interface)
-        warn(c.where, "Shape: \"N\" only orients the triangles; tetglow shades with the flat triangle normal where pbrt-v3 interpolates N");
+        warn(c.where,
+             "Shape: \"N\" only orients the triangles; tetglow shades with the flat triangle normal where pbrt-v3 "
+             "interpolates N");
     for (const std::string& named : {a.insideMedium, a.outsideMedium})
         if (!named.empty() && !namedMedia_.count(named))
             pbrtError(c.where, "Shape: MediumInterface names medium \"" + named + "\", which no MakeNamedMedium made");
@@ -221,7 +242,8 @@ void PbrtWorld::shape(PbrtCall& c, const glm::dmat4& objectToWorld, const PbrtAt
         d.name = name;
         d.boundary = std::move(m.mesh);
         d.cavity = cavity;
-        if (cavity) d.sigmaA = d.sigmaS = RGB(0);
+        if (cavity)
+            d.sigmaA = d.sigmaS = RGB(0);
         else {
             d.sigmaA = namedMedia_[medium].sigmaA;
             d.sigmaS = namedMedia_[medium].sigmaS;
@@ -234,10 +256,15 @@ void PbrtWorld::shape(PbrtCall& c, const glm::dmat4& objectToWorld, const PbrtAt
     }
     if (a.areaLight) {
         if (!a.areaLight->twoSided && m.swapsHandedness)
-            pbrtError(c.where, "Shape: a one-sided area light under a mirroring transform: pbrt-v3 samples it on one side (Triangle::Sample) "
-                               "and lets rays hit it on the other (Triangle::Intersect); make it \"bool twosided\" \"true\" or remove the mirroring");
+            pbrtError(c.where,
+                      "Shape: a one-sided area light under a mirroring transform: pbrt-v3 samples it on one side "
+                      "(Triangle::Sample) "
+                      "and lets rays hit it on the other (Triangle::Intersect); make it \"bool twosided\" \"true\" or "
+                      "remove the mirroring");
         if (mat.type != MaterialType::Interface)
-            warn(c.where, "Shape: tetglow's area lights do not also reflect light, as pbrt-v3's do with their material; use Material \"none\" to match");
+            warn(c.where,
+                 "Shape: tetglow's area lights do not also reflect light, as pbrt-v3's do with their material; use "
+                 "Material \"none\" to match");
         LightDesc l;
         l.type = LightType::Mesh;
         l.mesh = std::move(m.mesh);
@@ -250,19 +277,23 @@ void PbrtWorld::shape(PbrtCall& c, const glm::dmat4& objectToWorld, const PbrtAt
 }
 
 std::shared_ptr<const MediaNesting> PbrtWorld::checkNesting() const {
-    const bool nestingMatters = media.size() > 1 || std::any_of(interfaces_.begin(), interfaces_.end(), [](const Interface& i) {
-        return !i.outside.empty();
-    });
+    const bool nestingMatters = media.size() > 1 || std::any_of(interfaces_.begin(), interfaces_.end(),
+                                                                [](const Interface& i) { return !i.outside.empty(); });
     if (!nestingMatters) return nullptr;
     auto nesting = std::make_shared<const MediaNesting>(nestMedia(media));
     for (size_t i = 0; i < media.size(); ++i) {
         const int32_t p = nesting->parent[i];
         const std::string found = p < 0 ? "" : interfaces_[size_t(p)].inside;
         if (found == interfaces_[i].outside) continue;
-        pbrtError(interfaces_[i].where, "Shape: MediumInterface \"" + interfaces_[i].inside + "\" \"" + interfaces_[i].outside +
-                                            "\" says the shape lies in " + (interfaces_[i].outside.empty() ? "no medium" : "medium \"" + interfaces_[i].outside + "\"") +
-                                            ", but it lies " + (p < 0 ? "in no medium" : "inside " + media[size_t(p)].name + (found.empty() ? ", a cavity" : ", medium \"" + found + "\"")) +
-                                            " (the nesting is found from the meshes)");
+        pbrtError(interfaces_[i].where,
+                  "Shape: MediumInterface \"" + interfaces_[i].inside + "\" \"" + interfaces_[i].outside +
+                      "\" says the shape lies in " +
+                      (interfaces_[i].outside.empty() ? "no medium" : "medium \"" + interfaces_[i].outside + "\"") +
+                      ", but it lies " +
+                      (p < 0 ? "in no medium"
+                             : "inside " + media[size_t(p)].name +
+                                   (found.empty() ? ", a cavity" : ", medium \"" + found + "\"")) +
+                      " (the nesting is found from the meshes)");
     }
     return nesting;
 }

@@ -38,13 +38,14 @@ struct PbrtAttributes {
 
 class PbrtWorld {
 public:
-    PbrtWorld(std::filesystem::path searchDir, std::vector<std::string>& warnings) : searchDir_(std::move(searchDir)), warnings_(warnings) {}
+    PbrtWorld(std::filesystem::path searchDir, std::vector<std::string>& warnings)
+        : searchDir_(std::move(searchDir)), warnings_(warnings) {}
 
     void lightSource(PbrtCall& call, const glm::dmat4& lightToWorld);
     PbrtAttributes::AreaLight areaLightSource(PbrtCall& call);
     void checkMaterial(PbrtCall& call);          // Material: errors now, not at the first Shape
     MaterialDesc namedMaterial(PbrtCall& call);  // MakeNamedMaterial: call.type is the name
-    void namedMedium(PbrtCall& call);           // MakeNamedMedium: call.type is the name
+    void namedMedium(PbrtCall& call);            // MakeNamedMedium: call.type is the name
     void shape(PbrtCall& call, const glm::dmat4& objectToWorld, const PbrtAttributes& attributes);
     // Once the world is read: every medium's (and cavity's) stated outside medium is the one the
     // meshes put around it, else an error naming the shape. The nesting, when there is one to check.

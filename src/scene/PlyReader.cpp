@@ -7,7 +7,6 @@
 #include <cstring>
 #include <sstream>
 
-
 namespace tetglow {
 namespace {
 
@@ -35,9 +34,9 @@ enum class Format { Ascii, BinaryLittle, BinaryBig };
 
 Type typeOf(const std::string& name, const std::string& path) {
     static const std::pair<const char*, Type> kTypes[] = {
-        {"char", Type::Int8},     {"int8", Type::Int8},     {"uchar", Type::UInt8},    {"uint8", Type::UInt8},
-        {"short", Type::Int16},   {"int16", Type::Int16},   {"ushort", Type::UInt16},  {"uint16", Type::UInt16},
-        {"int", Type::Int32},     {"int32", Type::Int32},   {"uint", Type::UInt32},    {"uint32", Type::UInt32},
+        {"char", Type::Int8},     {"int8", Type::Int8},       {"uchar", Type::UInt8},    {"uint8", Type::UInt8},
+        {"short", Type::Int16},   {"int16", Type::Int16},     {"ushort", Type::UInt16},  {"uint16", Type::UInt16},
+        {"int", Type::Int32},     {"int32", Type::Int32},     {"uint", Type::UInt32},    {"uint32", Type::UInt32},
         {"float", Type::Float32}, {"float32", Type::Float32}, {"double", Type::Float64}, {"float64", Type::Float64}};
     for (const auto& [n, t] : kTypes)
         if (name == n) return t;
@@ -46,10 +45,18 @@ Type typeOf(const std::string& name, const std::string& path) {
 
 size_t sizeOf(Type t) {
     switch (t) {
-        case Type::Int8: case Type::UInt8: return 1;
-        case Type::Int16: case Type::UInt16: return 2;
-        case Type::Int32: case Type::UInt32: case Type::Float32: return 4;
-        case Type::Float64: return 8;
+        case Type::Int8:
+        case Type::UInt8:
+            return 1;
+        case Type::Int16:
+        case Type::UInt16:
+            return 2;
+        case Type::Int32:
+        case Type::UInt32:
+        case Type::Float32:
+            return 4;
+        case Type::Float64:
+            return 8;
     }
     return 0;
 }
@@ -76,14 +83,22 @@ public:
 private:
     static double decode(Type t, const unsigned char* b) {
         switch (t) {
-            case Type::Int8: return double(int8_t(b[0]));
-            case Type::UInt8: return double(b[0]);
-            case Type::Int16: return double(load<int16_t>(b));
-            case Type::UInt16: return double(load<uint16_t>(b));
-            case Type::Int32: return double(load<int32_t>(b));
-            case Type::UInt32: return double(load<uint32_t>(b));
-            case Type::Float32: return double(load<float>(b));
-            case Type::Float64: return load<double>(b);
+            case Type::Int8:
+                return double(int8_t(b[0]));
+            case Type::UInt8:
+                return double(b[0]);
+            case Type::Int16:
+                return double(load<int16_t>(b));
+            case Type::UInt16:
+                return double(load<uint16_t>(b));
+            case Type::Int32:
+                return double(load<int32_t>(b));
+            case Type::UInt32:
+                return double(load<uint32_t>(b));
+            case Type::Float32:
+                return double(load<float>(b));
+            case Type::Float64:
+                return load<double>(b);
         }
         return 0;
     }
@@ -131,16 +146,22 @@ Header readHeader(const std::string& data, const std::string& path) {
         std::istringstream ls(line);
         std::string key;
         ls >> key;
-        auto bad = [&] { return InputError(path + ":" + std::to_string(lineNo) + ": PLY header: cannot read '" + line + "'"); };
+        auto bad = [&] {
+            return InputError(path + ":" + std::to_string(lineNo) + ": PLY header: cannot read '" + line + "'");
+        };
         if (lineNo == 1) {
             if (key != "ply") throw InputError(path + ": not a PLY file (it must start with 'ply')");
         } else if (key == "format") {
             std::string name;
             ls >> name;
-            if (name == "ascii") h.format = Format::Ascii;
-            else if (name == "binary_little_endian") h.format = Format::BinaryLittle;
-            else if (name == "binary_big_endian") h.format = Format::BinaryBig;
-            else throw bad();
+            if (name == "ascii")
+                h.format = Format::Ascii;
+            else if (name == "binary_little_endian")
+                h.format = Format::BinaryLittle;
+            else if (name == "binary_big_endian")
+                h.format = Format::BinaryBig;
+            else
+                throw bad();
             sawFormat = true;
         } else if (key == "element") {
             Element e;
@@ -179,8 +200,8 @@ uint32_t vertexIndex(double x, size_t vertexCount, const char* what, size_t inde
         // Printed as read: an index like 3e32 has no integer type to go through.
         char value[32];
         std::snprintf(value, sizeof value, "%.6g", x);
-        throw InputError(path + ": " + what + " " + std::to_string(index) + ": vertex index " + value + " out of range (" +
-                         std::to_string(vertexCount) + " vertices)");
+        throw InputError(path + ": " + what + " " + std::to_string(index) + ": vertex index " + value +
+                         " out of range (" + std::to_string(vertexCount) + " vertices)");
     }
     return uint32_t(x);
 }
@@ -188,7 +209,8 @@ uint32_t vertexIndex(double x, size_t vertexCount, const char* what, size_t inde
 // A triangle strip (v0 v1 v2 v3 ...): (v0 v1 v2), (v2 v1 v3), (v2 v3 v4), ..., every other one
 // reversed so that all share the first one's winding; -1 starts a new strip. Triangles with a
 // repeated vertex only join strips and are dropped.
-void addStrip(TriangleMesh& out, const std::vector<double>& strip, size_t vertexCount, size_t index, const std::string& path) {
+void addStrip(TriangleMesh& out, const std::vector<double>& strip, size_t vertexCount, size_t index,
+              const std::string& path) {
     std::vector<uint32_t> run;
     for (size_t k = 0; k <= strip.size(); ++k) {
         if (k == strip.size() || strip[k] == -1) {
@@ -221,7 +243,8 @@ MeshFile parsePly(const std::string& data, const std::string& path) {
     for (const Element& e : header.elements)
         if (e.name == "vertex") vertexCount = e.count;
     for (const Element& e : header.elements) {
-        const int x = e.find("x"), y = e.find("y"), z = e.find("z"), nx = e.find("nx"), ny = e.find("ny"), nz = e.find("nz");
+        const int x = e.find("x"), y = e.find("y"), z = e.find("z"), nx = e.find("nx"), ny = e.find("ny"),
+                  nz = e.find("nz");
         const bool vertices = e.name == "vertex", withNormals = vertices && nx >= 0 && ny >= 0 && nz >= 0;
         if (vertices && (x < 0 || y < 0 || z < 0)) throw InputError(path + ": the vertex element has no x, y, z");
         int indices = e.find("vertex_indices");

@@ -27,7 +27,7 @@ inline constexpr int kMaxResolution = 16384;  // pixels along either image axis,
 // path, photon paths per pass (these also checked against the machine's memory).
 inline constexpr int kMaxSpp = 1 << 20, kMaxDepth = 1 << 20;
 inline constexpr int64_t kMaxPhotons = int64_t(1) << 40;
-inline constexpr int kMaxFrames = 1000000;     // frames of an animation
+inline constexpr int kMaxFrames = 1000000;  // frames of an animation
 
 struct CameraDesc {
     glm::dvec3 position{0, 0, 5}, lookAt{0}, up{0, 1, 0};
@@ -40,8 +40,8 @@ enum class LightType { Point, Spot, Distant, Quad, Mesh, Environment };
 
 struct LightDesc {
     LightType type = LightType::Point;
-    RGB intensity{0};  // point, spot: radiant intensity (W/sr)
-    RGB radiance{0};   // quad, mesh, environment: emitted radiance
+    RGB intensity{0};                          // point, spot: radiant intensity (W/sr)
+    RGB radiance{0};                           // quad, mesh, environment: emitted radiance
     glm::dvec3 position{0}, lookAt{0, -1, 0};  // point, spot (spot axis: lookAt - position)
     // Spot: pbrt-v3's cone. Full intensity within coneAngle - coneDelta of the axis, none
     // beyond coneAngle, smoothstep-like falloff ((cos - cosTotal) / (cosStart - cosTotal))^4 between.
@@ -49,10 +49,10 @@ struct LightDesc {
     // Spot: 0 is a point; > 0 makes it a disk of this radius facing the axis, with the same
     // intensity profile, so paths through specular surfaces can reach it.
     double radius = 0;
-    glm::dvec3 direction{0, -1, 0};  // distant: the direction the light travels
-    RGB irradiance{0};               // distant: on a surface facing the light
+    glm::dvec3 direction{0, -1, 0};                        // distant: the direction the light travels
+    RGB irradiance{0};                                     // distant: on a surface facing the light
     glm::dvec3 corner{0}, edge0{1, 0, 0}, edge1{0, 0, 1};  // quad: emits along cross(edge0, edge1)
-    TriangleMesh mesh;     // mesh: world space; each triangle emits along cross(p1 - p0, p2 - p0)
+    TriangleMesh mesh;      // mesh: world space; each triangle emits along cross(p1 - p0, p2 - p0)
     bool twoSided = false;  // quad, mesh
     bool on = true;         // false: the light is in the scene but emits nothing (its values kept)
 };
@@ -60,10 +60,14 @@ struct LightDesc {
 // A light's emitted quantity and its key in scene files: "intensity" for point and spot lights,
 // "irradiance" for distant ones, "radiance" for the others.
 inline const char* emissionKey(LightType t) {
-    return t == LightType::Point || t == LightType::Spot ? "intensity" : t == LightType::Distant ? "irradiance" : "radiance";
+    return t == LightType::Point || t == LightType::Spot ? "intensity"
+           : t == LightType::Distant                     ? "irradiance"
+                                                         : "radiance";
 }
 inline RGB& emissionOf(LightDesc& l) {
-    return l.type == LightType::Point || l.type == LightType::Spot ? l.intensity : l.type == LightType::Distant ? l.irradiance : l.radiance;
+    return l.type == LightType::Point || l.type == LightType::Spot ? l.intensity
+           : l.type == LightType::Distant                          ? l.irradiance
+                                                                   : l.radiance;
 }
 inline const RGB& emissionOf(const LightDesc& l) { return emissionOf(const_cast<LightDesc&>(l)); }
 
@@ -88,23 +92,23 @@ struct SurfaceDesc {
 // Per-vertex density: evaluated at every tet vertex and interpolated linearly inside each tet.
 struct DensityDesc {
     enum class Type { Constant, Linear, Noise } type = Type::Constant;
-    double offset = 1;                 // constant value; linear: offset + dot(gradient, x)
-    glm::dvec3 gradient{0};            // linear
+    double offset = 1;                      // constant value; linear: offset + dot(gradient, x)
+    glm::dvec3 gradient{0};                 // linear
     double frequency = 4, amplitude = 0.5;  // noise: offset * (1 + amplitude * noise(frequency * x))
-    uint32_t seed = 1;                 // noise
+    uint32_t seed = 1;                      // noise
     bool isConstant() const { return type == Type::Constant; }
 };
 
 struct MediumDesc {
-    std::string name;      // for messages
-    std::string label;     // what the user calls it: the file's "name", else its mesh's file name ("" from pbrt)
-    TriangleMesh boundary; // world space, closed; tetrahedralized when the scene is built
+    std::string name;          // for messages
+    std::string label;         // what the user calls it: the file's "name", else its mesh's file name ("" from pbrt)
+    TriangleMesh boundary;     // world space, closed; tetrahedralized when the scene is built
     RGB sigmaA{0}, sigmaS{1};  // per unit length, already multiplied by `scale`
     double g = 0;              // Henyey-Greenstein asymmetry, in (-1, 1)
     RGB emission{0};           // emitted radiance per unit length (times density)
     DensityDesc density;
     MaterialDesc boundaryMaterial{MaterialType::Interface};  // Dielectric or Interface
-    TetOptions tetOptions;     // Steiner points only when asked (heterogeneous density)
+    TetOptions tetOptions;                                   // Steiner points only when asked (heterogeneous density)
     // A cavity: a region with no medium (a bubble, an eye socket), its coefficients all zero;
     // it must lie inside a medium.
     bool cavity = false;
@@ -124,7 +128,8 @@ inline constexpr NameTable<IntegratorType, 3> kIntegratorNames{
     {{"volpath", IntegratorType::VolPath}, {"single", IntegratorType::Single}, {"photon", IntegratorType::Photon}}};
 inline constexpr NameTable<BoundaryMode, 3> kBoundaryNames{
     {{"tet", BoundaryMode::Tet}, {"parity", BoundaryMode::Parity}, {"bbox", BoundaryMode::Bbox}}};
-inline constexpr NameTable<PhotonEstimate, 2> kEstimateNames{{{"knn-march", PhotonEstimate::KnnMarch}, {"beam", PhotonEstimate::Beam}}};
+inline constexpr NameTable<PhotonEstimate, 2> kEstimateNames{
+    {{"knn-march", PhotonEstimate::KnnMarch}, {"beam", PhotonEstimate::Beam}}};
 
 template <class T, size_t N>
 std::string_view nameOf(const NameTable<T, N>& table, T value) {
@@ -148,7 +153,7 @@ std::vector<std::string> namesOf(const NameTable<T, N>& table) {
 struct IntegratorDesc {
     IntegratorType type = IntegratorType::VolPath;
     int spp = 16;
-    int maxDepth = 64;      // volpath, photon: scattering and surface events per path
+    int maxDepth = 64;  // volpath, photon: scattering and surface events per path
     uint64_t seed = 0;
     // single
     BoundaryMode boundary = BoundaryMode::Tet;
@@ -167,7 +172,7 @@ struct IntegratorDesc {
     // of estimating it from the surface photons (caustics, from lights by specular events only,
     // still come from photons): no kernel blur on a floor's indirect light, more noise.
     bool finalGather = false;
-    double timeLimit = 0;       // > 0: stop starting passes after this many seconds
+    double timeLimit = 0;  // > 0: stop starting passes after this many seconds
 };
 
 // An animation of the camera: frame k of `frames` sees the scene with the camera (position,
@@ -180,7 +185,7 @@ struct TurntableDesc {
 
 // How the media lie in one another, found exactly from their meshes (never stated).
 struct MediaNesting {
-    std::vector<int32_t> parent;                       // per medium: the medium around it, -1 none
+    std::vector<int32_t> parent;                        // per medium: the medium around it, -1 none
     std::vector<std::pair<int32_t, int32_t>> touching;  // media that share boundary triangles
 };
 
@@ -192,7 +197,7 @@ struct SceneDesc {
     std::vector<SurfaceDesc> surfaces;
     std::vector<MediumDesc> media;
     IntegratorDesc integrator;
-    std::string output;  // default image path from the file ("" when not given)
+    std::string output;               // default image path from the file ("" when not given)
     std::vector<std::string> inputs;  // every file read to build it: the scene, Includes, meshes
     // Found by a reader that needed it for its own checks (pbrt's MediumInterface), so that the
     // scene is not nested twice; null: found when the scene is built. Media's meshes fixed.

@@ -15,7 +15,8 @@ namespace tetglow {
 std::string sceneFingerprint(const SceneDesc& scene) {
     namespace fs = std::filesystem;
     static std::atomic<int> serial{0};
-    const fs::path dir = fs::temp_directory_path() / ("tetglow-fingerprint-" + std::to_string(::getpid()) + "-" + std::to_string(serial++));
+    const fs::path dir = fs::temp_directory_path() /
+                         ("tetglow-fingerprint-" + std::to_string(::getpid()) + "-" + std::to_string(serial++));
     fs::create_directories(dir);
     SceneDesc copy = scene;  // the writer's copy is judged by content only: no paths
     copy.path.clear();

@@ -53,7 +53,8 @@ CameraDesc readCamera(JsonObject& o) {
         c.width = int(size[0].integer(1, kMaxResolution));
         c.height = int(size[1].integer(1, kMaxResolution));
     }
-    if (auto f = o["handedness"]) c.handedness = f.choice<Handedness>({{"right", Handedness::Right}, {"left", Handedness::Left}});
+    if (auto f = o["handedness"])
+        c.handedness = f.choice<Handedness>({{"right", Handedness::Right}, {"left", Handedness::Left}});
     return c;
 }
 
@@ -82,11 +83,11 @@ void readSpotCone(JsonObject& o, LightDesc& l) {
 LightDesc readLight(JsonObject& o, const fs::path& dir) {
     LightDesc l;
     l.type = o["type"].choice<LightType>({{"point", LightType::Point},
-                                           {"spot", LightType::Spot},
-                                           {"distant", LightType::Distant},
-                                           {"quad", LightType::Quad},
-                                           {"mesh", LightType::Mesh},
-                                           {"environment", LightType::Environment}});
+                                          {"spot", LightType::Spot},
+                                          {"distant", LightType::Distant},
+                                          {"quad", LightType::Quad},
+                                          {"mesh", LightType::Mesh},
+                                          {"environment", LightType::Environment}});
     if (l.type == LightType::Point || l.type == LightType::Spot) l.position = o["position"].vec3();
     if (l.type == LightType::Spot) readSpotCone(o, l);
     if (l.type == LightType::Distant) {
@@ -100,7 +101,8 @@ LightDesc readLight(JsonObject& o, const fs::path& dir) {
         l.edge0 = p.edge0;
         l.edge1 = p.edge1;
     }
-    if (l.type == LightType::Mesh) l.mesh = o["shape"].readObject([&](JsonObject& s) { return readShape(s, dir, false); }).mesh;
+    if (l.type == LightType::Mesh)
+        l.mesh = o["shape"].readObject([&](JsonObject& s) { return readShape(s, dir, false); }).mesh;
     if (l.type == LightType::Quad || l.type == LightType::Mesh)
         if (auto f = o["two_sided"]) l.twoSided = f.boolean();
     readLightEmission(o, l);
@@ -138,19 +140,19 @@ DensityDesc readDensity(JsonObject& o) {
     DensityDesc d;
     d.type = o["type"].choice<Type>({{"constant", Type::Constant}, {"linear", Type::Linear}, {"noise", Type::Noise}});
     switch (d.type) {
-    case Type::Constant:
-        if (auto f = o["value"]) d.offset = f.number(kNonNegative);
-        break;
-    case Type::Linear:
-        if (auto f = o["offset"]) d.offset = f.number();
-        d.gradient = o["gradient"].vec3();
-        break;
-    case Type::Noise:
-        if (auto f = o["offset"]) d.offset = f.number(kNonNegative);
-        if (auto f = o["amplitude"]) d.amplitude = f.number(kNonNegative);
-        if (auto f = o["frequency"]) d.frequency = f.number(kPositive);
-        if (auto f = o["seed"]) d.seed = uint32_t(f.integer(0, std::numeric_limits<uint32_t>::max()));
-        break;
+        case Type::Constant:
+            if (auto f = o["value"]) d.offset = f.number(kNonNegative);
+            break;
+        case Type::Linear:
+            if (auto f = o["offset"]) d.offset = f.number();
+            d.gradient = o["gradient"].vec3();
+            break;
+        case Type::Noise:
+            if (auto f = o["offset"]) d.offset = f.number(kNonNegative);
+            if (auto f = o["amplitude"]) d.amplitude = f.number(kNonNegative);
+            if (auto f = o["frequency"]) d.frequency = f.number(kPositive);
+            if (auto f = o["seed"]) d.seed = uint32_t(f.integer(0, std::numeric_limits<uint32_t>::max()));
+            break;
     }
     return d;
 }
@@ -172,7 +174,8 @@ std::string readLabel(const JsonValue& v) {
     const std::string label = v.string();
     const auto control = [&](size_t i) {
         const auto c = static_cast<unsigned char>(label[i]);  // C0 and DEL, or C1 (U+0080..U+009F) in UTF-8
-        return c < 0x20 || c == 0x7f || (c == 0xc2 && i + 1 < label.size() && static_cast<unsigned char>(label[i + 1]) < 0xa0);
+        return c < 0x20 || c == 0x7f ||
+               (c == 0xc2 && i + 1 < label.size() && static_cast<unsigned char>(label[i + 1]) < 0xa0);
     };
     bool clean = label.size() <= kMaxLabelBytes;
     for (size_t i = 0; i < label.size() && clean; ++i) clean = !control(i);
@@ -186,7 +189,9 @@ MediumDesc readRegion(JsonObject& o, const fs::path& dir) {
     MediumDesc m;
     m.name = nameOf(o.self(), shape);
     const JsonValue label = o["name"];
-    m.label = label ? readLabel(label) : shape.file.empty() ? o.self().path() : fs::path(shape.file).filename().string();
+    m.label = label                ? readLabel(label)
+              : shape.file.empty() ? o.self().path()
+                                   : fs::path(shape.file).filename().string();
     m.boundary = std::move(shape.mesh);
     if (auto f = o["boundary"])
         m.boundaryMaterial = f.readObject([](JsonObject& b) {
@@ -227,7 +232,9 @@ SceneDesc readScene(JsonObject& o, const std::string& path) {
     for (const JsonValue& v : optionalArray(o["cavities"]))
         s.media.push_back(v.readObject([&](JsonObject& x) { return readCavity(x, dir); }));
     if (!emitsLight(s))
-        o["lights"].error("nothing emits light: add a light with non-zero intensity, irradiance or radiance, or give a medium an \"emission\"");
+        o["lights"].error(
+            "nothing emits light: add a light with non-zero intensity, irradiance or radiance, or give a medium an "
+            "\"emission\"");
     return s;
 }
 
@@ -295,13 +302,11 @@ void readLightEmission(JsonObject& o, LightDesc& l) {
 
 IntegratorDesc readIntegrator(JsonObject& o) {
     IntegratorDesc d;
-    if (auto f = o["type"])
-        d.type = f.choice<IntegratorType>(kIntegratorNames);
+    if (auto f = o["type"]) d.type = f.choice<IntegratorType>(kIntegratorNames);
     if (auto f = o["spp"]) d.spp = int(f.integer(1, kMaxSpp));
     if (auto f = o["max_depth"]) d.maxDepth = int(f.integer(1, kMaxDepth));
     if (auto f = o["seed"]) d.seed = uint64_t(f.integer(0));
-    if (auto f = o["boundary"])
-        d.boundary = f.choice<BoundaryMode>(kBoundaryNames);
+    if (auto f = o["boundary"]) d.boundary = f.choice<BoundaryMode>(kBoundaryNames);
     if (auto f = o["step"]) d.stepSize = f.number(kPositive);
     if (auto f = o["parity_rays"]) {
         d.parityRays = int(f.integer(1, kMaxParityRays));
@@ -350,7 +355,9 @@ SceneDesc loadScene(const std::string& path) {
         const std::string text = readInputFile(path, kMaxSceneFileBytes, "a scene file");
         if (looksLikePbrt(text)) return pbrt();
         const nlohmann::json doc = parseJson(text, path);
-        return JsonValue(&doc, nlohmann::json::json_pointer(), path).readObject([&](JsonObject& o) { return readScene(o, path); });
+        return JsonValue(&doc, nlohmann::json::json_pointer(), path).readObject([&](JsonObject& o) {
+            return readScene(o, path);
+        });
     };
     SceneDesc scene = read();
     scene.inputs = log.files();

@@ -134,20 +134,26 @@ Shape readShape(JsonObject& o, const fs::path& dir, bool closed) {
         type.fail("a closed shape (\"mesh\", \"sphere\" or \"box\") around the medium");
     Shape s;
     switch (t) {
-    case ShapeType::Mesh: {
-        const JsonValue file = o["file"], node = o["node"];
-        s.file = file.string();
-        s.mesh = readShapeMesh(file, node, dir);
-        break;
-    }
-    case ShapeType::Sphere: s.mesh = readSphere(o); break;
-    case ShapeType::Box: s.mesh = readBox(o); break;
-    case ShapeType::Quad: {
-        const Parallelogram p = readParallelogram(o);
-        s.mesh = quad(p.corner, p.edge0, p.edge1);
-        break;
-    }
-    case ShapeType::Disk: s.mesh = readDisk(o); break;
+        case ShapeType::Mesh: {
+            const JsonValue file = o["file"], node = o["node"];
+            s.file = file.string();
+            s.mesh = readShapeMesh(file, node, dir);
+            break;
+        }
+        case ShapeType::Sphere:
+            s.mesh = readSphere(o);
+            break;
+        case ShapeType::Box:
+            s.mesh = readBox(o);
+            break;
+        case ShapeType::Quad: {
+            const Parallelogram p = readParallelogram(o);
+            s.mesh = quad(p.corner, p.edge0, p.edge1);
+            break;
+        }
+        case ShapeType::Disk:
+            s.mesh = readDisk(o);
+            break;
     }
     const JsonValue transform = o["transform"];
     place(o.self(), s.mesh, transform ? readTransform(transform) : glm::dmat4(1));

@@ -39,11 +39,18 @@ void print(const Json& j, const std::string& indent, std::string& out) {
 
 Json densityJson(const DensityDesc& d) {
     switch (d.type) {
-        case DensityDesc::Type::Constant: return {{"type", "constant"}, {"value", d.offset}};
-        case DensityDesc::Type::Linear: return {{"type", "linear"}, {"offset", d.offset}, {"gradient", vec(d.gradient)}};
-        case DensityDesc::Type::Noise: break;
+        case DensityDesc::Type::Constant:
+            return {{"type", "constant"}, {"value", d.offset}};
+        case DensityDesc::Type::Linear:
+            return {{"type", "linear"}, {"offset", d.offset}, {"gradient", vec(d.gradient)}};
+        case DensityDesc::Type::Noise:
+            break;
     }
-    return {{"type", "noise"}, {"offset", d.offset}, {"amplitude", d.amplitude}, {"frequency", d.frequency}, {"seed", d.seed}};
+    return {{"type", "noise"},
+            {"offset", d.offset},
+            {"amplitude", d.amplitude},
+            {"frequency", d.frequency},
+            {"seed", d.seed}};
 }
 
 class Writer {
@@ -62,16 +69,19 @@ public:
                        {"handedness", c.handedness == Handedness::Left ? "left" : "right"}};
         j["integrator"] = integratorJson(scene_.integrator);
         if (const TurntableDesc& t = scene_.turntable; t.frames > 1)
-            j["turntable"] = {{"frames", t.frames}, {"center", vec(t.center)}, {"axis", vec(t.axis)}, {"degrees", t.degrees}};
+            j["turntable"] = {
+                {"frames", t.frames}, {"center", vec(t.center)}, {"axis", vec(t.axis)}, {"degrees", t.degrees}};
         // loadScene takes "output" relative to the scene file's folder.
         // (An output named without a folder lies in the working directory: absolute("") throws.)
         if (!scene_.output.empty())
-            j["output"] = fs::absolute(scene_.output).lexically_relative(fs::absolute(dir_.empty() ? "." : dir_)).string();
+            j["output"] =
+                fs::absolute(scene_.output).lexically_relative(fs::absolute(dir_.empty() ? "." : dir_)).string();
         j["lights"] = Json::array();
         for (size_t i = 0; i < scene_.lights.size(); ++i) j["lights"].push_back(light(scene_.lights[i], i));
         j["surfaces"] = Json::array();
         for (size_t i = 0; i < scene_.surfaces.size(); ++i)
-            j["surfaces"].push_back({{"shape", mesh(scene_.surfaces[i].mesh, "surface", i)}, {"material", material(scene_.surfaces[i].material)}});
+            j["surfaces"].push_back({{"shape", mesh(scene_.surfaces[i].mesh, "surface", i)},
+                                     {"material", material(scene_.surfaces[i].material)}});
         j["media"] = Json::array();
         for (size_t i = 0; i < scene_.media.size(); ++i)
             if (!scene_.media[i].cavity) j["media"].push_back(medium(scene_.media[i], i));
@@ -85,9 +95,12 @@ public:
 private:
     static Json material(const MaterialDesc& m) {
         switch (m.type) {
-            case MaterialType::Diffuse: return {{"type", "diffuse"}, {"reflectance", vec(m.reflectance)}};
-            case MaterialType::Dielectric: return {{"type", "dielectric"}, {"ior", m.ior}};
-            case MaterialType::Interface: break;
+            case MaterialType::Diffuse:
+                return {{"type", "diffuse"}, {"reflectance", vec(m.reflectance)}};
+            case MaterialType::Dielectric:
+                return {{"type", "dielectric"}, {"ior", m.ior}};
+            case MaterialType::Interface:
+                break;
         }
         return {{"type", "interface"}};
     }
@@ -96,7 +109,8 @@ private:
     Json mesh(const TriangleMesh& m, const std::string& role, size_t index) {
         const std::string file = stem_ + "-" + role + "-" + std::to_string(index) + ".obj";
         prepareOutput((dir_ / file).string(), scene_.inputs);
-        writeObj(m, (dir_ / file).string(), "# " + role + " " + std::to_string(index) + " of " + scene_.path + ", world space\n");
+        writeObj(m, (dir_ / file).string(),
+                 "# " + role + " " + std::to_string(index) + " of " + scene_.path + ", world space\n");
         written.push_back((dir_ / file).string());
         return {{"type", "mesh"}, {"file", file}};
     }
@@ -110,18 +124,28 @@ private:
     // Its type, place and emission.
     Json lightShape(const LightDesc& l, size_t index) {
         switch (l.type) {
-            case LightType::Point: return {{"type", "point"}, {"position", vec(l.position)}, {"intensity", vec(l.intensity)}};
+            case LightType::Point:
+                return {{"type", "point"}, {"position", vec(l.position)}, {"intensity", vec(l.intensity)}};
             case LightType::Spot:
-                return {{"type", "spot"},           {"position", vec(l.position)}, {"look_at", vec(l.lookAt)},
-                        {"cone_angle", l.coneAngle}, {"cone_delta", l.coneDelta},   {"intensity", vec(l.intensity)},
+                return {{"type", "spot"},
+                        {"position", vec(l.position)},
+                        {"look_at", vec(l.lookAt)},
+                        {"cone_angle", l.coneAngle},
+                        {"cone_delta", l.coneDelta},
+                        {"intensity", vec(l.intensity)},
                         {"radius", l.radius}};
-            case LightType::Distant: return {{"type", "distant"}, {"direction", vec(l.direction)}, {"irradiance", vec(l.irradiance)}};
+            case LightType::Distant:
+                return {{"type", "distant"}, {"direction", vec(l.direction)}, {"irradiance", vec(l.irradiance)}};
             case LightType::Quad:
-                return {{"type", "quad"},        {"corner", vec(l.corner)},       {"edge0", vec(l.edge0)},
+                return {{"type", "quad"},        {"corner", vec(l.corner)},     {"edge0", vec(l.edge0)},
                         {"edge1", vec(l.edge1)}, {"radiance", vec(l.radiance)}, {"two_sided", l.twoSided}};
             case LightType::Mesh:
-                return {{"type", "mesh"}, {"shape", mesh(l.mesh, "light", index)}, {"radiance", vec(l.radiance)}, {"two_sided", l.twoSided}};
-            case LightType::Environment: break;
+                return {{"type", "mesh"},
+                        {"shape", mesh(l.mesh, "light", index)},
+                        {"radiance", vec(l.radiance)},
+                        {"two_sided", l.twoSided}};
+            case LightType::Environment:
+                break;
         }
         return {{"type", "environment"}, {"radiance", vec(l.radiance)}};
     }
@@ -151,12 +175,18 @@ private:
 }  // namespace
 
 Json integratorJson(const IntegratorDesc& d) {
-    Json j = {{"type", nameOf(kIntegratorNames, d.type)},   {"spp", d.spp},
-              {"max_depth", d.maxDepth},      {"seed", d.seed},
-              {"boundary", nameOf(kBoundaryNames, d.boundary)}, {"step", d.stepSize},
-              {"parity_rays", d.parityRays},  {"photons", d.photons},
-              {"k", d.k},                     {"estimate", nameOf(kEstimateNames, d.estimate)},
-              {"boundary_correction", d.boundaryCorrection}, {"final_gather", d.finalGather}};
+    Json j = {{"type", nameOf(kIntegratorNames, d.type)},
+              {"spp", d.spp},
+              {"max_depth", d.maxDepth},
+              {"seed", d.seed},
+              {"boundary", nameOf(kBoundaryNames, d.boundary)},
+              {"step", d.stepSize},
+              {"parity_rays", d.parityRays},
+              {"photons", d.photons},
+              {"k", d.k},
+              {"estimate", nameOf(kEstimateNames, d.estimate)},
+              {"boundary_correction", d.boundaryCorrection},
+              {"final_gather", d.finalGather}};
     // 0 means "not set" for these three; the loader takes only positive values.
     if (d.radius > 0) j["radius"] = d.radius;
     if (d.alpha > 0) j["alpha"] = d.alpha;
@@ -165,7 +195,11 @@ Json integratorJson(const IntegratorDesc& d) {
 }
 
 Json mediumCoefficientsJson(const MediumDesc& m) {
-    return {{"sigma_a", vec(m.sigmaA)}, {"sigma_s", vec(m.sigmaS)}, {"g", m.g}, {"emission", vec(m.emission)}, {"density", densityJson(m.density)}};
+    return {{"sigma_a", vec(m.sigmaA)},
+            {"sigma_s", vec(m.sigmaS)},
+            {"g", m.g},
+            {"emission", vec(m.emission)},
+            {"density", densityJson(m.density)}};
 }
 
 std::vector<std::string> writeScene(const SceneDesc& scene, const std::string& jsonPath) {

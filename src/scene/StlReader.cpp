@@ -41,9 +41,9 @@ struct Keyword {
     const char* word;
     Block from, to;
 };
-constexpr Keyword kKeywords[] = {{"solid", Block::None, Block::Solid},     {"facet", Block::Solid, Block::Facet},
-                                 {"outer", Block::Facet, Block::Loop},     {"vertex", Block::Loop, Block::Loop},
-                                 {"endloop", Block::Loop, Block::Facet},   {"endfacet", Block::Facet, Block::Solid},
+constexpr Keyword kKeywords[] = {{"solid", Block::None, Block::Solid},   {"facet", Block::Solid, Block::Facet},
+                                 {"outer", Block::Facet, Block::Loop},   {"vertex", Block::Loop, Block::Loop},
+                                 {"endloop", Block::Loop, Block::Facet}, {"endfacet", Block::Facet, Block::Solid},
                                  {"endsolid", Block::Solid, Block::None}};
 
 TriangleMesh parseAscii(const std::string& data, const std::string& path) {
@@ -52,7 +52,9 @@ TriangleMesh parseAscii(const std::string& data, const std::string& path) {
     std::string text, word;
     size_t line = 0, corners = 0;  // corners: vertices of the open loop
     Block block = Block::None;
-    auto fail = [&](const std::string& problem) { return InputError(path + ":" + std::to_string(line) + ": " + problem); };
+    auto fail = [&](const std::string& problem) {
+        return InputError(path + ":" + std::to_string(line) + ": " + problem);
+    };
     while (std::getline(in, text)) {
         ++line;
         std::istringstream ls(text);
@@ -97,9 +99,12 @@ TriangleMesh parseStl(const std::string& data, const std::string& path) {
         mesh = parseBinary(data);
     } else {
         const size_t start = data.find_first_not_of(" \t\r\n");
-        const bool text = std::none_of(data.begin(), data.end(), [](char c) { return (unsigned char)c < 32 && !std::isspace((unsigned char)c); });
+        const bool text = std::none_of(data.begin(), data.end(),
+                                       [](char c) { return (unsigned char)c < 32 && !std::isspace((unsigned char)c); });
         if (!text || start == std::string::npos || data.compare(start, 5, "solid") != 0)
-            throw InputError(path + ": not an STL file: neither ASCII (text starting with 'solid') nor binary (84 + 50 n bytes for n triangles; this file has " +
+            throw InputError(path +
+                             ": not an STL file: neither ASCII (text starting with 'solid') nor binary (84 + 50 n "
+                             "bytes for n triangles; this file has " +
                              std::to_string(data.size()) + ")");
         mesh = parseAscii(data, path);
     }

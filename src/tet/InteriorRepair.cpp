@@ -7,10 +7,10 @@
 #include <set>
 #include <unordered_map>
 
-#include <glm/geometric.hpp>
-#include <glm/vector_relational.hpp>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <glm/geometric.hpp>
+#include <glm/vector_relational.hpp>
 
 #include "tet/IntersectionResolution.h"
 #include "tet/Predicates.h"
@@ -52,7 +52,9 @@ double area(const TriangleMesh& m, uint32_t t) {
     return 0.5 * glm::length(glm::cross(m.corner(t, 1) - m.corner(t, 0), m.corner(t, 2) - m.corner(t, 0)));
 }
 
-glm::dvec3 centroid(const TriangleMesh& m, uint32_t t) { return (m.corner(t, 0) + m.corner(t, 1) + m.corner(t, 2)) / 3.0; }
+glm::dvec3 centroid(const TriangleMesh& m, uint32_t t) {
+    return (m.corner(t, 0) + m.corner(t, 1) + m.corner(t, 2)) / 3.0;
+}
 
 bool traverses(const std::array<uint32_t, 3>& f, uint32_t a, uint32_t b) {
     for (int k = 0; k < 3; ++k)
@@ -110,7 +112,8 @@ void orientPatches(TriangleMesh& soup, const EdgeMap& edges, RepairReport& repor
 }
 
 // Parts: triangles connected through shared edges. Those that cross another part are unioned.
-size_t crossingParts(const TriangleMesh& soup, const EdgeMap& edges, const std::vector<std::pair<uint32_t, uint32_t>>& pairs) {
+size_t crossingParts(const TriangleMesh& soup, const EdgeMap& edges,
+                     const std::vector<std::pair<uint32_t, uint32_t>>& pairs) {
     UnionFind parts(soup.triangles.size());
     for (const auto& [key, users] : edges)
         for (size_t i = 1; i < users.size(); ++i) parts.unite(users[0], users[i]);
@@ -128,13 +131,15 @@ void addPaddedBox(TriangleMesh& plc) {
     const glm::dvec3 lo = b.lo - pad, hi = b.hi + pad;
     const auto f = [](double x, bool up) {
         const float r = float(x);
-        return double(up ? (double(r) < x ? std::nextafter(r, INFINITY) : r) : (double(r) > x ? std::nextafter(r, -INFINITY) : r));
+        return double(up ? (double(r) < x ? std::nextafter(r, INFINITY) : r)
+                         : (double(r) > x ? std::nextafter(r, -INFINITY) : r));
     };
     const uint32_t base = uint32_t(plc.positions.size());
     for (int i = 0; i < 8; ++i)
         plc.positions.push_back({i & 1 ? f(hi.x, true) : f(lo.x, false), i & 2 ? f(hi.y, true) : f(lo.y, false),
                                  i & 4 ? f(hi.z, true) : f(lo.z, false)});
-    static constexpr uint32_t kQuads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+    static constexpr uint32_t kQuads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
+                                              {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
     for (const auto& q : kQuads) {
         plc.triangles.push_back({base + q[0], base + q[1], base + q[2]});
         plc.triangles.push_back({base + q[0], base + q[2], base + q[3]});
@@ -157,7 +162,8 @@ double distanceToSegment(const glm::dvec3& p, const glm::dvec3& a, const glm::dv
 // strictly inside `box` (a ball may reach past the padded box TetGen fills). A hole
 // less than kSmallHole rim edges across gets none: the tets between its rim vertices span it
 // flat, where lattice points beside the surface would let tets poke out of it.
-std::vector<glm::dvec3> holeLattice(const TriangleMesh& soup, const EdgeMap& edges, const WindingNumber& winding, const Bounds3& box) {
+std::vector<glm::dvec3> holeLattice(const TriangleMesh& soup, const EdgeMap& edges, const WindingNumber& winding,
+                                    const Bounds3& box) {
     static constexpr double kLatticeAcross = 16, kBallScale = 1.25, kLatticeBudget = 200000, kSmallHole = 2;
     static constexpr int kBisections = 10;
     static constexpr double kRimClearance = 0.5;
@@ -201,7 +207,8 @@ std::vector<glm::dvec3> holeLattice(const TriangleMesh& soup, const EdgeMap& edg
     std::sort(roots.begin(), roots.end());
     const auto distanceToRim = [&](const std::vector<uint64_t>& rim, const glm::dvec3& p) {
         double d = INFINITY;
-        for (uint64_t e : rim) d = std::min(d, distanceToSegment(p, soup.positions[uint32_t(e >> 32)], soup.positions[uint32_t(e)]));
+        for (uint64_t e : rim)
+            d = std::min(d, distanceToSegment(p, soup.positions[uint32_t(e >> 32)], soup.positions[uint32_t(e)]));
         return d;
     };
     std::vector<glm::dvec3> points;
@@ -214,13 +221,16 @@ std::vector<glm::dvec3> holeLattice(const TriangleMesh& soup, const EdgeMap& edg
         if (b.radius < kSmallHole * b.edgeLength) continue;
         const double s = b.spacing * coarsen;
         const int n = int(std::ceil(b.radius / s)), side = 2 * n + 1;
-        const auto at = [&](int i, int j, int k) { return b.centre + s * glm::dvec3(i + 0.3183, j + 0.2718, k + 0.4142); };
+        const auto at = [&](int i, int j, int k) {
+            return b.centre + s * glm::dvec3(i + 0.3183, j + 0.2718, k + 0.4142);
+        };
         const auto index = [&](int i, int j, int k) { return size_t((i + n) * side + j + n) * side + k + n; };
         std::vector<double> w(size_t(side) * side * side, NAN);  // NaN: outside the ball
         for (int i = -n; i <= n; ++i)
             for (int j = -n; j <= n; ++j)
                 for (int k = -n; k <= n; ++k)
-                    if (glm::length(at(i, j, k) - b.centre) <= b.radius) w[index(i, j, k)] = winding.approximate(at(i, j, k));
+                    if (glm::length(at(i, j, k) - b.centre) <= b.radius)
+                        w[index(i, j, k)] = winding.approximate(at(i, j, k));
         // Where the winding number crosses 1/2 between neighbours, a point on that level set
         // (by bisection) replaces both: the spanning surface then runs through these points
         // instead of stepping between lattice points on either side of it. Not beside the rim,
@@ -261,7 +271,8 @@ struct Tets {
 
 Tets unpack(const RawTets& raw) {
     Tets t;
-    for (size_t i = 0; i + 2 < raw.points.size(); i += 3) t.points.push_back({raw.points[i], raw.points[i + 1], raw.points[i + 2]});
+    for (size_t i = 0; i + 2 < raw.points.size(); i += 3)
+        t.points.push_back({raw.points[i], raw.points[i + 1], raw.points[i + 2]});
     const size_t n = raw.tets.size() / 4;
     if (raw.neighbours.size() != 4 * n) throw InputError("TetGen returned no neighbours");
     t.tets.resize(n);
@@ -270,7 +281,8 @@ Tets unpack(const RawTets& raw) {
         for (int j = 0; j < 4; ++j) {
             t.tets[i][j] = uint32_t(raw.tets[4 * i + j]);
             t.neighbours[i][j] = raw.neighbours[4 * i + j];
-            if (t.tets[i][j] >= t.points.size() || t.neighbours[i][j] >= int(n)) throw InputError("TetGen returned an index out of range");
+            if (t.tets[i][j] >= t.points.size() || t.neighbours[i][j] >= int(n))
+                throw InputError("TetGen returned an index out of range");
         }
     return t;
 }
@@ -289,8 +301,8 @@ bool isBoundary(const Tets& t, const std::vector<char>& inside, size_t i, int j)
 
 // The inside's boundary faces, wound outward, as a mesh of their own vertices; `spanned` marks
 // those that are not constraint triangles (the box's count as not).
-TriangleMesh boundaryOf(const Tets& t, const std::vector<char>& inside, const std::set<std::array<uint32_t, 3>>& constraints,
-                        std::vector<uint32_t>& spanned) {
+TriangleMesh boundaryOf(const Tets& t, const std::vector<char>& inside,
+                        const std::set<std::array<uint32_t, 3>>& constraints, std::vector<uint32_t>& spanned) {
     TriangleMesh out;
     std::vector<uint32_t> remap(t.points.size(), UINT32_MAX);
     for (size_t i = 0; i < t.tets.size(); ++i)
@@ -298,7 +310,8 @@ TriangleMesh boundaryOf(const Tets& t, const std::vector<char>& inside, const st
             if (!isBoundary(t, inside, i, j)) continue;
             auto f = faceOf(t.tets[i], j);
             // Outward: the tet's fourth vertex behind the face (Shewchuk's orient3d > 0).
-            if (orient3d(t.points[f[0]], t.points[f[1]], t.points[f[2]], t.points[t.tets[i][j]]) < 0) std::swap(f[1], f[2]);
+            if (orient3d(t.points[f[0]], t.points[f[1]], t.points[f[2]], t.points[t.tets[i][j]]) < 0)
+                std::swap(f[1], f[2]);
             auto key = f;
             std::sort(key.begin(), key.end());
             if (!constraints.count(key)) spanned.push_back(uint32_t(out.triangles.size()));
@@ -347,16 +360,16 @@ std::string plural(size_t n, const std::string& one, const std::string& many) {
 std::string RepairReport::summary() const {
     char share[64];
     std::snprintf(share, sizeof share, "%.3g%%", boundaryArea > 0 ? 100 * spannedArea / boundaryArea : 0.0);
-    std::string s = plural(holes.size(), "hole", "holes") +
-                    " spanned (" + share + " of the surface), " + plural(crossingPairs, "crossing pair", "crossing pairs") +
-                    " resolved, " + plural(partsUnioned, "part", "parts") + " unioned, " +
-                    plural(flippedTriangles, "face", "faces") + " flipped, " +
-                    plural(duplicatesDropped, "duplicate face", "duplicate faces") + " and " +
+    std::string s = plural(holes.size(), "hole", "holes") + " spanned (" + share + " of the surface), " +
+                    plural(crossingPairs, "crossing pair", "crossing pairs") + " resolved, " +
+                    plural(partsUnioned, "part", "parts") + " unioned, " + plural(flippedTriangles, "face", "faces") +
+                    " flipped, " + plural(duplicatesDropped, "duplicate face", "duplicate faces") + " and " +
                     plural(degenerateDropped, "zero-area triangle", "zero-area triangles") + " dropped";
-    if (nonManifoldEdges) s += ", " + plural(nonManifoldEdges, "non-manifold edge", "non-manifold edges") + " kept as constraints";
+    if (nonManifoldEdges)
+        s += ", " + plural(nonManifoldEdges, "non-manifold edge", "non-manifold edges") + " kept as constraints";
     if (unsplitTriangles)
-        s += ", " + plural(unsplitTriangles, "crossing triangle", "crossing triangles") + " left unsplit (" + unsplitReason +
-             "; the boundary near them follows the tets)";
+        s += ", " + plural(unsplitTriangles, "crossing triangle", "crossing triangles") + " left unsplit (" +
+             unsplitReason + "; the boundary near them follows the tets)";
     return s + " (inside: winding number above 1/2)";
 }
 
@@ -409,17 +422,19 @@ RepairReport repairInterior(TriangleMesh& mesh) {
     tbb::parallel_for(tbb::blocked_range<size_t>(0, w.size()), [&](const auto& range) {
         for (size_t i = range.begin(); i != range.end(); ++i) {
             const auto& v = tets.tets[i];
-            w[i] = winding.classify((tets.points[v[0]] + tets.points[v[1]] + tets.points[v[2]] + tets.points[v[3]]) * 0.25);
+            w[i] = winding.classify((tets.points[v[0]] + tets.points[v[1]] + tets.points[v[2]] + tets.points[v[3]]) *
+                                    0.25);
         }
     });
     report.minWinding = *std::min_element(w.begin(), w.end());
     report.maxWinding = *std::max_element(w.begin(), w.end());
     if (report.maxWinding < kInsideWinding) {
         char text[200];
-        std::snprintf(text, sizeof text,
-                      "mesh encloses no volume: its winding number stays below %.2f everywhere (at most %.3f), so it is "
-                      "an open sheet or shell, not a closed surface with holes",
-                      kInsideWinding, report.maxWinding);
+        std::snprintf(
+            text, sizeof text,
+            "mesh encloses no volume: its winding number stays below %.2f everywhere (at most %.3f), so it is "
+            "an open sheet or shell, not a closed surface with holes",
+            kInsideWinding, report.maxWinding);
         throw InputError(text);
     }
     std::vector<char> inside(w.size());
@@ -437,7 +452,8 @@ std::string surveyProblems(const TriangleMesh& input) {
     const auto add = [&](size_t n, const std::string& one, const std::string& many, const glm::dvec3& first) {
         if (n) found.push_back(plural(n, one, many) + " (first at " + formatPosition(first) + ")");
     };
-    if (cleaning.degenerate) add(cleaning.degenerate, "zero-area triangle", "zero-area triangles", cleaning.degenerateAt[0]);
+    if (cleaning.degenerate)
+        add(cleaning.degenerate, "zero-area triangle", "zero-area triangles", cleaning.degenerateAt[0]);
     if (cleaning.duplicates) add(cleaning.duplicates, "duplicate face", "duplicate faces", cleaning.duplicateAt[0]);
     const EdgeMap edges = edgeTriangles(mesh.triangles);
     size_t holes = 0, nonManifold = 0;
@@ -481,7 +497,8 @@ ValidationReport prepareSurface(TriangleMesh& mesh, bool strict) {
         try {
             report = validateAndRepair(mesh, true);
         } catch (const InputError& e) {
-            throw InputError(std::string("the repaired mesh is still invalid (") + e.what() + "); the input: " + refusal.what());
+            throw InputError(std::string("the repaired mesh is still invalid (") + e.what() +
+                             "); the input: " + refusal.what());
         }
         report.repair = std::move(repair);
         report.notes = {report.repair.summary()};

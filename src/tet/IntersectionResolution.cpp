@@ -45,7 +45,8 @@ TriangleMesh autorefine(const TriangleMesh& soup) {
     polygons.clear();
     PMP::polygon_mesh_to_polygon_soup(mesh, points, polygons);
     TriangleMesh out;
-    for (const Point& p : points) out.positions.push_back({CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())});
+    for (const Point& p : points)
+        out.positions.push_back({CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())});
     for (const auto& f : polygons) {
         if (f.size() != 3) throw std::logic_error("autorefinement returned a face that is not a triangle");
         out.triangles.push_back({uint32_t(f[0]), uint32_t(f[1]), uint32_t(f[2])});
@@ -67,7 +68,8 @@ TriangleMesh autorefineIsolated(const TriangleMesh& soup) {
             },
             meshingLimits(soup.triangles.size()));
     } catch (const ChildFailure& e) {
-        if (e.kind == ChildFailure::Kind::Exception) throw InputError("cannot split the crossing triangles (CGAL: " + oneLine(e.detail) + ")");
+        if (e.kind == ChildFailure::Kind::Exception)
+            throw InputError("cannot split the crossing triangles (CGAL: " + oneLine(e.detail) + ")");
         throw InputError("cannot split the crossing triangles: CGAL's autorefinement " + std::string(e.what()));
     }
     ByteReader reply(std::move(answer), "CGAL's autorefinement");
@@ -121,8 +123,8 @@ ResolvedSurface resolveIntersections(const TriangleMesh& soup) {
     const auto left = findSelfIntersections(r.surface);
     if (left.empty()) return r;
     if (r.unsplitReason.empty())
-        r.unsplitReason = std::to_string(left.size()) + " crossing pairs remained after splitting them " + std::to_string(kMaxRounds) +
-                          " times at float precision";
+        r.unsplitReason = std::to_string(left.size()) + " crossing pairs remained after splitting them " +
+                          std::to_string(kMaxRounds) + " times at float precision";
     std::vector<char> crossing(r.surface.triangles.size(), 0);
     for (const auto& [i, j] : left) {
         crossing[i] = 1;
@@ -130,8 +132,10 @@ ResolvedSurface resolveIntersections(const TriangleMesh& soup) {
     }
     std::vector<std::array<uint32_t, 3>> kept;
     for (size_t t = 0; t < crossing.size(); ++t)
-        if (crossing[t]) ++r.unsplit;
-        else kept.push_back(r.surface.triangles[t]);
+        if (crossing[t])
+            ++r.unsplit;
+        else
+            kept.push_back(r.surface.triangles[t]);
     r.surface.triangles = std::move(kept);
     weldVertices(r.surface);  // their corners no kept triangle uses must not reach TetGen
     return r;

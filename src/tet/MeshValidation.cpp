@@ -83,7 +83,8 @@ void checkTriangles(const TriangleMesh& mesh) {
         if (v[0] == v[1] || v[1] == v[2] || v[0] == v[2])
             throw InputError("degenerate " + face(t) + ": a vertex is repeated");
         if (collinear(mesh.positions[v[0]], mesh.positions[v[1]], mesh.positions[v[2]]))
-            throw InputError("degenerate " + face(t) + ": zero area (collinear corners) at " + formatPosition(mesh.positions[v[0]]));
+            throw InputError("degenerate " + face(t) + ": zero area (collinear corners) at " +
+                             formatPosition(mesh.positions[v[0]]));
         std::sort(v.begin(), v.end());
         auto [it, inserted] = seen.emplace(v, t);
         if (!inserted)
@@ -104,14 +105,18 @@ std::unordered_map<uint64_t, std::vector<uint32_t>> edgeFaces(const TriangleMesh
 
 bool pinched(size_t triangles) { return triangles >= 4 && triangles % 2 == 0; }
 
-void checkManifold(const TriangleMesh& mesh, const std::unordered_map<uint64_t, std::vector<uint32_t>>& edges, bool pinchedEdges) {
+void checkManifold(const TriangleMesh& mesh, const std::unordered_map<uint64_t, std::vector<uint32_t>>& edges,
+                   bool pinchedEdges) {
     // Report the edge whose first triangle comes first, so the message does not depend on hashing.
     const std::pair<const uint64_t, std::vector<uint32_t>>* worst = nullptr;
     for (const auto& e : edges)
-        if (e.second.size() != 2 && !(pinchedEdges && pinched(e.second.size())) && (!worst || e.second[0] < worst->second[0])) worst = &e;
+        if (e.second.size() != 2 && !(pinchedEdges && pinched(e.second.size())) &&
+            (!worst || e.second[0] < worst->second[0]))
+            worst = &e;
     if (!worst) return;
     const uint32_t a = uint32_t(worst->first >> 32), b = uint32_t(worst->first);
-    const std::string edge = "edge (" + std::to_string(a) + ", " + std::to_string(b) + ") at " + formatPosition(mesh.positions[a]);
+    const std::string edge =
+        "edge (" + std::to_string(a) + ", " + std::to_string(b) + ") at " + formatPosition(mesh.positions[a]);
     if (worst->second.size() == 1)
         throw InputError("mesh is not closed: " + edge + " belongs only to " + face(worst->second[0]) + " (a hole)");
     throw InputError("non-manifold " + edge + " is shared by " + std::to_string(worst->second.size()) +
@@ -217,9 +222,12 @@ ValidationReport validateAndRepair(TriangleMesh& mesh, bool pinchedEdges) {
     const auto shell = orientShells(mesh, edges, report);
     orientOutward(mesh, shell, report);
     report.volume = signedVolume(mesh);
-    if (!(report.volume > 0)) throw InputError("mesh encloses no volume (signed volume " + std::to_string(report.volume) + ")");
-    if (report.weldedVertices) report.notes.push_back("welded " + std::to_string(report.weldedVertices) + " duplicate vertices");
-    if (report.unusedVertices) report.notes.push_back("removed " + std::to_string(report.unusedVertices) + " unused vertices");
+    if (!(report.volume > 0))
+        throw InputError("mesh encloses no volume (signed volume " + std::to_string(report.volume) + ")");
+    if (report.weldedVertices)
+        report.notes.push_back("welded " + std::to_string(report.weldedVertices) + " duplicate vertices");
+    if (report.unusedVertices)
+        report.notes.push_back("removed " + std::to_string(report.unusedVertices) + " unused vertices");
     if (report.flippedTriangles)
         report.notes.push_back("flipped " + std::to_string(report.flippedTriangles) + " inward-wound triangles");
     return report;

@@ -94,8 +94,9 @@ std::vector<int32_t> findNesting(const std::vector<TriangleMesh>& surfaces,
                 if (!ids[o].count(vertexIds[i][v])) side = classifyPoint(surfaces[o], surfaces[i].positions[v]);
             for (uint32_t t = 0; t < surfaces[i].triangles.size() && side == PointSide::OnSurface; ++t)
                 if (!triangles[o].count(key(i, t)))
-                    side = classifyPoint(surfaces[o],
-                                         (surfaces[i].corner(t, 0) + surfaces[i].corner(t, 1) + surfaces[i].corner(t, 2)) / 3.0);
+                    side = classifyPoint(
+                        surfaces[o],
+                        (surfaces[i].corner(t, 0) + surfaces[i].corner(t, 1) + surfaces[i].corner(t, 2)) / 3.0);
             if (side == PointSide::OnSurface)
                 throw InputError(names[i] + " and " + names[o] + " have the same surface");
             inside[i][o] = side == PointSide::Inside;

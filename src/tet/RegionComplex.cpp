@@ -40,7 +40,7 @@ struct Holder {
 // holds it with its winding, so it is the innermost one's region; where no surface holds it the
 // other way, the front is the region around the outermost holder.
 std::array<int32_t, 2> sidesOf(const std::vector<Holder>& holders, const std::vector<int32_t>& parent,
-                              const std::vector<int>& depth) {
+                               const std::vector<int>& depth) {
     const auto side = [&](bool reversed) {
         int32_t inner = -1, outer = -1;
         for (const Holder& h : holders) {
@@ -65,7 +65,8 @@ glm::dvec3 placeSeed(const TriangleMesh& surface, const std::vector<const Triang
     std::iota(order.begin(), order.end(), 0u);
     std::vector<glm::dvec3> normals(order.size());
     for (uint32_t t : order)
-        normals[t] = glm::cross(surface.corner(t, 1) - surface.corner(t, 0), surface.corner(t, 2) - surface.corner(t, 0));
+        normals[t] =
+            glm::cross(surface.corner(t, 1) - surface.corner(t, 0), surface.corner(t, 2) - surface.corner(t, 0));
     std::stable_sort(order.begin(), order.end(),
                      [&](uint32_t a, uint32_t b) { return glm::length(normals[a]) > glm::length(normals[b]); });
     order.resize(std::min<size_t>(order.size(), 64));
@@ -81,7 +82,8 @@ glm::dvec3 placeSeed(const TriangleMesh& surface, const std::vector<const Triang
                 return p;
         }
     }
-    throw InputError((name.empty() ? std::string("mesh") : name) + ": found no point inside it that is outside the media nested in it (do they fill it?)");
+    throw InputError((name.empty() ? std::string("mesh") : name) +
+                     ": found no point inside it that is outside the media nested in it (do they fill it?)");
 }
 
 // TetGen takes points closer than this fraction of the input's bounding box as one (its -T
@@ -98,12 +100,14 @@ void refuseNearVertices(const std::vector<glm::dvec3>& positions, const std::vec
     // A grid of cells of the tolerance's size: near vertices lie in the same or adjacent cells.
     using Cell = std::array<int64_t, 3>;
     const auto cellOf = [&](const glm::dvec3& p) {
-        return Cell{int64_t((p.x - box.lo.x) / cell), int64_t((p.y - box.lo.y) / cell), int64_t((p.z - box.lo.z) / cell)};
+        return Cell{int64_t((p.x - box.lo.x) / cell), int64_t((p.y - box.lo.y) / cell),
+                    int64_t((p.z - box.lo.z) / cell)};
     };
     std::map<Cell, std::vector<uint32_t>> grid;
     for (uint32_t v = 0; v < positions.size(); ++v) grid[cellOf(positions[v])].push_back(v);
     const auto local = [&](size_t surface, uint32_t v) {  // the vertex's index in that surface's own list
-        return uint32_t(std::find(vertexIds[surface].begin(), vertexIds[surface].end(), v) - vertexIds[surface].begin());
+        return uint32_t(std::find(vertexIds[surface].begin(), vertexIds[surface].end(), v) -
+                        vertexIds[surface].begin());
     };
     for (uint32_t v = 0; v < positions.size(); ++v) {
         const Cell c = cellOf(positions[v]);
@@ -116,12 +120,14 @@ void refuseNearVertices(const std::vector<glm::dvec3>& positions, const std::vec
                         const double d = glm::length(positions[w] - positions[v]);
                         if (owner[w] == owner[v] || !(d < cell)) continue;
                         char text[160];
-                        std::snprintf(text, sizeof text, " are %.3g apart, closer than TetGen tells points apart (%.3g, 1e-8 of their extent): ",
-                                      d, cell);
+                        std::snprintf(
+                            text, sizeof text,
+                            " are %.3g apart, closer than TetGen tells points apart (%.3g, 1e-8 of their extent): ", d,
+                            cell);
                         throw InputError(names[owner[v]] + " and " + names[owner[w]] + text + "vertex " +
-                                         std::to_string(local(owner[v], v)) + " of " + names[owner[v]] + " and vertex " +
-                                         std::to_string(local(owner[w], w)) + " of " + names[owner[w]] +
-                                         " (media may share vertices exactly, or keep apart)");
+                                         std::to_string(local(owner[v], v)) + " of " + names[owner[v]] +
+                                         " and vertex " + std::to_string(local(owner[w], w)) + " of " +
+                                         names[owner[w]] + " (media may share vertices exactly, or keep apart)");
                     }
                 }
     }
@@ -178,11 +184,12 @@ RegionComplex buildRegionComplex(const std::vector<TriangleMesh>& surfaces, cons
         for (const Holder& a : holders[hit->first])
             for (const Holder& b : holders[hit->second])
                 if (a.surface != b.surface)
-                    throw InputError(names[a.surface] + " and " + names[b.surface] + " cross: triangle " +
-                                     std::to_string(a.triangle) + " of " + names[a.surface] + " meets triangle " +
-                                     std::to_string(b.triangle) + " of " + names[b.surface] +
-                                     " (media may nest or share whole triangles, not overlap; an open vessel is one closed, "
-                                     "cup-shaped mesh, not a solid with a cavity reaching its rim: docs/FORMAT.md, cavities)");
+                    throw InputError(
+                        names[a.surface] + " and " + names[b.surface] + " cross: triangle " +
+                        std::to_string(a.triangle) + " of " + names[a.surface] + " meets triangle " +
+                        std::to_string(b.triangle) + " of " + names[b.surface] +
+                        " (media may nest or share whole triangles, not overlap; an open vessel is one closed, "
+                        "cup-shaped mesh, not a solid with a cavity reaching its rim: docs/FORMAT.md, cavities)");
         throw std::logic_error("buildRegionComplex: a surface intersects itself after validation");
     }
     c.parent = findNesting(surfaces, vertexIds, names);
@@ -205,7 +212,8 @@ RegionComplex validatedComplex(std::vector<TriangleMesh> surfaces, const std::ve
     return buildRegionComplex(surfaces, names);
 }
 
-void placeSeeds(RegionComplex& complex, const std::vector<TriangleMesh>& surfaces, const std::vector<std::string>& names) {
+void placeSeeds(RegionComplex& complex, const std::vector<TriangleMesh>& surfaces,
+                const std::vector<std::string>& names) {
     std::vector<std::vector<const TriangleMesh*>> children(surfaces.size());
     for (size_t i = 0; i < surfaces.size(); ++i)
         if (complex.parent[i] >= 0) children[complex.parent[i]].push_back(&surfaces[i]);

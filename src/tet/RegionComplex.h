@@ -19,8 +19,8 @@ struct RegionComplex {
     std::vector<std::array<int32_t, 2>> sides;
     // Per triangle: {input surface, triangle index in it} of the winding kept.
     std::vector<std::array<uint32_t, 2>> source;
-    std::vector<int32_t> parent;           // per region: the region around it, -1 none
-    std::vector<glm::dvec3> seeds;         // per region: a point strictly inside it (TetGen -A), see placeSeeds
+    std::vector<int32_t> parent;    // per region: the region around it, -1 none
+    std::vector<glm::dvec3> seeds;  // per region: a point strictly inside it (TetGen -A), see placeSeeds
 
     size_t regionCount() const { return parent.size(); }
 };
@@ -35,10 +35,12 @@ RegionComplex buildRegionComplex(const std::vector<TriangleMesh>& surfaces, cons
 
 // Validates and repairs each surface (prepareSurface; errors prefixed with its name), then
 // builds their complex as above.
-RegionComplex validatedComplex(std::vector<TriangleMesh> surfaces, const std::vector<std::string>& names, bool strict = false);
+RegionComplex validatedComplex(std::vector<TriangleMesh> surfaces, const std::vector<std::string>& names,
+                               bool strict = false);
 
 // Fills complex.seeds; the surfaces and names are the ones it was built from. Throws InputError
 // naming a region that its children leave no room.
-void placeSeeds(RegionComplex& complex, const std::vector<TriangleMesh>& surfaces, const std::vector<std::string>& names);
+void placeSeeds(RegionComplex& complex, const std::vector<TriangleMesh>& surfaces,
+                const std::vector<std::string>& names);
 
 }  // namespace tetglow

@@ -22,7 +22,7 @@ struct RepairReport {
         double area = 0;
         size_t faces = 0;
     };
-    std::vector<Hole> holes;   // connected sets of spanned faces
+    std::vector<Hole> holes;  // connected sets of spanned faces
     double spannedArea = 0, boundaryArea = 0;
     double minWinding = 0, maxWinding = 0;  // over the tets' centroids
     // A corner of each (at most kMaxPositions of each kind are kept).

@@ -5,10 +5,10 @@
 #include <cfloat>
 #include <cmath>
 
-#include <glm/common.hpp>
-#include <glm/vector_relational.hpp>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <glm/common.hpp>
+#include <glm/vector_relational.hpp>
 
 #include "tet/Predicates.h"
 
@@ -142,10 +142,14 @@ bool intersectBeyondShared(const TriangleMesh& mesh, uint32_t i, uint32_t j) {
     };
     const Tri a = corners(ia), b = corners(ib);
     switch (shared) {
-        case 0: return trianglesIntersect(a, b);
-        case 1: return meetBeyondVertex(a, b);
-        case 2: return foldOver(a, b);
-        default: return true;  // the same triangle twice
+        case 0:
+            return trianglesIntersect(a, b);
+        case 1:
+            return meetBeyondVertex(a, b);
+        case 2:
+            return foldOver(a, b);
+        default:
+            return true;  // the same triangle twice
     }
 }
 
@@ -225,7 +229,9 @@ struct BroadPhase {
             for (uint32_t k = grid.start[c]; k < grid.start[c + 1]; ++k) {
                 const uint32_t j = grid.items[k];
                 // Each pair is visited once, in the cell that holds the low corner of its overlap.
-                if (j > i && boxes[i].overlaps(boxes[j]) && grid.index(grid.cellOf(glm::max(boxes[i].lo, boxes[j].lo))) == c) f(j);
+                if (j > i && boxes[i].overlaps(boxes[j]) &&
+                    grid.index(grid.cellOf(glm::max(boxes[i].lo, boxes[j].lo))) == c)
+                    f(j);
             }
         });
     }
@@ -270,16 +276,16 @@ std::optional<std::pair<uint32_t, uint32_t>> findSelfIntersection(const Triangle
     // every row before the final one is searched, so the answer does not depend on scheduling.
     constexpr uint64_t none = ~uint64_t{0};
     std::atomic<uint64_t> best{none};
-    tbb::parallel_for(tbb::blocked_range<uint32_t>(0, static_cast<uint32_t>(mesh.triangles.size())), [&](const auto& rows) {
-        for (uint32_t i = rows.begin(); i != rows.end() && i < best.load() >> 32; ++i)
-            if (const auto j = firstPartner(i)) {
-                const uint64_t key = uint64_t{i} << 32 | *j;
-                uint64_t seen = best.load();
-                while (key < seen && !best.compare_exchange_weak(seen, key)) {
-                }
-                return;
-            }
-    });
+    tbb::parallel_for(tbb::blocked_range<uint32_t>(0, static_cast<uint32_t>(mesh.triangles.size())),
+                      [&](const auto& rows) {
+                          for (uint32_t i = rows.begin(); i != rows.end() && i < best.load() >> 32; ++i)
+                              if (const auto j = firstPartner(i)) {
+                                  const uint64_t key = uint64_t{i} << 32 | *j;
+                                  uint64_t seen = best.load();
+                                  while (key < seen && !best.compare_exchange_weak(seen, key)) {}
+                                  return;
+                              }
+                      });
     if (best == none) return std::nullopt;
     return std::pair{static_cast<uint32_t>(best >> 32), static_cast<uint32_t>(best)};
 }

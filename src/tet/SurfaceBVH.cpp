@@ -36,7 +36,8 @@ unsigned attachTriangles(RTCScene scene, const std::vector<glm::dvec3>& position
     return id;
 }
 
-SurfaceBVH::SurfaceBVH(const std::vector<glm::dvec3>& positions, const std::vector<std::array<uint32_t, 3>>& triangles) {
+SurfaceBVH::SurfaceBVH(const std::vector<glm::dvec3>& positions,
+                       const std::vector<std::array<uint32_t, 3>>& triangles) {
     RTCDevice device = embreeDevice();
     scene_ = rtcNewScene(device);
     // Robust mode: watertight triangle tests, so rays through edges are not lost between faces.
@@ -64,7 +65,8 @@ SurfaceBVH::SurfaceBVH(const std::vector<glm::dvec3>& positions, const std::vect
     std::vector<std::array<uint32_t, 3>> separate;
     for (const auto& tri : triangles) {
         const glm::dvec3 a = positions[tri[0]], b = positions[tri[1]], c = positions[tri[2]];
-        const double la = glm::distance(b, c), lb = glm::distance(c, a), lc = glm::distance(a, b), perimeter = la + lb + lc;
+        const double la = glm::distance(b, c), lb = glm::distance(c, a), lc = glm::distance(a, b),
+                     perimeter = la + lb + lc;
         const glm::dvec3 incentre = (la * a + lb * b + lc * c) / perimeter;
         const double inradius = glm::length(glm::cross(b - a, c - a)) / perimeter;
         const double scale = (inradius + margin_) / inradius;

@@ -37,9 +37,9 @@ public:
     // How many triangles the ray crosses for t > 0 (one traversal): the parity test's count.
     int crossings(const Ray& ray) const;
     // Every triangle the ray may cross for tnear <= t <= tfar, in no order and possibly twice, a superset
-    // for exact tests to decide (the caller orders what they accept): Embree over the triangles grown in their planes by a margin far above its float
-    // error, so that a crossing exactly through an edge or a vertex, which Embree can miss on the
-    // triangles themselves, is never left out.
+    // for exact tests to decide (the caller orders what they accept): Embree over the triangles grown in their planes
+    // by a margin far above its float error, so that a crossing exactly through an edge or a vertex, which Embree can
+    // miss on the triangles themselves, is never left out.
     std::vector<SurfaceHit> candidates(const Ray& ray, double tnear = 0, double tfar = INFINITY) const;
 
     const glm::dvec3& normal(uint32_t triangle) const { return normals_[triangle]; }  // outward, not unit
@@ -50,7 +50,7 @@ private:
     RTCScene scene_ = nullptr, grown_ = nullptr;
     std::vector<glm::dvec3> normals_, corners_;
     Bounds3 grownBounds_;
-    double margin_ = 0;   // how far each triangle was grown
+    double margin_ = 0;  // how far each triangle was grown
 };
 
 // Embree traversals this thread has made through any SurfaceBVH: shows that a walk needs none.

@@ -12,13 +12,20 @@ namespace {
 
 std::string tetgenFailure(int code) {
     switch (code) {
-        case 1: return "TetGen ran out of memory";
-        case 2: return "TetGen hit an internal error on this mesh";
-        case 3: return "TetGen found self-intersecting faces";
-        case 4: return "TetGen found a feature too small to resolve (nearly touching faces)";
-        case 5: return "TetGen found two facets too close to each other";
-        case 10: return "TetGen rejected the input";
-        default: return "TetGen failed (error " + std::to_string(code) + ")";
+        case 1:
+            return "TetGen ran out of memory";
+        case 2:
+            return "TetGen hit an internal error on this mesh";
+        case 3:
+            return "TetGen found self-intersecting faces";
+        case 4:
+            return "TetGen found a feature too small to resolve (nearly touching faces)";
+        case 5:
+            return "TetGen found two facets too close to each other";
+        case 10:
+            return "TetGen rejected the input";
+        default:
+            return "TetGen failed (error " + std::to_string(code) + ")";
     }
 }
 
@@ -50,7 +57,7 @@ std::string runTetGen(const RegionComplex& complex, const std::string& switches)
     for (size_t r = 0; r < complex.seeds.size(); ++r) {
         for (int k = 0; k < 3; ++k) in.regionlist[5 * r + k] = complex.seeds[r][k];
         in.regionlist[5 * r + 3] = double(r + 1);  // TetGen numbers the cells no seed reaches itself
-        in.regionlist[5 * r + 4] = -1;              // no volume bound of its own
+        in.regionlist[5 * r + 4] = -1;             // no volume bound of its own
     }
     tetgenbehavior b;
     std::vector<char> sw(switches.begin(), switches.end());
@@ -78,10 +85,12 @@ std::string runTetGen(const RegionComplex& complex, const std::string& switches)
 RawTets runIsolated(const RegionComplex& complex, const std::string& switches) {
     std::string answer;
     try {
-        answer = runInChild([&] { return runTetGen(complex, switches); }, meshingLimits(complex.surface.triangles.size()));
+        answer =
+            runInChild([&] { return runTetGen(complex, switches); }, meshingLimits(complex.surface.triangles.size()));
     } catch (const ChildFailure& e) {
         if (e.kind == ChildFailure::Kind::Signal)
-            throw InputError("TetGen crashed (" + e.detail + ") on this mesh; it likely has nearly touching or intersecting faces");
+            throw InputError("TetGen crashed (" + e.detail +
+                             ") on this mesh; it likely has nearly touching or intersecting faces");
         throw InputError("TetGen " + std::string(e.what()));
     }
     ByteReader reply(std::move(answer), "TetGen");

@@ -123,8 +123,8 @@ std::string inconsistency(const TetMesh& m) {
     const size_t ns = m.surface.size();
     if (m.adjacency.size() != m.tets.size() || m.surfaceFace.size() != ns || m.surfaceVertexCount > m.vertices.size() ||
         m.surfaceRegions.size() != ns || m.surfaceFaceFront.size() != ns || m.surfaceSource.size() != ns ||
-        m.regionTets.size() != m.regionParent.size() + 1 || m.regionTets.front() != 0 || m.regionTets.back() != m.tets.size() ||
-        !std::is_sorted(m.regionTets.begin(), m.regionTets.end()))
+        m.regionTets.size() != m.regionParent.size() + 1 || m.regionTets.front() != 0 ||
+        m.regionTets.back() != m.tets.size() || !std::is_sorted(m.regionTets.begin(), m.regionTets.end()))
         return "array sizes disagree";
     const auto regionOk = [&](int32_t r) { return r >= -1 && r < int32_t(m.regionParent.size()); };
     for (int32_t p : m.regionParent)
@@ -146,7 +146,8 @@ std::string inconsistency(const TetMesh& m) {
         for (int j = 0; j < 4; ++j) {  // each face is seen the same way from both sides
             const int32_t a = m.adjacency[t][j];
             const uint32_t self = uint32_t(4 * t + j);
-            if (a < 0 ? m.surfaceFace[TetMesh::surfaceTriangle(a)] != self && m.surfaceFaceFront[TetMesh::surfaceTriangle(a)] != self
+            if (a < 0 ? m.surfaceFace[TetMesh::surfaceTriangle(a)] != self &&
+                            m.surfaceFaceFront[TetMesh::surfaceTriangle(a)] != self
                       : uint32_t(m.adjacency[TetMesh::neighbourTet(a)][TetMesh::neighbourFace(a)]) != self)
                 return "tet " + std::to_string(t) + " has a neighbour that does not point back";
         }

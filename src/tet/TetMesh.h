@@ -51,13 +51,15 @@ struct TetMesh {
     size_t regionCount() const { return regionParent.size(); }
     // The tet face across surface triangle s from tet face `face` (4 * tet + local face), or
     // UINT32_MAX where no region is on the other side.
-    uint32_t across(uint32_t s, uint32_t face) const { return surfaceFace[s] == face ? surfaceFaceFront[s] : surfaceFace[s]; }
-    int32_t region(uint32_t t) const;    // the region owning tet t
+    uint32_t across(uint32_t s, uint32_t face) const {
+        return surfaceFace[s] == face ? surfaceFaceFront[s] : surfaceFace[s];
+    }
+    int32_t region(uint32_t t) const;  // the region owning tet t
     double tetVolume(uint32_t t) const;
     double regionVolume(int32_t r) const;         // sum of its tet volumes
     double regionSurfaceVolume(int32_t r) const;  // enclosed by its surface triangles (divergence theorem)
-    double volume() const;               // sum of tet volumes
-    double surfaceVolume() const;        // the boundary's own volume (divergence theorem)
+    double volume() const;                        // sum of tet volumes
+    double surfaceVolume() const;                 // the boundary's own volume (divergence theorem)
     glm::dvec3 centroid(uint32_t t) const;
     size_t bytesPerTet() const { return sizeof(tets[0]) + sizeof(adjacency[0]); }
     TriangleMesh surfaceMesh() const;

@@ -133,9 +133,10 @@ std::vector<TetWalk> TetVolume::entriesAlong(const Ray& ray, double tnear, doubl
     std::sort(entries.begin(), entries.end(), [](const TetWalk& a, const TetWalk& b) {
         return a.exitT() < b.exitT() || (a.exitT() == b.exitT() && a.entryTriangle() < b.entryTriangle());
     });
-    entries.erase(std::unique(entries.begin(), entries.end(),
-                              [](const TetWalk& a, const TetWalk& b) { return a.entryTriangle() == b.entryTriangle(); }),
-                  entries.end());
+    entries.erase(
+        std::unique(entries.begin(), entries.end(),
+                    [](const TetWalk& a, const TetWalk& b) { return a.entryTriangle() == b.entryTriangle(); }),
+        entries.end());
     return entries;
 }
 

@@ -55,9 +55,11 @@ RayProjection::RayProjection(const Ray& ray) : o(ray.o), d(ray.d), invDD(1.0 / g
     v = {b, sign + n.y * n.y * a, -n.y};
 }
 
-TetWalk::TetWalk(const TetMesh& mesh, const Ray& ray) : mesh_(&mesh), projection_(ray), maxSteps_(mesh.tets.size() + 8) {}
+TetWalk::TetWalk(const TetMesh& mesh, const Ray& ray)
+    : mesh_(&mesh), projection_(ray), maxSteps_(mesh.tets.size() + 8) {}
 
-inline double TetWalk::faceT(const Vertex& e, const Vertex& x, const Vertex& y, double sEX, double sXY, double sYE) const {
+inline double TetWalk::faceT(const Vertex& e, const Vertex& x, const Vertex& y, double sEX, double sXY,
+                             double sYE) const {
     // Barycentric coordinates of the origin in the projected face are the three sides.
     const double we = std::max(sXY, 0.0), wx = std::max(sYE, 0.0), wy = std::max(sEX, 0.0), sum = we + wx + wy;
     if (!(sum > 0)) return (e.t + x.t + y.t) / 3.0;
@@ -180,8 +182,8 @@ inline int TetWalk::localIndex(uint32_t id) const {
     return int(tv[1] == id) + 2 * int(tv[2] == id) + 3 * int(tv[3] == id);  // no branches
 }
 
-inline bool TetWalk::cross(int opposite, const Vertex& e, const Vertex& x, const Vertex& y, double sEX, double sXY, double sYE,
-                    WalkSegment& segment) {
+inline bool TetWalk::cross(int opposite, const Vertex& e, const Vertex& x, const Vertex& y, double sEX, double sXY,
+                           double sYE, WalkSegment& segment) {
     const double tOut = std::max(tIn_, faceT(e, x, y, sEX, sXY, sYE));
     segment = {tet_, tIn_, tOut};
     tIn_ = tOut;

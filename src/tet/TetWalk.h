@@ -87,9 +87,9 @@ public:
     bool exited() const { return state_ == State::Exited; }
     bool lost() const { return state_ == State::Lost; }
     uint32_t entryTriangle() const { return entryTriangle_; }  // UINT32_MAX after start()
-    uint32_t exitTriangle() const { return exitTriangle_; }  // valid once exited()
-    uint32_t exitTet() const { return tet_; }                 // the last tet, once exited()
-    double exitT() const { return tIn_; }                     // where the last segment ended
+    uint32_t exitTriangle() const { return exitTriangle_; }    // valid once exited()
+    uint32_t exitTet() const { return tet_; }                  // the last tet, once exited()
+    double exitT() const { return tIn_; }                      // where the last segment ended
     size_t steps() const { return steps_; }
 
 private:
@@ -120,7 +120,8 @@ private:
     bool tryEnter(uint32_t s, bool* exits = nullptr);
     bool cross(int opposite, const Vertex& e, const Vertex& x, const Vertex& y, double sEX, double sXY, double sYE,
                WalkSegment& segment);
-    void setFace(uint32_t tet, int apex, Vertex a, Vertex b, Vertex c, double ab, double bc, double ca);  // by value: callers pass face_ itself
+    void setFace(uint32_t tet, int apex, Vertex a, Vertex b, Vertex c, double ab, double bc,
+                 double ca);  // by value: callers pass face_ itself
     double faceT(const Vertex& e, const Vertex& x, const Vertex& y, double sEX, double sXY, double sYE) const;
 
     const TetMesh* mesh_;

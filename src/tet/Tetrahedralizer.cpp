@@ -151,7 +151,8 @@ TetMesh assemble(const RegionComplex& complex, const RawTets& raw) {
         const auto& v = tets[t];
         const glm::dvec3 c = (m.vertices[v[0]] + m.vertices[v[1]] + m.vertices[v[2]] + m.vertices[v[3]]) * 0.25;
         const glm::dvec3 q = glm::clamp((c - box.lo) * scale, 0.0, 1023.0);
-        order.push_back({regionOf(t), spread(uint64_t(q.x)) | spread(uint64_t(q.y)) << 1 | spread(uint64_t(q.z)) << 2, t});
+        order.push_back(
+            {regionOf(t), spread(uint64_t(q.x)) | spread(uint64_t(q.y)) << 1 | spread(uint64_t(q.z)) << 2, t});
     }
     std::sort(order.begin(), order.end());
     std::vector<int64_t> newIndex(nt, -1);
@@ -177,7 +178,8 @@ TetMesh assemble(const RegionComplex& complex, const RawTets& raw) {
             if (onSurface[t][j] >= 0) {
                 const auto s = size_t(onSurface[t][j]);
                 uint32_t& face = behind(t, j) ? m.surfaceFace[s] : m.surfaceFaceFront[s];
-                if (face != UINT32_MAX) throw InputError("surface triangle " + std::to_string(s) + " bounds two tets on one side");
+                if (face != UINT32_MAX)
+                    throw InputError("surface triangle " + std::to_string(s) + " bounds two tets on one side");
                 face = 4 * nt_ + uint32_t(j);
                 m.adjacency[nt_][j] = ~int32_t(s);
                 continue;
@@ -218,10 +220,11 @@ void checkTetCount(double volume, double maxVolume) {
     // Every tet is at most maxVolume, so there are at least volume / maxVolume of them.
     if (!(maxVolume > 0) || volume / maxVolume <= kMaxTets) return;
     char text[256];
-    std::snprintf(text, sizeof text,
-                  "max volume %.6g (TetGen -a) would make at least %.3g tets of this mesh (volume %.6g), more than %.0f: "
-                  "use a max volume >= %.6g, or 0 for none",
-                  maxVolume, volume / maxVolume, volume, kMaxTets, volume / kMaxTets);
+    std::snprintf(
+        text, sizeof text,
+        "max volume %.6g (TetGen -a) would make at least %.3g tets of this mesh (volume %.6g), more than %.0f: "
+        "use a max volume >= %.6g, or 0 for none",
+        maxVolume, volume / maxVolume, volume, kMaxTets, volume / kMaxTets);
     throw InputError(text);
 }
 
@@ -275,7 +278,8 @@ TetMesh tetrahedralize(std::vector<TriangleMesh> surfaces, const std::vector<std
         local.cacheFile = file.string();
     } else {
         if (cached == CacheRead::Damaged) {
-            local.cacheWarning = file.string() + ": damaged tet cache entry (" + problem + "); not used, tetrahedralizing again";
+            local.cacheWarning =
+                file.string() + ": damaged tet cache entry (" + problem + "); not used, tetrahedralizing again";
             std::fprintf(stderr, "tetglow: warning: %s\n", local.cacheWarning.c_str());
         }
         mesh = assemble(complex, runIsolated(complex, switches));

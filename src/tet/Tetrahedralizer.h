@@ -21,9 +21,9 @@ struct TetOptions {
 };
 
 struct TetStats {
-    double seconds = 0;      // validation + tetrahedralization (or cache read)
+    double seconds = 0;  // validation + tetrahedralization (or cache read)
     bool fromCache = false;
-    std::string cacheFile;   // "" when caching is off or the directory is not writable
+    std::string cacheFile;     // "" when caching is off or the directory is not writable
     std::string cacheWarning;  // why a cache entry found was not used (also printed to stderr); "" if none
 };
 

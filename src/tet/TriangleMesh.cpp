@@ -72,8 +72,8 @@ uint32_t objIndex(const std::string& tok, size_t vertexCount, const std::string&
     }
     long resolved = idx > 0 ? idx - 1 : static_cast<long>(vertexCount) + idx;
     if (idx == 0 || resolved < 0 || resolved >= static_cast<long>(vertexCount))
-        throw InputError(where(path, line) + "face index " + first + " out of range (" +
-                         std::to_string(vertexCount) + " vertices so far)");
+        throw InputError(where(path, line) + "face index " + first + " out of range (" + std::to_string(vertexCount) +
+                         " vertices so far)");
     return static_cast<uint32_t>(resolved);
 }
 

@@ -14,7 +14,8 @@ constexpr double kFourPi = 4 * M_PI;
 
 }  // namespace
 
-double solidAngle(const glm::dvec3& corner0, const glm::dvec3& corner1, const glm::dvec3& corner2, const glm::dvec3& p) {
+double solidAngle(const glm::dvec3& corner0, const glm::dvec3& corner1, const glm::dvec3& corner2,
+                  const glm::dvec3& p) {
     const glm::dvec3 a = corner0 - p, b = corner1 - p, c = corner2 - p;
     const double la = glm::length(a), lb = glm::length(b), lc = glm::length(c);
     return 2 * std::atan2(glm::dot(a, glm::cross(b, c)),
@@ -47,14 +48,17 @@ void WindingNumber::build(uint32_t index, uint32_t begin, uint32_t end) {
     }
     node.centre = total > 0 ? node.centre / total : 0.5 * (box.lo + box.hi);
     for (uint32_t i = begin; i < end; ++i)
-        for (int k = 0; k < 3; ++k) node.radius = std::max(node.radius, glm::length(soup_.corner(order_[i], k) - node.centre));
+        for (int k = 0; k < 3; ++k)
+            node.radius = std::max(node.radius, glm::length(soup_.corner(order_[i], k) - node.centre));
     if (end - begin <= kLeafSize) {
         nodes_[index] = node;
         return;
     }
     const glm::dvec3 extent = box.hi - box.lo;
     const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : extent.y >= extent.z ? 1 : 2;
-    const auto key = [&](uint32_t t) { return soup_.corner(t, 0)[axis] + soup_.corner(t, 1)[axis] + soup_.corner(t, 2)[axis]; };
+    const auto key = [&](uint32_t t) {
+        return soup_.corner(t, 0)[axis] + soup_.corner(t, 1)[axis] + soup_.corner(t, 2)[axis];
+    };
     const uint32_t mid = begin + (end - begin) / 2;
     std::nth_element(order_.begin() + begin, order_.begin() + mid, order_.begin() + end,
                      [&](uint32_t a, uint32_t b) { return key(a) < key(b) || (key(a) == key(b) && a < b); });

@@ -33,11 +33,13 @@ public:
 
 private:
     struct Node {
-        glm::dvec3 centre{0}, area{0};  // area-weighted centroid; sum of area vectors (half the cross products)
-        double radius = 0;        // the farthest corner from centre
+        glm::dvec3 centre{0}, area{0};          // area-weighted centroid; sum of area vectors (half the cross products)
+        double radius = 0;                      // the farthest corner from centre
         uint32_t begin = 0, end = 0, left = 0;  // triangles order_[begin, end); children left, left + 1 (0: a leaf)
     };
-    double solidAngle(uint32_t t, const glm::dvec3& p) const { return tetglow::solidAngle(soup_.corner(t, 0), soup_.corner(t, 1), soup_.corner(t, 2), p); }
+    double solidAngle(uint32_t t, const glm::dvec3& p) const {
+        return tetglow::solidAngle(soup_.corner(t, 0), soup_.corner(t, 1), soup_.corner(t, 2), p);
+    }
     void build(uint32_t index, uint32_t begin, uint32_t end);
 
     const TriangleMesh& soup_;

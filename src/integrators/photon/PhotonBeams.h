@@ -32,11 +32,11 @@ public:
     size_t bytes() const;                          // heap memory held
 
 private:
-    struct Node {          // 32 bytes; the left child of an inner node follows it
+    struct Node {  // 32 bytes; the left child of an inner node follows it
         glm::vec3 lo;
-        uint32_t next;     // leaf: first disc; inner node: right child
+        uint32_t next;  // leaf: first disc; inner node: right child
         glm::vec3 hi;
-        uint32_t count;    // discs in a leaf, 0 for an inner node
+        uint32_t count;  // discs in a leaf, 0 for an inner node
     };
     static_assert(sizeof(Node) == 32);
     struct Disc {

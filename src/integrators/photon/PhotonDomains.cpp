@@ -11,7 +11,8 @@ namespace {
 // density varies, the same density field (evaluated at the same vertices, so equal there).
 bool sameMedium(const MediumDesc& a, const MediumDesc& b, const RegionOptics& ra, const RegionOptics& rb) {
     const MediumParams &p = ra.params, &q = rb.params;
-    if (p.sigmaA != q.sigmaA || p.sigmaS != q.sigmaS || p.g != q.g || p.emission != q.emission || a.cavity != b.cavity) return false;
+    if (p.sigmaA != q.sigmaA || p.sigmaS != q.sigmaS || p.g != q.g || p.emission != q.emission || a.cavity != b.cavity)
+        return false;
     if (a.density.isConstant() && b.density.isConstant()) return true;
     const DensityDesc &x = a.density, &y = b.density;
     return x.type == y.type && x.offset == y.offset && x.gradient == y.gradient && x.frequency == y.frequency &&
@@ -36,7 +37,8 @@ PhotonDomains photonDomains(const Scene& scene) {
             const auto [r0, r1] = mesh.surfaceRegions[s];
             if (r1 < 0 || medium.stopsAt(uint32_t(s))) continue;
             const int a = v.regionMedium[size_t(r0)], b = v.regionMedium[size_t(r1)];
-            if (!sameMedium(scene.desc().media[a], scene.desc().media[b], medium.region(r0), medium.region(r1))) continue;
+            if (!sameMedium(scene.desc().media[a], scene.desc().media[b], medium.region(r0), medium.region(r1)))
+                continue;
             const int ra = root(parent, a), rb = root(parent, b);
             parent[std::max(ra, rb)] = std::min(ra, rb);  // a set's root stays its smallest medium
         }
@@ -58,7 +60,8 @@ PhotonDomains photonDomains(const Scene& scene) {
         const TetMesh& mesh = v.media->mesh();
         for (size_t s = 0; s < mesh.surface.size(); ++s) {
             const auto [r0, r1] = mesh.surfaceRegions[s];
-            const int a = d.ofMedium[size_t(v.regionMedium[size_t(r0)])], b = r1 < 0 ? -1 : d.ofMedium[size_t(v.regionMedium[size_t(r1)])];
+            const int a = d.ofMedium[size_t(v.regionMedium[size_t(r0)])],
+                      b = r1 < 0 ? -1 : d.ofMedium[size_t(v.regionMedium[size_t(r1)])];
             if (a == b) continue;
             d.boundary[size_t(a)].push_back(mesh.surface[s]);
             if (b >= 0) d.boundary[size_t(b)].push_back(mesh.surface[s]);

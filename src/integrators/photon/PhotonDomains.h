@@ -13,7 +13,7 @@
 namespace tetglow {
 
 struct PhotonDomains {
-    std::vector<int> ofMedium;  // per scene medium: its domain
+    std::vector<int> ofMedium;            // per scene medium: its domain
     std::vector<std::vector<int>> media;  // per domain: its scene media, ascending
     // Per domain: the surface triangles of its volume's tet mesh with the domain on one side
     // only (its boundary: the volume's surface, dielectric interfaces and other media).

@@ -49,15 +49,20 @@ double opticalSize(const Scene& scene, const std::vector<int>& media, double dia
 }  // namespace
 
 PhotonIntegrator::PhotonIntegrator(const Scene& scene, const IntegratorDesc& desc)
-    : scene_(scene), desc_(desc), cameraMedium_(scene.mediumAt(scene.camera().position())), source_(scene),
-      domains_(photonDomains(scene)), walk_(scene, desc.maxDepth) {
+    : scene_(scene),
+      desc_(desc),
+      cameraMedium_(scene.mediumAt(scene.camera().position())),
+      source_(scene),
+      domains_(photonDomains(scene)),
+      walk_(scene, desc.maxDepth) {
     // The render's time limit runs from here (the render starts next): no photon pass traces past it.
     if (desc.timeLimit > 0)
         deadline_ = std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                                                              std::chrono::duration<double>(desc.timeLimit));
+                                                           std::chrono::duration<double>(desc.timeLimit));
     // A pass stores about one photon per path, checked now; as a path can store up to max depth
     // photons, their number is also bounded while they are traced (maxStored).
-    checkMemory(double(desc.photons) * sizeof(Photon), std::to_string(desc.photons) + " photon paths per pass (a 32-byte photon each)");
+    checkMemory(double(desc.photons) * sizeof(Photon),
+                std::to_string(desc.photons) + " photon paths per pass (a 32-byte photon each)");
     Bounds3 all;
     for (size_t d = 0; d < domains_.media.size(); ++d) {
         const TetMesh& mesh = scene.volumes()[size_t(domains_.volume[d])].media->mesh();
@@ -87,7 +92,9 @@ double PhotonIntegrator::radiusScale(uint64_t pass, double alpha, int dim) {
 void PhotonIntegrator::beginPass(uint64_t pass, const std::atomic<bool>* cancel) {
     const auto start = std::chrono::steady_clock::now();
     const auto maxStored = uint64_t(physicalMemory() / kBytesPerStoredPhoton);
-    TracedPhotons traced = tracePhotons(scene_, source_, {desc_.photons, desc_.maxDepth, desc_.seed, pass, desc_.finalGather, maxStored, deadline_, cancel});
+    TracedPhotons traced = tracePhotons(
+        scene_, source_,
+        {desc_.photons, desc_.maxDepth, desc_.seed, pass, desc_.finalGather, maxStored, deadline_, cancel});
     // k-NN balls are three-dimensional kernels, beam discs and surface discs two-dimensional.
     auto scale = [&](int dim) { return radiusScale(pass, desc_.alpha > 0 ? desc_.alpha : balancedAlpha(dim), dim); };
     volumeScale_ = scale(desc_.estimate == PhotonEstimate::Beam ? 2 : 3);
@@ -100,16 +107,20 @@ void PhotonIntegrator::beginPass(uint64_t pass, const std::atomic<bool>* cancel)
         std::vector<Photon> photons;  // the domain's media's, in medium order
         for (int medium : domains_.media[m]) {
             auto& stored = traced.volume[size_t(medium)];
-            if (photons.empty()) photons = std::move(stored);
-            else photons.insert(photons.end(), stored.begin(), stored.end());
+            if (photons.empty())
+                photons = std::move(stored);
+            else
+                photons.insert(photons.end(), stored.begin(), stored.end());
         }
         if (mp.dense) photons.clear();  // the eye path walks the medium instead
         stats_.volumePhotons += photons.size();
         if (photons.empty()) continue;
         mp.map = std::make_unique<PhotonMap>(std::move(photons));
         if (desc_.estimate == PhotonEstimate::Beam) {
-            if (desc_.radius > 0) mp.map->setRadii(float(desc_.radius * volumeScale_));
-            else mp.map->assignRadii(desc_.k, mp.maxRadius, float(volumeScale_));
+            if (desc_.radius > 0)
+                mp.map->setRadii(float(desc_.radius * volumeScale_));
+            else
+                mp.map->assignRadii(desc_.k, mp.maxRadius, float(volumeScale_));
             mp.beams = std::make_unique<PhotonBeams>(mp.map->photons());
             bytes += mp.beams->bytes();
             const auto& photons = mp.map->photons();
@@ -119,8 +130,9 @@ void PhotonIntegrator::beginPass(uint64_t pass, const std::atomic<bool>* cancel)
             tbb::parallel_for(tbb::blocked_range<size_t>(0, photons.size()), [&](const auto& range) {
                 for (size_t i = range.begin(); i != range.end(); ++i) {
                     const double r = photons[i].radius;
-                    const double volume = desc_.boundaryCorrection ? balls_[m].inside(glm::dvec3(photons[i].position), r)
-                                                                   : 4 * kPi / 3 * r * r * r;
+                    const double volume = desc_.boundaryCorrection
+                                              ? balls_[m].inside(glm::dvec3(photons[i].position), r)
+                                              : 4 * kPi / 3 * r * r * r;
                     mp.invBallVolume[i] = float(1 / volume);
                 }
             });
@@ -156,7 +168,8 @@ RGB PhotonIntegrator::radiance(const Ray& cameraRay, Rng& rng) const {
             const ColumnProfile column(media, ray, state.start, tMax);
             // A dense domain ahead: estimate up to it, then walk it (and all after) as volpath does.
             const auto& pieces = column.pieces();
-            const auto dense = std::find_if(pieces.begin(), pieces.end(), [&](const auto& p) { return media_[domainOf(state.volume, p.tet)].dense; });
+            const auto dense = std::find_if(pieces.begin(), pieces.end(),
+                                            [&](const auto& p) { return media_[domainOf(state.volume, p.tet)].dense; });
             if (dense != pieces.end()) {
                 if (dense != pieces.begin()) {
                     const ColumnProfile before(media, ray, state.start, dense->tIn);
@@ -182,9 +195,12 @@ RGB PhotonIntegrator::radiance(const Ray& cameraRay, Rng& rng) const {
         const MaterialDesc& material = scene_.material(*hit);
         if (!isSpecular(material)) {
             const VolumeState here = scene_.afterHit(*hit, ray.d, state);
-            L += beta * sampleDirect(scene_, hit->p, rng, false, [&](const glm::dvec3& wi) {
-                return Scattering{evaluateMaterial(material, ray.d, hit->n, wi), 0};
-            }, [&](const Ray& r, double t) { return transmittance(scene_, r, t, here, &rng); });
+            L += beta * sampleDirect(
+                            scene_, hit->p, rng, false,
+                            [&](const glm::dvec3& wi) {
+                                return Scattering{evaluateMaterial(material, ray.d, hit->n, wi), 0};
+                            },
+                            [&](const Ray& r, double t) { return transmittance(scene_, r, t, here, &rng); });
             if (gathering || !desc_.finalGather) {
                 L += beta * caustics(surface_.get(), *hit, ray.d, material);
                 break;
@@ -244,8 +260,9 @@ RGB PhotonIntegrator::marchKnn(int v, const Ray& ray, const ColumnProfile& colum
         for (int i = 0; i < n; ++i) {
             const double t = piece.tIn + (i + u) * h;
             const glm::dvec3 p = ray.at(t);
-            const RGB scattered = sigmaS * medium.density(piece.tet, p) * directInMedium(scene_, v, p, ray.d, piece.tet, rng) +
-                                  knnEstimate(v, piece.tet, p, ray.d);
+            const RGB scattered =
+                sigmaS * medium.density(piece.tet, p) * directInMedium(scene_, v, p, ray.d, piece.tet, rng) +
+                knnEstimate(v, piece.tet, p, ray.d);
             L += column.transmittance(t) * h * scattered;
         }
     }
@@ -301,14 +318,16 @@ RGB PhotonIntegrator::beamEstimate(int v, const Ray& ray, const ColumnProfile& c
         const HenyeyGreenstein& phase = scene_.volumes()[v].media->at(pieces[first].tet).phase;
         const auto& photons = mp.map->photons();
         const double begin = pieces[first].tIn, end = pieces[last - 1].tOut;
-        mp.beams->query(ray.o, ray.d, begin - mp.largestRadius, end + mp.largestRadius, [&](uint32_t i, double t, double distance2) {
-            const Photon& photon = photons[i];
-            const double half = std::sqrt(std::max(0.0, double(photon.radius) * photon.radius - distance2));
-            const double a = std::max(begin, t - half), b = std::min(end, t + half);
-            if (b <= a) return;
-            const double f = phase.eval(-glm::dot(glm::dvec3(unpackDirection(photon.direction)), ray.d));
-            L += column.transmitted(a, b) * RGB(photon.power) * (f * mp.invBallVolume[i]);
-        });
+        mp.beams->query(
+            ray.o, ray.d, begin - mp.largestRadius, end + mp.largestRadius,
+            [&](uint32_t i, double t, double distance2) {
+                const Photon& photon = photons[i];
+                const double half = std::sqrt(std::max(0.0, double(photon.radius) * photon.radius - distance2));
+                const double a = std::max(begin, t - half), b = std::min(end, t + half);
+                if (b <= a) return;
+                const double f = phase.eval(-glm::dot(glm::dvec3(unpackDirection(photon.direction)), ray.d));
+                L += column.transmitted(a, b) * RGB(photon.power) * (f * mp.invBallVolume[i]);
+            });
     }
     return L;
 }
@@ -339,7 +358,8 @@ RGB PhotonIntegrator::directAlong(int v, const Ray& ray, const ColumnProfile& co
     return weight * directInMedium(scene_, v, ray.at(event->t), ray.d, event->tet, rng);
 }
 
-RGB PhotonIntegrator::caustics(const PhotonMap* map, const Intersection& hit, const glm::dvec3& d, const MaterialDesc& material) const {
+RGB PhotonIntegrator::caustics(const PhotonMap* map, const Intersection& hit, const glm::dvec3& d,
+                               const MaterialDesc& material) const {
     if (!map) return RGB(0);
     thread_local std::vector<Neighbour> near;
     const double r = gather(*map, hit.p, surfaceScale_, surfaceMaxRadius_, near);

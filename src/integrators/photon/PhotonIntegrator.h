@@ -35,10 +35,10 @@
 namespace tetglow {
 
 struct PhotonStats {
-    double tracingSeconds = 0;  // photon tracing and map building, all passes
+    double tracingSeconds = 0;                                  // photon tracing and map building, all passes
     uint64_t paths = 0, volumePhotons = 0, surfacePhotons = 0;  // all passes
-    size_t bytes = 0;           // the largest pass's maps
-    EnergyBalance energy;       // all passes
+    size_t bytes = 0;                                           // the largest pass's maps
+    EnergyBalance energy;                                       // all passes
 };
 
 class PhotonIntegrator : public Integrator {
@@ -80,26 +80,28 @@ private:
     // The photons of `map` around p, nearest first: those within the fixed radius times `scale`,
     // or the k nearest within maxRadius. Returns the gather radius: the fixed one, or `scale`
     // times the k-th distance (maxRadius when fewer than k are within reach).
-    double gather(const PhotonMap& map, const glm::dvec3& p, double scale, float maxRadius, std::vector<Neighbour>& near) const;
+    double gather(const PhotonMap& map, const glm::dvec3& p, double scale, float maxRadius,
+                  std::vector<Neighbour>& near) const;
     // sigma_s times in-scattered radiance from the volume photons at p in tet `tet` of volume v, seen along d.
     RGB knnEstimate(int v, uint32_t tet, const glm::dvec3& p, const glm::dvec3& d) const;
     int domainOf(int v, uint32_t tet) const;  // the photon domain whose region holds the tet
     // Surface photons of `map` around the hit, cone-filtered, reflected towards -d.
-    RGB caustics(const PhotonMap* map, const Intersection& hit, const glm::dvec3& d, const MaterialDesc& material) const;
+    RGB caustics(const PhotonMap* map, const Intersection& hit, const glm::dvec3& d,
+                 const MaterialDesc& material) const;
 
     const Scene& scene_;
     IntegratorDesc desc_;
     VolumeState cameraMedium_;
     PhotonSource source_;
     PhotonDomains domains_;
-    VolPathIntegrator walk_;  // the eye path's walk through optically dense domains
+    VolPathIntegrator walk_;                                     // the eye path's walk through optically dense domains
     std::vector<std::unique_ptr<SurfaceBVH>> regionBoundaries_;  // per photon domain: its boundary's triangles
-    std::vector<BallVolume> balls_;  // per photon domain, over its boundary
-    std::vector<MediumPhotons> media_;  // per photon domain
-    std::unique_ptr<PhotonMap> surface_;  // every surface photon not straight from its light
+    std::vector<BallVolume> balls_;                              // per photon domain, over its boundary
+    std::vector<MediumPhotons> media_;                           // per photon domain
+    std::unique_ptr<PhotonMap> surface_;                         // every surface photon not straight from its light
     std::unique_ptr<PhotonMap> caustic_;  // those from a light by specular events only (final gathering)
     float surfaceMaxRadius_ = 0;
-    double volumeScale_ = 1, surfaceScale_ = 1;  // this pass's radius factors
+    double volumeScale_ = 1, surfaceScale_ = 1;                      // this pass's radius factors
     std::optional<std::chrono::steady_clock::time_point> deadline_;  // of the time limit, if any
     PhotonStats stats_;
 };

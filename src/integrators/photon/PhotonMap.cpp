@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <stdexcept>
 
-#include <nanoflann.hpp>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <nanoflann.hpp>
 
 namespace tetglow {
 namespace {
@@ -16,11 +16,13 @@ struct Cloud {
     size_t kdtree_get_point_count() const { return photons.size(); }
     float kdtree_get_pt(uint32_t i, size_t axis) const { return photons[i].position[int(axis)]; }
     template <class Box>
-    bool kdtree_get_bbox(Box&) const { return false; }
+    bool kdtree_get_bbox(Box&) const {
+        return false;
+    }
 };
 
-using Tree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, Cloud, float, uint32_t>,
-                                                 Cloud, 3, uint32_t>;
+using Tree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, Cloud, float, uint32_t>, Cloud, 3,
+                                                 uint32_t>;
 
 // The result sets write Neighbours straight into the caller's vector. nanoflann offers a
 // point only when its distance2 < worstDist() as read on entering the leaf, which enforces

@@ -30,7 +30,8 @@ Photon makePhoton(const glm::dvec3& p, const RGB& power, const glm::dvec3& direc
 // One photon path, from emission to absorption, escape or the event cap.
 class PhotonPath {
 public:
-    PhotonPath(const Scene& scene, const PhotonTracingOptions& options, TracedPhotons& out, std::atomic<uint64_t>& stored)
+    PhotonPath(const Scene& scene, const PhotonTracingOptions& options, TracedPhotons& out,
+               std::atomic<uint64_t>& stored)
         : scene_(scene), options_(options), out_(out), stored_(stored) {}
 
     void trace(const PhotonSource::Emission& e, Rng& rng) {
@@ -105,7 +106,8 @@ public:
             if (keep == 0) break;
             path.beta /= keep;
         }
-        const RGB deficit = energy.emitted - energy.absorbedInMedia - energy.absorbedOnSurfaces - energy.escaped - energy.cut;
+        const RGB deficit =
+            energy.emitted - energy.absorbedInMedia - energy.absorbedOnSurfaces - energy.escaped - energy.cut;
         energy.deficitSquares = deficit * deficit;
         out_.energy.add(energy);
     }
@@ -113,8 +115,9 @@ public:
 private:
     void store(std::vector<Photon>& photons, const Photon& photon) {
         if (stored_.fetch_add(1, std::memory_order_relaxed) >= options_.maxStored)
-            throw InputError("photon tracing: " + std::to_string(options_.paths) + " photon paths per pass store more than " +
-                             std::to_string(options_.maxStored) + " photons, more than this machine's memory holds: ask for fewer "
+            throw InputError("photon tracing: " + std::to_string(options_.paths) +
+                             " photon paths per pass store more than " + std::to_string(options_.maxStored) +
+                             " photons, more than this machine's memory holds: ask for fewer "
                              "photons per pass or a lower max depth");
         photons.push_back(photon);
     }
@@ -182,7 +185,8 @@ PhotonSource::Emission PhotonSource::sample(const Scene& scene, Rng& rng) const 
     const glm::dvec3 p0 = mesh.vertices[v[0]];
     const double u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
     const glm::dvec3 w = sampleUniformTetrahedron({u0, u1, u2});
-    const glm::dvec3 p = p0 + w.x * (mesh.vertices[v[1]] - p0) + w.y * (mesh.vertices[v[2]] - p0) + w.z * (mesh.vertices[v[3]] - p0);
+    const glm::dvec3 p =
+        p0 + w.x * (mesh.vertices[v[1]] - p0) + w.y * (mesh.vertices[v[2]] - p0) + w.z * (mesh.vertices[v[3]] - p0);
     const double u3 = rng.uniform(), u4 = rng.uniform();
     out.ray = {p, sampleUniformSphere({u3, u4})};
     // The point is uniform in the tet; its density relative to the tet's mean corrects for that.
@@ -215,7 +219,8 @@ TracedPhotons tracePhotons(const Scene& scene, const PhotonSource& source, const
     all.volume.resize(scene.media().size());
     for (const TracedPhotons& part : parts) {
         all.paths += part.paths;
-        for (size_t m = 0; m < all.volume.size(); ++m) all.volume[m].insert(all.volume[m].end(), part.volume[m].begin(), part.volume[m].end());
+        for (size_t m = 0; m < all.volume.size(); ++m)
+            all.volume[m].insert(all.volume[m].end(), part.volume[m].begin(), part.volume[m].end());
         all.surface.insert(all.surface.end(), part.surface.begin(), part.surface.end());
         all.caustic.insert(all.caustic.end(), part.caustic.begin(), part.caustic.end());
         all.energy.add(part.energy);

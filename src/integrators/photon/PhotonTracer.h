@@ -23,8 +23,8 @@ struct PhotonTracingOptions {
     uint64_t paths = 100000;  // photon paths emitted
     int maxDepth = 64;        // scattering and surface events per path
     uint64_t seed = 0;
-    uint64_t pass = 0;        // independent photons for every pass
-    bool caustics = false;    // also keep the caustic photons apart (TracedPhotons::caustic)
+    uint64_t pass = 0;      // independent photons for every pass
+    bool caustics = false;  // also keep the caustic photons apart (TracedPhotons::caustic)
     // Photons the pass may store (volume, surface and caustic together): a path stores up to
     // maxDepth, so only the count itself bounds the memory. One more is an InputError, raised
     // before it is stored.
@@ -60,7 +60,7 @@ public:
     struct Emission {
         Ray ray;
         RGB flux{0};
-        VolumeState medium;     // the volume the photon starts in
+        VolumeState medium;  // the volume the photon starts in
         bool fromMedium = false;
     };
     Emission sample(const Scene& scene, Rng& rng) const;
