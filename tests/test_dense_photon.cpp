@@ -93,5 +93,29 @@ TEST(DensePhoton, DenseCoreInAThinMediumAgreesWithVolpath) {
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(photon[c], reference[c], 0.04 * reference[c]);
 }
 
+// Sealed in glass under a point light alone, photon mapping walks the dense medium as volpath
+// does, whose shadow rays cannot refract to the light: the medium renders dark, and now the user
+// is told so (it was dark without a word). Index-matched, or under the sky, nothing is said.
+TEST(DensePhoton, SealedInGlassUnderAPointLightIsReported) {
+    SceneDesc s = denseSphere(8);
+    IntegratorDesc desc;
+    desc.type = IntegratorType::Photon;
+    desc.photons = 1000;
+    const Scene matched(s);
+    EXPECT_TRUE(PhotonIntegrator(matched, desc).warnings().empty());
+    s.media[0].boundaryMaterial = {MaterialType::Dielectric, RGB(0.5), 1.5};
+    const Scene glass(s);
+    const std::vector<std::string> lines = PhotonIntegrator(glass, desc).warnings();
+    ASSERT_EQ(lines.size(), 1u);
+    EXPECT_NE(
+        lines[0].find(" lies inside a dielectric boundary and is optically dense: photon mapping walks it as volpath "
+                      "does, which cannot carry light from a point, spot or distant light through that boundary"),
+        std::string::npos)
+        << lines[0];
+    s.lights = {environment(1)};
+    const Scene sky(s);
+    EXPECT_TRUE(PhotonIntegrator(sky, desc).warnings().empty());
+}
+
 }  // namespace
 }  // namespace tetglow::test

@@ -17,7 +17,6 @@
 #include "integrators/photon/PhotonIntegrator.h"
 #include "render/ImageIO.h"
 #include "render/PartialRender.h"
-#include "render/UnsampledLight.h"
 #include "scene/SceneFingerprint.h"
 #include "scene/Turntable.h"
 
@@ -73,9 +72,8 @@ void run(const Options& o) {
                      m.media->mesh().tets.size(), m.steinerPoints,
                      m.stats.fromCache ? "read from the cache" : "tetrahedralized", m.stats.seconds);
     if (o.tetsOnly) return;
-    for (const std::string& w : unsampledLightWarnings(scene, desc.integrator.type))
-        std::fprintf(stderr, "tetglow: warning: %s\n", w.c_str());
     const auto integrator = makeIntegrator(scene, desc.integrator);
+    for (const std::string& w : integrator->warnings()) std::fprintf(stderr, "tetglow: warning: %s\n", w.c_str());
 
     RenderOptions options;
     options.spp = desc.integrator.spp;

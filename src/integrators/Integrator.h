@@ -2,6 +2,8 @@
 #pragma once
 #include <atomic>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "render/Scene.h"
 #include "sampling/Rng.h"
@@ -17,6 +19,9 @@ public:
     virtual void beginPass(uint64_t /*pass*/, const std::atomic<bool>* /*cancel*/ = nullptr) {}
     // One sample of the radiance arriving at the camera along `ray` (unit direction).
     virtual RGB radiance(const Ray& ray, Rng& rng) const = 0;
+    // Light this integrator cannot carry to some medium of the scene, one line per medium
+    // (render/UnsampledLight.h), for the user to be told before the render.
+    virtual std::vector<std::string> warnings() const { return {}; }
 };
 
 std::unique_ptr<Integrator> makeIntegrator(const Scene& scene, const IntegratorDesc& desc);

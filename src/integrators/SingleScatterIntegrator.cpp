@@ -6,6 +6,7 @@
 #include "integrators/DirectLighting.h"
 #include "integrators/PathStep.h"
 #include "render/Material.h"
+#include "render/UnsampledLight.h"
 #include "tet/InteriorRepair.h"
 
 namespace tetglow {
@@ -139,6 +140,10 @@ RGB SingleScatterIntegrator::march(const Ray& ray, double tMax, const RGB& beta,
         tr *= mode_ == BoundaryMode::Tet ? marchTets(v, ray, tMax, beta * tr, rng, L)
                                          : marchSteps(v, ray, tMax, beta * tr, rng, L);
     return tr;
+}
+
+std::vector<std::string> SingleScatterIntegrator::warnings() const {
+    return unsampledLightWarnings(scene_, IntegratorType::Single);
 }
 
 RGB SingleScatterIntegrator::radiance(const Ray& cameraRay, Rng& rng) const {

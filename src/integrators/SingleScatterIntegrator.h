@@ -19,6 +19,7 @@ public:
     SingleScatterIntegrator(const Scene& scene, const IntegratorDesc& desc);
     ~SingleScatterIntegrator() override;
     RGB radiance(const Ray& ray, Rng& rng) const override;
+    std::vector<std::string> warnings() const override;
 
     // Parity and bbox: the scene medium (a region of volume v) the mode would pick at p, or -1.
     int pick(size_t v, const glm::dvec3& p) const;

@@ -5,11 +5,16 @@
 #include "media/Roulette.h"
 #include "media/SpectralPath.h"
 #include "render/Material.h"
+#include "render/UnsampledLight.h"
 
 namespace tetglow {
 
 VolPathIntegrator::VolPathIntegrator(const Scene& scene, int maxDepth)
     : scene_(scene), maxDepth_(maxDepth), cameraMedium_(scene.mediumAt(scene.camera().position())) {}
+
+std::vector<std::string> VolPathIntegrator::warnings() const {
+    return unsampledLightWarnings(scene_, IntegratorType::VolPath);
+}
 
 RGB VolPathIntegrator::radiance(const Ray& cameraRay, Rng& rng) const {
     return continuePath(cameraRay, cameraMedium_, 0, true, rng);

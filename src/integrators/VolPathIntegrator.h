@@ -11,6 +11,7 @@ class VolPathIntegrator : public Integrator {
 public:
     VolPathIntegrator(const Scene& scene, int maxDepth);
     RGB radiance(const Ray& ray, Rng& rng) const override;
+    std::vector<std::string> warnings() const override;
     // The path from ray (in `state`, after `depth` events) on. With emittersSeen false, an
     // emitter that ray reaches before the path scatters adds nothing: the caller's next-event
     // estimation counted it.

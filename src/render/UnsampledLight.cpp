@@ -4,11 +4,14 @@
 
 namespace tetglow {
 
+bool hasDeltaLight(const Scene& scene) {
+    const auto& lights = scene.lights();
+    return std::any_of(lights.begin(), lights.end(), [](const auto& l) { return l->isDelta(); });
+}
+
 std::vector<std::string> unsampledLightWarnings(const Scene& scene, IntegratorType integrator) {
     std::vector<std::string> warnings;
-    if (integrator == IntegratorType::Photon) return warnings;
-    const auto& lights = scene.lights();
-    if (std::none_of(lights.begin(), lights.end(), [](const auto& l) { return l->isDelta(); })) return warnings;
+    if (!hasDeltaLight(scene)) return warnings;
     const std::string name = integrator == IntegratorType::VolPath ? "volpath" : "single";
     for (size_t v = 0; v < scene.volumes().size(); ++v) {
         const SceneVolume& volume = scene.volumes()[v];

@@ -13,6 +13,7 @@
 #include "integrators/photon/OctahedralDirection.h"
 #include "media/Roulette.h"
 #include "render/Material.h"
+#include "render/UnsampledLight.h"
 
 namespace tetglow {
 
@@ -82,6 +83,22 @@ PhotonIntegrator::PhotonIntegrator(const Scene& scene, const IntegratorDesc& des
 }
 
 PhotonIntegrator::~PhotonIntegrator() = default;
+
+std::vector<std::string> PhotonIntegrator::warnings() const {
+    std::vector<std::string> lines;
+    if (!hasDeltaLight(scene_)) return lines;
+    std::vector<bool> named(scene_.volumes().size(), false);
+    for (size_t d = 0; d < media_.size(); ++d) {
+        const auto v = size_t(domains_.volume[d]);
+        if (!media_[d].dense || !scene_.sealed(int(v)) || !scene_.volumes()[v].media->scatters() || named[v]) continue;
+        named[v] = true;
+        lines.push_back(scene_.volumes()[v].name +
+                        " lies inside a dielectric boundary and is optically dense: photon mapping walks it as volpath "
+                        "does, which cannot carry light from a point, spot or distant light through that boundary, so "
+                        "that light is missing from it; an area light or the environment reaches it");
+    }
+    return lines;
+}
 
 double PhotonIntegrator::radiusScale(uint64_t pass, double alpha, int dim) {
     double shrink = 1;

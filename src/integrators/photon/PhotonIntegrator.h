@@ -47,6 +47,7 @@ public:
     ~PhotonIntegrator() override;
     void beginPass(uint64_t pass, const std::atomic<bool>* cancel = nullptr) override;
     RGB radiance(const Ray& ray, Rng& rng) const override;
+    std::vector<std::string> warnings() const override;
     const PhotonStats& stats() const { return stats_; }
 
     // Radius factor of pass `pass` (from 0) for a kernel of dimension `dim`: the radius^dim
