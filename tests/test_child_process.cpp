@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "Sanitizers.h"
+#include "base/ByteMessage.h"
 #include "base/ChildProcess.h"
 #include "base/Error.h"
 
@@ -107,6 +108,22 @@ TEST(ChildProcess, ALargeAnswerArrivesWhole) {
     for (size_t i = 0; i < size; ++i) wrong += answer[i] != byteAt(i);
     EXPECT_EQ(wrong, 0u);
     EXPECT_EQ(runInChild([] { return std::string(); }, {256 * kMiB, 60}), "");
+}
+
+// An empty list reads back as empty (an empty vector's data() may be null: UBSan reported the
+// memcpy into it when the tet cache job of a farm run handed back a mesh with no warnings).
+TEST(ByteMessage, EmptyItemsAndStringsRoundTrip) {
+    ByteWriter out;
+    out.add(std::vector<double>());
+    out.add(std::string());
+    out.addStrings({});
+    out.add(std::vector<double>{1.5, -2});
+    ByteReader in(out.bytes(), "the test");
+    EXPECT_TRUE(in.items<double>().empty());
+    EXPECT_EQ(in.string(), "");
+    EXPECT_TRUE(in.strings().empty());
+    EXPECT_EQ(in.items<double>(), (std::vector<double>{1.5, -2}));
+    EXPECT_THROW(in.number(), std::runtime_error);
 }
 
 }  // namespace

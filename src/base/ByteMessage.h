@@ -14,10 +14,14 @@ class ByteWriter {
 public:
     void add(const void* p, size_t n) { bytes_.append(static_cast<const char*>(p), n); }
     void add(uint64_t n) { add(&n, sizeof n); }
-    void add(const std::string& s) { add(s.size()), add(s.data(), s.size()); }
+    void add(const std::string& s) {
+        add(s.size());
+        add(s.data(), s.size());
+    }
     template <class T>
     void addItems(const T* items, size_t count) {
-        add(uint64_t(count)), add(items, count * sizeof(T));
+        add(uint64_t(count));
+        add(items, count * sizeof(T));
     }
     template <class T>
     void add(const std::vector<T>& items) {
@@ -39,7 +43,9 @@ public:
     ByteReader(std::string bytes, std::string from) : bytes_(std::move(bytes)), from_(std::move(from)) {}
     void take(void* p, size_t n) {
         if (n > bytes_.size() - pos_) lost();
-        std::memcpy(p, bytes_.data() + pos_, n), pos_ += n;
+        if (n == 0) return;  // `p` may then be an empty vector's null data()
+        std::memcpy(p, bytes_.data() + pos_, n);
+        pos_ += n;
     }
     uint64_t number() {
         uint64_t n;

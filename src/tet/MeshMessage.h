@@ -6,7 +6,10 @@
 
 namespace tetglow {
 
-inline void addMesh(ByteWriter& out, const TriangleMesh& mesh) { out.add(mesh.positions), out.add(mesh.triangles); }
+inline void addMesh(ByteWriter& out, const TriangleMesh& mesh) {
+    out.add(mesh.positions);
+    out.add(mesh.triangles);
+}
 
 // The mesh addMesh wrote; every index must name one of its positions.
 inline TriangleMesh takeMesh(ByteReader& in) {
