@@ -33,6 +33,14 @@ LightDesc environment(double radiance) {
     return l;
 }
 
+LightDesc pointLight(const glm::dvec3& position, const RGB& intensity) {
+    LightDesc l;
+    l.type = LightType::Point;
+    l.position = position;
+    l.intensity = intensity;
+    return l;
+}
+
 SceneDesc glowingSphereUnderQuad(int resolution) {
     MediumDesc m = sphereMedium(RGB(0.2, 0.5, 0.1), RGB(0.8, 0.6, 1.2), 0.5);
     m.emission = RGB(0.1, 0.2, 0.9);

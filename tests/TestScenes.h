@@ -10,6 +10,7 @@ MediumDesc sphereMedium(const RGB& sigmaA, const RGB& sigmaS, double g = 0, int 
 // The camera looks at the origin from z = 4 over a square image.
 SceneDesc sceneWith(const MediumDesc& medium, int resolution);
 LightDesc environment(double radiance);
+LightDesc pointLight(const glm::dvec3& position, const RGB& intensity);
 // A glowing, scattering, absorbing sphere (chromatic) under a quad light in a sky: every kind of
 // light an integrator handles, for tests of determinism and of unchanged means.
 SceneDesc glowingSphereUnderQuad(int resolution);

@@ -16,10 +16,7 @@ namespace {
 
 SceneDesc denseSphere(int resolution) {
     SceneDesc s = sceneWith(sphereMedium(RGB(0), RGB(1e4), 0, 3), resolution);
-    LightDesc point;
-    point.type = LightType::Point;
-    point.position = {2, 3, 2};
-    point.intensity = RGB(20);
+    LightDesc point = pointLight({2, 3, 2}, RGB(20));
     s.lights.push_back(point);
     return s;
 }

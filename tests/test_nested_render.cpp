@@ -307,10 +307,7 @@ TEST(NestedRender, PhotonMappingOverAThinShellOfTheSameMediumAgreesWithVolpath) 
     for (auto& p : inner.boundary.positions) p = {roundToFloat(p.x), roundToFloat(p.y), roundToFloat(p.z)};
     SceneDesc desc = sceneWith(outer, 6);
     desc.media.push_back(inner);
-    LightDesc point;  // no sky: the image is the medium's light alone
-    point.type = LightType::Point;
-    point.position = {2, 3, 2};
-    point.intensity = RGB(20);
+    LightDesc point = pointLight({2, 3, 2}, RGB(20));  // no sky: the image is the medium's light alone
     desc.lights.push_back(point);
     const Scene scene(desc);
     ASSERT_EQ(scene.volumes().size(), 1u);
@@ -381,10 +378,7 @@ TEST(NestedRender, OnlyVolumesNoShadowRayLeavesAreSealed) {
             desc.media.push_back(absorber("box", box(glm::dvec3(-2), glm::dvec3(2)), 0.1));
             desc.media[1].boundaryMaterial = material(*c.outerBox);
         }
-        LightDesc point;
-        point.type = LightType::Point;
-        point.position = c.light;
-        point.intensity = RGB(5);
+        LightDesc point = pointLight(c.light, RGB(5));
         desc.lights = {point, environment(0.5)};
         const Scene scene(desc);
         ASSERT_EQ(scene.sealed(0), c.sealed) << c.name;

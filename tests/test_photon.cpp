@@ -24,10 +24,7 @@ SceneDesc closedWorld() {
     SceneDesc s = sceneWith(m, 16);
     s.surfaces.push_back(
         {"floor", quad({-3, -1.2, -3}, {0, 0, 6}, {6, 0, 0}), {MaterialType::Diffuse, RGB(0.6, 0.5, 0.4)}});
-    LightDesc point;
-    point.type = LightType::Point;
-    point.position = {1.5, 2, 1};
-    point.intensity = RGB(4, 3, 2);
+    LightDesc point = pointLight({1.5, 2, 1}, RGB(4, 3, 2));
     s.lights.push_back(point);
     LightDesc spot = point;
     spot.type = LightType::Spot;

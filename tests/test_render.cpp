@@ -233,10 +233,7 @@ RGB meanAbsDiff(const Image& a, const Image& b) {
 // step-size error; filling the bounding box does not.
 TEST(Render, SingleScatteringBoundaryModes) {
     SceneDesc desc = sceneWith(sphereMedium(RGB(0.3), RGB(1.5)), 24);
-    LightDesc light;
-    light.type = LightType::Point;
-    light.position = {2, 3, 2};
-    light.intensity = RGB(20);
+    LightDesc light = pointLight({2, 3, 2}, RGB(20));
     desc.lights.push_back(light);
     const Scene scene(desc);
     auto renderWith = [&](BoundaryMode mode, double step) {

@@ -88,10 +88,7 @@ TEST(Retune, AMovedCameraRendersAsInAFreshScene) {
 // light and the sky retuned, one turned off, render what a scene built with them renders.
 TEST(Retune, LightsRenderAsInAFreshScene) {
     SceneDesc before = glowingSphereUnderQuad(16);
-    LightDesc point;
-    point.type = LightType::Point;
-    point.position = {2, 2, 2};
-    point.intensity = RGB(4, 2, 1);
+    LightDesc point = pointLight({2, 2, 2}, RGB(4, 2, 1));
     before.lights.push_back(point);
     SceneDesc after = before;
     after.lights[0].radiance = RGB(0.1, 0.2, 0.6);  // the environment
