@@ -2,8 +2,9 @@
 """`tetglow preview` in headless Chromium, end to end.
 
 Starts the server on a free port with a small copy of the demo fish (without its water), then: other paths get 404;
-malformed and out-of-range requests get the loader's one-line errors and change nothing; the page
-shows the image; dragging the g slider restarts the render (the pass counter starts again) and
+malformed and out-of-range requests get the loader's one-line errors and change nothing; on a
+sphere under one light, a colour picked that the server refuses (the light made black) shows its
+error in the page, naming the control, until a good colour is picked; the page shows the image; dragging the g slider restarts the render (the pass counter starts again) and
 changes the image; a bad value typed into the page shows the error there, in the field's words;
 an emission that overflows the film and a negative photon count, typed in turn, show two errors
 (the first naming the medium and field) while the render goes on, each cleared when its field
@@ -126,6 +127,45 @@ class Server:
         return self.process.wait(10)
 
 
+# A sphere under one point light, nothing glowing: a light made black leaves nothing emitting.
+ONE_LIGHT = {
+    "camera": {"position": [0.3, 0.2, 4], "look_at": [0, 0, 0], "fov": 35, "resolution": [32, 32]},
+    "integrator": {"type": "volpath", "spp": 4, "seed": 1},
+    "lights": [{"type": "point", "position": [2, 3, 2], "intensity": 20}],
+    "media": [{"shape": {"type": "sphere", "center": [0, 0, 0], "radius": 1, "subdivisions": 2},
+               "sigma_a": 0.3, "sigma_s": 1.5, "g": 0, "boundary": {"type": "interface"}}],
+}
+
+
+def check_choices(browser, tetglow, folder):
+    """A colour picked that the server refuses: its error is shown in the page, naming the
+    control and the value picked, the control shows the good colour again, and the error clears
+    when a good colour is picked."""
+    path = os.path.join(folder, "one-light.json")
+    with open(path, "w") as f:
+        json.dump(ONE_LIGHT, f)
+    server = Server(tetglow, path)
+    try:
+        browser.get(server.url + "/")
+        js = browser.execute_script
+        errors = lambda: js("return [...document.querySelectorAll('#error li')].map((e) => e.textContent)")
+        colour = lambda: js("return document.querySelector('.light .light-colour').value")
+        wait_for("the light's colour in the page", lambda: colour() == "#ffffff")
+        pick = "const c = document.querySelector('.light .light-colour'); c.value = arguments[0]; c.dispatchEvent(new Event('change'));"
+        generation = server.state()["generation"]
+        js(pick, "#000000")
+        wait_for("the refusal shown", lambda: errors() == [
+            "point · colour #000000: request: nothing emits light: turn a light on, or give it or a medium an emission"])
+        check(colour() == "#ffffff", f"the picker shows {colour()}, not the good colour")
+        check(server.state()["generation"] == generation, "a refused colour restarted the render")
+        js(pick, "#ff0000")
+        wait_for("the error cleared by a good colour", lambda: errors() == [])
+        light = server.state()["settings"]["lights"][0]["intensity"]
+        check(light == [20, 0, 0], f"the red light is {light}")
+    finally:
+        check(server.stop() == 0, "the one-light preview did not stop cleanly")
+
+
 def check_requests(server):
     """Only the page, the image and the API answer; bad requests get one-line errors and change nothing."""
     for path in ["/nope", "/etc/passwd", "/..%2f..%2fetc%2fpasswd", "/web/preview.js", "/index.html", "/image.exr", "/previewXjs"]:
@@ -190,6 +230,7 @@ def main():
     browser = webdriver.Chrome(service=Service(shutil.which("chromedriver")), options=options)
     try:
         check_requests(server)
+        check_choices(browser, a.tetglow, work)
 
         browser.get(server.url + "/")
         js = browser.execute_script
