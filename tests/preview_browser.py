@@ -291,7 +291,7 @@ def main():
         strength = browser.find_element(By.CSS_SELECTOR, ".medium .emission-strength").get_attribute("value")
         photons_before = server.state()["settings"]["integrator"]["photons"]
         type_into(".medium .emission-strength", "1e30")
-        wait_for("the overflow named", lambda: any(e.startswith("/media/0 (") and " emission " in e and "beyond the film's range" in e for e in errors()))
+        wait_for("the overflow named", lambda: any(e.startswith(name + " · emission ") and "beyond the film's range" in e for e in errors()))
         type_into("[data-key=photons]", "-5")
         wait_for("both errors", lambda: len(errors()) == 2)
         check(any(e == "photons per pass: -5 is outside the range allowed, an integer [1, 1099511627776]" for e in errors()), f"errors: {errors()}")

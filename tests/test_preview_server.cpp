@@ -208,7 +208,7 @@ TEST_F(PreviewServer, AValueThatOverflowsTheFilmIsNamedAndUndone) {
     ASSERT_EQ(change(R"({"media": [{"emission": 1e30}]})").status, 200);
     ASSERT_TRUE(waitFor([](const Json& s) { return s["render_error"] != ""; }));
     const Json failed = state();
-    EXPECT_EQ(failed["render_error"].get<std::string>().rfind("/media/0 emission 1e+30: pixel (", 0), 0u)
+    EXPECT_EQ(failed["render_error"].get<std::string>().rfind("/media/0 · emission 1e+30: pixel (", 0), 0u)
         << failed["render_error"];
     EXPECT_NE(failed["render_error"].get<std::string>().find("beyond the film's range"), std::string::npos)
         << failed["render_error"];
@@ -224,6 +224,22 @@ TEST_F(PreviewServer, AValueThatOverflowsTheFilmIsNamedAndUndone) {
     EXPECT_EQ(state()["render_error"], "");
 }
 
+// A medium the scene names is named so in the overflow's error, as the page names it.
+TEST_F(PreviewServer, TheOverflowNamesTheMediumAsThePageDoes) {
+    std::ifstream in(dir_ / "sphere.json");
+    Json scene = Json::parse(in);
+    scene["media"][0]["name"] = "body";
+    std::ofstream(dir_ / "named.json") << scene.dump();
+    server_.reset();
+    server_ = std::make_unique<PreviewProcess>((dir_ / "named.json").string() + " --port 0 --threads 1");
+    EXPECT_EQ(state()["media_names"], Json::parse(R"(["body"])"));
+    ASSERT_TRUE(waitFor([](const Json& s) { return !s["image"].is_null() && s["image"]["passes"] == 4; }));
+    ASSERT_EQ(change(R"({"media": [{"emission": 1e30}]})").status, 200);
+    ASSERT_TRUE(waitFor([](const Json& s) { return s["render_error"] != ""; }));
+    EXPECT_EQ(state()["render_error"].get<std::string>().rfind("body · emission 1e+30: pixel (", 0), 0u)
+        << state()["render_error"];
+}
+
 // A change that has no pass yet when the next one overflows (a user typing two values in
 // quick succession on a slow machine) is kept: only the value that failed is undone.
 TEST_F(PreviewServer, AValueThatOverflowsUndoesOnlyItself) {
@@ -233,7 +249,7 @@ TEST_F(PreviewServer, AValueThatOverflowsUndoesOnlyItself) {
     ASSERT_EQ(change(R"({"media": [{"emission": 1e30}]})").status, 200);
     ASSERT_TRUE(waitFor([](const Json& s) { return s["render_error"] != ""; }));
     const Json failed = state();
-    EXPECT_EQ(failed["render_error"].get<std::string>().rfind("/media/0 emission 1e+30: pixel (", 0), 0u)
+    EXPECT_EQ(failed["render_error"].get<std::string>().rfind("/media/0 · emission 1e+30: pixel (", 0), 0u)
         << failed["render_error"];
     EXPECT_EQ(failed["settings"]["media"][0]["g"], 0.5) << "the change before the one that failed was undone too";
     EXPECT_EQ(failed["settings"]["media"][0]["emission"], good["media"][0]["emission"]);

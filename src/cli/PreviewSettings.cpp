@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <initializer_list>
+#include <map>
 
 #include "scene/SceneLoader.h"
 #include "scene/SceneWriter.h"
@@ -105,18 +106,25 @@ void PreviewSettings::apply(const std::string& text) {
 
 std::string PreviewSettings::changesFrom(const PreviewSettings& before) const {
     std::string out;
-    const auto compare = [&](const std::string& owner, const nlohmann::json& now, const nlohmann::json& was) {
+    // `words`: what the page calls a key where it is not the key itself.
+    const auto compare = [&](const std::string& owner, const nlohmann::json& now, const nlohmann::json& was,
+                             const std::map<std::string, std::string>& words = {}) {
         for (const auto& [key, value] : now.items())
-            if (!was.contains(key) || was[key] != value)
-                out += (out.empty() ? "" : ", ") + owner + key + " " + value.dump();
+            if (!was.contains(key) || was[key] != value) {
+                const auto word = words.find(key);
+                out +=
+                    (out.empty() ? "" : ", ") + owner + (word == words.end() ? key : word->second) + " " + value.dump();
+            }
     };
-    const std::vector<std::string> lights = lightNames();
+    // Named as the page names them: "body · emission", "spot · intensity".
+    const std::vector<std::string> media = mediumNames(), lights = lightNames();
     for (const auto& [key, value] : settings_.items()) {
         const nlohmann::json& was = before.settings_[key];
         if (key == "media")
-            for (size_t i = 0; i < value.size(); ++i) compare(scene_.media[i].name + " ", value[i], was[i]);
+            for (size_t i = 0; i < value.size(); ++i)
+                compare(media[i] + " · ", value[i], was[i], {{"scale", "density scale"}});
         else if (key == "lights")
-            for (size_t i = 0; i < value.size(); ++i) compare("light " + lights[i] + " ", value[i], was[i]);
+            for (size_t i = 0; i < value.size(); ++i) compare(lights[i] + " · ", value[i], was[i]);
         else if (value.is_object())
             compare(key + " ", value, was);
         else if (value != was)
