@@ -21,6 +21,14 @@ bool changed(const nlohmann::json& now, const nlohmann::json& was, const char* k
     return now.contains(key) && (!was.contains(key) || now[key] != was[key]);
 }
 
+// `value` as the file's `entry` has `key`: a single number stays one while the value is grey
+// (its three channels equal); otherwise the three channels.
+nlohmann::ordered_json asFileHas(const nlohmann::ordered_json& entry, const char* key, nlohmann::ordered_json value) {
+    const bool single = entry.contains(key) && entry[key].is_number() && value.is_array() && value.size() == 3 &&
+                        value[0] == value[1] && value[1] == value[2];
+    return single ? value[0] : value;
+}
+
 // A light's values as the scene file has them (the emitted quantity, "scale" and "on"), so that
 // the preview computes them as the loader does and a save writes them back in the file's units;
 // from the loaded light when there is no file (a pbrt scene).
@@ -155,12 +163,8 @@ nlohmann::ordered_json PreviewSettings::editedScene(nlohmann::ordered_json doc) 
     for (size_t i = 0; i < loaded_.lights.size(); ++i) {
         const nlohmann::json &now = settings_["lights"][i], &was = initial_["lights"][i];
         nlohmann::ordered_json& l = doc["lights"][i];
-        for (const auto& [key, value] : now.items()) {
-            if (!changed(now, was, key.c_str())) continue;
-            const bool single = l.contains(key) && l[key].is_number() && value.is_array() && value[0] == value[1] &&
-                                value[1] == value[2];
-            l[key] = single ? value[0] : value;  // a file's single number stays one where it can
-        }
+        for (const auto& [key, value] : now.items())
+            if (changed(now, was, key.c_str())) l[key] = asFileHas(l, key.c_str(), value);
     }
     size_t entry = 0;  // in the file's "media" (the cavities follow them in the scene, apart in the file)
     for (size_t i = 0; i < loaded_.media.size(); ++i) {
@@ -178,11 +182,11 @@ nlohmann::ordered_json PreviewSettings::editedScene(nlohmann::ordered_json doc) 
             return out;
         };
         for (const char* key : {"g", "emission"})
-            if (changed(now, was, key)) m[key] = now[key];
+            if (changed(now, was, key)) m[key] = asFileHas(m, key, now[key]);
         const bool zero = fileScale <= 0 &&
                           (changed(now, was, "sigma_a") || changed(now, was, "sigma_s") || changed(now, was, "scale"));
         for (const char* key : {"sigma_a", "sigma_s"})
-            if (zero || changed(now, was, key)) m[key] = inUnits(now[key]);
+            if (zero || changed(now, was, key)) m[key] = asFileHas(m, key, inUnits(now[key]));
         if (zero || changed(now, was, "scale")) m["scale"] = unit * now["scale"].get<double>();
     }
     return doc;

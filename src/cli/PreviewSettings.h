@@ -39,8 +39,9 @@ public:
     std::vector<std::string> lightNames() const;
     // The JSON scene file `original`, as it was read, with the values changed since loading in
     // the file's own terms: only changed keys are written (sigma_a and sigma_s in units of the
-    // medium's own "scale", a new scale as a multiple of it; a light's values as they are);
-    // every other key, mesh references, light scales and units included, stays as it was.
+    // medium's own "scale", a new scale as a multiple of it; a light's values as they are; a
+    // single number stays one while the value is grey); every other key, mesh references, light
+    // scales and units included, stays as it was.
     nlohmann::ordered_json editedScene(nlohmann::ordered_json original) const;
 
 private:
