@@ -3,7 +3,8 @@
 
 Starts the server on a free port with a small copy of the demo fish (without its water), then: other paths get 404;
 malformed and out-of-range requests get the loader's one-line errors and change nothing; on a
-sphere under one light, a colour picked that the server refuses (the light made black) shows its
+sphere under one light, a colour swatch shows its linear colour sRGB-encoded, every control has a
+title saying what it is, and a colour picked that the server refuses (the light made black) shows its
 error in the page, naming the control, until a good colour is picked; the page shows the image; dragging the g slider restarts the render (the pass counter starts again) and
 changes the image; a bad value typed into the page shows the error there, in the field's words;
 an emission that overflows the film and a negative photon count, typed in turn, show two errors
@@ -133,14 +134,21 @@ ONE_LIGHT = {
     "integrator": {"type": "volpath", "spp": 4, "seed": 1},
     "lights": [{"type": "point", "position": [2, 3, 2], "intensity": 20}],
     "media": [{"shape": {"type": "sphere", "center": [0, 0, 0], "radius": 1, "subdivisions": 2},
-               "sigma_a": 0.3, "sigma_s": 1.5, "g": 0, "boundary": {"type": "interface"}}],
+               "sigma_a": [0.3, 0.06, 0.03], "sigma_s": 1.5, "g": 0, "boundary": {"type": "interface"}}],
 }
 
 
+def srgb_hex(rgb):
+    """A linear colour as the #rrggbb a screen shows it by: the sRGB transfer function (IEC 61966-2-1)."""
+    encode = lambda v: 12.92 * v if v <= 0.0031308 else 1.055 * v ** (1 / 2.4) - 0.055
+    return "#" + "".join(f"{round(255 * encode(v)):02x}" for v in rgb)
+
+
 def check_choices(browser, tetglow, folder):
-    """A colour picked that the server refuses: its error is shown in the page, naming the
-    control and the value picked, the control shows the good colour again, and the error clears
-    when a good colour is picked."""
+    """A colour swatch shows its linear colour sRGB-encoded; every control says what it is when
+    pointed at; a colour picked that the server refuses: its error is shown in the page, naming
+    the control and the value picked, the control shows the good colour again, and the error
+    clears when a good colour is picked."""
     path = os.path.join(folder, "one-light.json")
     with open(path, "w") as f:
         json.dump(ONE_LIGHT, f)
@@ -149,8 +157,16 @@ def check_choices(browser, tetglow, folder):
         browser.get(server.url + "/")
         js = browser.execute_script
         errors = lambda: js("return [...document.querySelectorAll('#error li')].map((e) => e.textContent)")
-        colour = lambda: js("return document.querySelector('.light .light-colour').value")
+        colour = lambda: js("const c = document.querySelector('.light .light-colour'); return c && c.value")  # once built
         wait_for("the light's colour in the page", lambda: colour() == "#ffffff")
+        # The absorption colour: sigma_a over the largest coefficient (sigma_s, 1.5).
+        absorb = js("return document.querySelector('.medium .absorb-colour').value")
+        expected = srgb_hex([0.3 / 1.5, 0.06 / 1.5, 0.03 / 1.5])
+        check(absorb == expected, f"the absorption swatch shows {absorb}, not the sRGB encoding {expected}")
+        untitled = js("""return [...document.querySelectorAll('input, select')]
+            .filter((e) => !(e.title || (e.closest('label') || {}).title))
+            .map((e) => e.id || e.className || e.dataset.key)""")
+        check(untitled == [], f"controls without a title: {untitled}")
         pick = "const c = document.querySelector('.light .light-colour'); c.value = arguments[0]; c.dispatchEvent(new Event('change'));"
         generation = server.state()["generation"]
         js(pick, "#000000")
