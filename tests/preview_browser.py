@@ -2,8 +2,10 @@
 """`tetglow preview` in headless Chromium, end to end.
 
 Starts the server on a free port with a small copy of the demo fish (without its water), then: other paths get 404;
-malformed and out-of-range requests get the loader's one-line errors and change nothing; the page
-shows the image; dragging the g slider restarts the render (the pass counter starts again) and
+malformed and out-of-range requests get the loader's one-line errors and change nothing; on a
+sphere under one light, a colour swatch shows its linear colour sRGB-encoded, every control has a
+title saying what it is, and a colour picked that the server refuses (the light made black) shows its
+error in the page, naming the control, until a good colour is picked; the page shows the image; dragging the g slider restarts the render (the pass counter starts again) and
 changes the image; a bad value typed into the page shows the error there, in the field's words;
 an emission that overflows the film and a negative photon count, typed in turn, show two errors
 (the first naming the medium and field) while the render goes on, each cleared when its field
@@ -126,6 +128,60 @@ class Server:
         return self.process.wait(10)
 
 
+# A sphere under one point light, nothing glowing: a light made black leaves nothing emitting.
+ONE_LIGHT = {
+    "camera": {"position": [0.3, 0.2, 4], "look_at": [0, 0, 0], "fov": 35, "resolution": [32, 32]},
+    "integrator": {"type": "volpath", "spp": 4, "seed": 1},
+    "lights": [{"type": "point", "position": [2, 3, 2], "intensity": 20}],
+    "media": [{"shape": {"type": "sphere", "center": [0, 0, 0], "radius": 1, "subdivisions": 2},
+               "sigma_a": [0.3, 0.06, 0.03], "sigma_s": 1.5, "g": 0, "boundary": {"type": "interface"}}],
+}
+
+
+def srgb_hex(rgb):
+    """A linear colour as the #rrggbb a screen shows it by: the sRGB transfer function (IEC 61966-2-1)."""
+    encode = lambda v: 12.92 * v if v <= 0.0031308 else 1.055 * v ** (1 / 2.4) - 0.055
+    return "#" + "".join(f"{round(255 * encode(v)):02x}" for v in rgb)
+
+
+def check_choices(browser, tetglow, folder):
+    """A colour swatch shows its linear colour sRGB-encoded; every control says what it is when
+    pointed at; a colour picked that the server refuses: its error is shown in the page, naming
+    the control and the value picked, the control shows the good colour again, and the error
+    clears when a good colour is picked."""
+    path = os.path.join(folder, "one-light.json")
+    with open(path, "w") as f:
+        json.dump(ONE_LIGHT, f)
+    server = Server(tetglow, path)
+    try:
+        browser.get(server.url + "/")
+        js = browser.execute_script
+        errors = lambda: js("return [...document.querySelectorAll('#error li')].map((e) => e.textContent)")
+        colour = lambda: js("const c = document.querySelector('.light .light-colour'); return c && c.value")  # once built
+        wait_for("the light's colour in the page", lambda: colour() == "#ffffff")
+        # The absorption colour: sigma_a over the largest coefficient (sigma_s, 1.5).
+        absorb = js("return document.querySelector('.medium .absorb-colour').value")
+        expected = srgb_hex([0.3 / 1.5, 0.06 / 1.5, 0.03 / 1.5])
+        check(absorb == expected, f"the absorption swatch shows {absorb}, not the sRGB encoding {expected}")
+        untitled = js("""return [...document.querySelectorAll('input, select')]
+            .filter((e) => !(e.title || (e.closest('label') || {}).title))
+            .map((e) => e.id || e.className || e.dataset.key)""")
+        check(untitled == [], f"controls without a title: {untitled}")
+        pick = "const c = document.querySelector('.light .light-colour'); c.value = arguments[0]; c.dispatchEvent(new Event('change'));"
+        generation = server.state()["generation"]
+        js(pick, "#000000")
+        wait_for("the refusal shown", lambda: errors() == [
+            "point · colour #000000: request: nothing emits light: turn a light on, or give it or a medium an emission"])
+        check(colour() == "#ffffff", f"the picker shows {colour()}, not the good colour")
+        check(server.state()["generation"] == generation, "a refused colour restarted the render")
+        js(pick, "#ff0000")
+        wait_for("the error cleared by a good colour", lambda: errors() == [])
+        light = server.state()["settings"]["lights"][0]["intensity"]
+        check(light == [20, 0, 0], f"the red light is {light}")
+    finally:
+        check(server.stop() == 0, "the one-light preview did not stop cleanly")
+
+
 def check_requests(server):
     """Only the page, the image and the API answer; bad requests get one-line errors and change nothing."""
     for path in ["/nope", "/etc/passwd", "/..%2f..%2fetc%2fpasswd", "/web/preview.js", "/index.html", "/image.exr", "/previewXjs"]:
@@ -190,6 +246,7 @@ def main():
     browser = webdriver.Chrome(service=Service(shutil.which("chromedriver")), options=options)
     try:
         check_requests(server)
+        check_choices(browser, a.tetglow, work)
 
         browser.get(server.url + "/")
         js = browser.execute_script
@@ -250,7 +307,7 @@ def main():
         strength = browser.find_element(By.CSS_SELECTOR, ".medium .emission-strength").get_attribute("value")
         photons_before = server.state()["settings"]["integrator"]["photons"]
         type_into(".medium .emission-strength", "1e30")
-        wait_for("the overflow named", lambda: any(e.startswith("/media/0 (") and " emission " in e and "beyond the film's range" in e for e in errors()))
+        wait_for("the overflow named", lambda: any(e.startswith(name + " · emission ") and "beyond the film's range" in e for e in errors()))
         type_into("[data-key=photons]", "-5")
         wait_for("both errors", lambda: len(errors()) == 2)
         check(any(e == "photons per pass: -5 is outside the range allowed, an integer [1, 1099511627776]" for e in errors()), f"errors: {errors()}")

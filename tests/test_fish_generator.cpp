@@ -14,6 +14,7 @@
 #include "TestMeshes.h"
 #include "scene/FishGenerator.h"
 #include "scene/MeshFile.h"
+#include "scene/SceneLoader.h"
 #include "tet/Nesting.h"
 #include "tet/SelfIntersection.h"
 
@@ -240,6 +241,22 @@ TEST(FishGenerator, CommittedObjsAreTheDefaultFishAndItsOrgans) {
                 << "vertex " << v;
         }
         EXPECT_EQ(committed.triangles, expected.triangles);
+    }
+}
+
+// The demo scenes name each medium by what it is (the preview's titles), each on its own mesh.
+TEST(FishGenerator, TheDemoScenesNameTheirMedia) {
+    const std::vector<std::pair<std::string, std::string>> expected = {
+        {"/media/0 (meshes/fish.obj)", "body"},
+        {"/media/1 (meshes/fish-photophores.obj)", "photophores"},
+        {"/media/2 (meshes/fish-lure-core.obj)", "lure"},
+        {"/media/3 (meshes/fish-eyes.obj)", "eyes"},
+        {"/media/4", "water"}};
+    for (const std::string scene : {"fish", "fish-closeup"}) {
+        std::vector<std::pair<std::string, std::string>> named;
+        for (const MediumDesc& m : loadScene(TETGLOW_SOURCE_DIR "/scenes/" + scene + ".json").media)
+            named.emplace_back(m.name, m.label);
+        EXPECT_EQ(named, expected) << scene;
     }
 }
 

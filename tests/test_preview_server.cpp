@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "PreviewProcess.h"
+#include "render/ImageIO.h"
 
 namespace tetglow::test {
 namespace {
@@ -208,7 +209,7 @@ TEST_F(PreviewServer, AValueThatOverflowsTheFilmIsNamedAndUndone) {
     ASSERT_EQ(change(R"({"media": [{"emission": 1e30}]})").status, 200);
     ASSERT_TRUE(waitFor([](const Json& s) { return s["render_error"] != ""; }));
     const Json failed = state();
-    EXPECT_EQ(failed["render_error"].get<std::string>().rfind("/media/0 emission 1e+30: pixel (", 0), 0u)
+    EXPECT_EQ(failed["render_error"].get<std::string>().rfind("/media/0 · emission 1e+30: pixel (", 0), 0u)
         << failed["render_error"];
     EXPECT_NE(failed["render_error"].get<std::string>().find("beyond the film's range"), std::string::npos)
         << failed["render_error"];
@@ -224,6 +225,54 @@ TEST_F(PreviewServer, AValueThatOverflowsTheFilmIsNamedAndUndone) {
     EXPECT_EQ(state()["render_error"], "");
 }
 
+// A medium the scene names is named so in the overflow's error, as the page names it.
+TEST_F(PreviewServer, TheOverflowNamesTheMediumAsThePageDoes) {
+    std::ifstream in(dir_ / "sphere.json");
+    Json scene = Json::parse(in);
+    scene["media"][0]["name"] = "body";
+    std::ofstream(dir_ / "named.json") << scene.dump();
+    server_.reset();
+    server_ = std::make_unique<PreviewProcess>((dir_ / "named.json").string() + " --port 0 --threads 1");
+    EXPECT_EQ(state()["media_names"], Json::parse(R"(["body"])"));
+    ASSERT_TRUE(waitFor([](const Json& s) { return !s["image"].is_null() && s["image"]["passes"] == 4; }));
+    ASSERT_EQ(change(R"({"media": [{"emission": 1e30}]})").status, 200);
+    ASSERT_TRUE(waitFor([](const Json& s) { return s["render_error"] != ""; }));
+    EXPECT_EQ(state()["render_error"].get<std::string>().rfind("body · emission 1e+30: pixel (", 0), 0u)
+        << state()["render_error"];
+}
+
+// A density scale at the top of its range (1e38), and coefficients that times it pass the
+// largest float: the medium is opaque, and the render of it goes on, lit and without error.
+TEST_F(PreviewServer, AnOpaqueMediumRendersWithoutError) {
+    const auto finished = [](const Json& s) {
+        return !s["image"].is_null() && s["image"]["generation"] == s["generation"] && s["image"]["passes"] == 4;
+    };
+    const auto saved = [&] {
+        const HttpReply r =
+            rawHttp(port(), httpRequest("POST", "/save/image", port(), {{"Content-Type", "application/json"}}, "{}"));
+        EXPECT_EQ(r.status, 200) << r.body;
+        return readExr(Json::parse(r.body)["exr"].get<std::string>());
+    };
+    const auto light = [](const Image& image) {
+        double sum = 0;
+        for (const glm::vec3& p : image.pixels) sum += double(p.x) + p.y + p.z;
+        return sum;
+    };
+    ASSERT_TRUE(waitFor(finished));
+    const Image before = saved();
+    for (const std::string patch :
+         {R"({"media": [{"scale": 1e38}]})", R"({"media": [{"sigma_a": 3e38, "sigma_s": 3e38}]})"}) {
+        const HttpReply r = change(patch);
+        ASSERT_EQ(r.status, 200) << patch << ": " << r.body;
+        ASSERT_TRUE(waitFor(finished)) << patch;
+        EXPECT_EQ(state()["render_error"], "") << patch;
+        const Image opaque = saved();
+        EXPECT_GT(light(opaque), 0) << patch << ": the opaque medium left the image black";
+        EXPECT_NE(light(opaque), light(before)) << patch << ": the image did not follow";
+    }
+    EXPECT_EQ(state()["settings"]["media"][0]["scale"], 1e38);
+}
+
 // A change that has no pass yet when the next one overflows (a user typing two values in
 // quick succession on a slow machine) is kept: only the value that failed is undone.
 TEST_F(PreviewServer, AValueThatOverflowsUndoesOnlyItself) {
@@ -233,7 +282,7 @@ TEST_F(PreviewServer, AValueThatOverflowsUndoesOnlyItself) {
     ASSERT_EQ(change(R"({"media": [{"emission": 1e30}]})").status, 200);
     ASSERT_TRUE(waitFor([](const Json& s) { return s["render_error"] != ""; }));
     const Json failed = state();
-    EXPECT_EQ(failed["render_error"].get<std::string>().rfind("/media/0 emission 1e+30: pixel (", 0), 0u)
+    EXPECT_EQ(failed["render_error"].get<std::string>().rfind("/media/0 · emission 1e+30: pixel (", 0), 0u)
         << failed["render_error"];
     EXPECT_EQ(failed["settings"]["media"][0]["g"], 0.5) << "the change before the one that failed was undone too";
     EXPECT_EQ(failed["settings"]["media"][0]["emission"], good["media"][0]["emission"]);

@@ -145,5 +145,32 @@ TEST(PreviewSettings, ASavedViewWritesOnlyTheKeysChanged) {
     EXPECT_EQ(settings.editedScene(scene.file), expected);
 }
 
+// A medium's single numbers stay single numbers where the value saved is grey, as a light's do;
+// a colour, or a key the file left out, is written as three.
+TEST(PreviewSettings, AMediumsSingleNumbersStaySingle) {
+    const Loaded scene = load(R"({
+  "camera": {"position": [0, 0, 5], "look_at": [0, 0, 0], "fov": 40, "resolution": [16, 16]},
+  "media": [{"shape": {"type": "sphere", "center": [0, 0, 0], "radius": 1}, "sigma_a": 0.5, "sigma_s": 2,
+             "emission": 0.25, "scale": 2},
+            {"shape": {"type": "sphere", "center": [3, 0, 0], "radius": 1}, "sigma_a": [0.1, 0.1, 0.1], "sigma_s": 1}]
+})");
+    cli::PreviewSettings settings(scene.desc, scene.file);
+    // What the page sends: three channels, sigma_a and sigma_s with the file's scale applied.
+    settings.apply(R"({"media": [{"sigma_a": [3, 3, 3], "sigma_s": [2, 4, 6], "emission": [0.5, 0.5, 0.5]},
+                                 {"sigma_a": [0.2, 0.2, 0.2], "sigma_s": [3, 3, 3], "emission": [1, 1, 1]}]})");
+    nlohmann::ordered_json expected = scene.file;
+    expected["media"][0]["sigma_a"] = 1.5;  // in units of the scale, 2
+    expected["media"][0]["sigma_s"] = {1.0, 2.0, 3.0};
+    expected["media"][0]["emission"] = 0.5;
+    expected["media"][1]["sigma_a"] = {0.2, 0.2, 0.2};  // three in the file: three
+    expected["media"][1]["sigma_s"] = 3.0;
+    expected["media"][1]["emission"] = {1.0, 1.0, 1.0};  // not in the file
+    EXPECT_EQ(settings.editedScene(scene.file), expected);
+    // A colour where the file had one number: three.
+    settings.apply(R"({"media": [{"emission": [0.5, 0.25, 0.5]}]})");
+    expected["media"][0]["emission"] = {0.5, 0.25, 0.5};
+    EXPECT_EQ(settings.editedScene(scene.file), expected);
+}
+
 }  // namespace
 }  // namespace tetglow::test

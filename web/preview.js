@@ -126,6 +126,11 @@ function onNumber(input, field, makePatch) {
     change(makePatch(t.value), { [field]: input.dataset.label + ' ' + input.value });
   });
 }
+// A colour picker or a select: sent as the patch makePatch(value) builds, its error shown as
+// "<words> <value>: <the server's error>" until it takes a good value.
+function onChoice(input, field, words, makePatch) {
+  input.addEventListener('change', () => change(makePatch(input.value), { [field]: words + ' ' + input.value }));
+}
 function mergePatch(a, b) {
   const out = { ...a };
   for (const [key, value] of Object.entries(b)) {
@@ -159,11 +164,13 @@ function buildMedia() {
     const all = (c) => [...f.querySelectorAll('.' + c)];
     const m = () => settings.media[i];
     q('mode').addEventListener('change', () => f.classList.toggle('sigma', q('mode').value === 'sigma'));
-    q('scatter-colour').addEventListener('change', () => change(mediumPatch(i, { sigma_s: scaled(unhex(q('scatter-colour').value), colourForm(m()).density) })));
-    q('absorb-colour').addEventListener('change', () => change(mediumPatch(i, { sigma_a: scaled(unhex(q('absorb-colour').value), colourForm(m()).density) })));
     const name = (c) => f.querySelector('legend').textContent + ' · ' + c;
     for (const input of f.querySelectorAll('input[type=number]')) input.dataset.label = name(input.dataset.label);
     const field = (c) => 'media/' + i + '/' + c;
+    onChoice(q('scatter-colour'), field('scatter-colour'), name('scattering colour'),
+      (v) => mediumPatch(i, { sigma_s: scaled(unhex(v), colourForm(m()).density) }));
+    onChoice(q('absorb-colour'), field('absorb-colour'), name('absorption colour'),
+      (v) => mediumPatch(i, { sigma_a: scaled(unhex(v), colourForm(m()).density) }));
     onNumber(q('density'), field('density'), (d) => {
       const c = colourForm(m());
       return mediumPatch(i, { sigma_s: scaled(c.scatter, d), sigma_a: scaled(c.absorb, d) });
@@ -175,8 +182,8 @@ function buildMedia() {
     q('scale-slider').addEventListener('input', () =>
       change(mediumPatch(i, { scale: number(q('scale-slider')) }), { [field('scale')]: name('density scale') + ' ' + q('scale-slider').value }));
     onNumber(q('scale'), field('scale'), (scale) => mediumPatch(i, { scale }));
-    q('emission-colour').addEventListener('change', () =>
-      change(mediumPatch(i, { emission: scaled(unhex(q('emission-colour').value), emissionForm(m()).strength) })));
+    onChoice(q('emission-colour'), field('emission-colour'), name('emission colour'),
+      (v) => mediumPatch(i, { emission: scaled(unhex(v), emissionForm(m()).strength) }));
     onNumber(q('emission-strength'), field('emission'), (x) => mediumPatch(i, { emission: scaled(emissionForm(m()).colour, x) }));
     box.appendChild(f);
   });
@@ -205,8 +212,8 @@ function buildLights() {
     q('strength').dataset.label = name + ' · ' + key;
     q('scale').dataset.label = name + ' · scale';
     q('on').addEventListener('change', () => change(entryPatch('lights', i, { on: q('on').checked }), { [field('on')]: name + ' · on ' + q('on').checked }));
-    q('light-colour').addEventListener('change', () =>
-      change(entryPatch('lights', i, { [key]: scaled(unhex(q('light-colour').value), strengthForm(now()[key]).strength) })));
+    onChoice(q('light-colour'), field('colour'), name + ' · colour',
+      (v) => entryPatch('lights', i, { [key]: scaled(unhex(v), strengthForm(now()[key]).strength) }));
     onNumber(q('strength'), field(key), (x) => entryPatch('lights', i, { [key]: scaled(strengthForm(now()[key]).colour, x) }));
     onNumber(q('scale'), field('scale'), (scale) => entryPatch('lights', i, { scale }));
     box.appendChild(f);
@@ -348,13 +355,12 @@ async function poll() {
 document.querySelectorAll('[data-key]').forEach((input) => {
   const key = input.dataset.key;
   if (input.type === 'number') onNumber(input, 'integrator/' + key, (x) => ({ integrator: { [key]: x } }));
-  else input.addEventListener('change', () => change({ integrator: { [key]: input.value } }));
+  else onChoice(input, 'integrator/' + key, input.dataset.label, (v) => ({ integrator: { [key]: v } }));
 });
-$('lookup').addEventListener('change', () => {
-  // The server forgets "radius" on null (merge patch) and uses k again.
-  change({ integrator: { radius: $('lookup').value === 'radius' ? (settings.integrator.radius ?? 0.05) : null } });
-});
-$('resolution-scale').addEventListener('change', () => change({ resolution_scale: Number($('resolution-scale').value) }));
+// The server forgets "radius" on null (merge patch) and uses k again.
+onChoice($('lookup'), 'integrator/lookup', 'lookup',
+  (v) => ({ integrator: { radius: v === 'radius' ? (settings.integrator.radius ?? 0.05) : null } }));
+onChoice($('resolution-scale'), 'resolution_scale', 'resolution scale', (v) => ({ resolution_scale: Number(v) }));
 $('exposure').addEventListener('input', () => { $('exposure-value').textContent = $('exposure').value; });
 const saveScene = (body) =>
   post('/save/scene', body).then((r) => { $('saved').textContent = 'saved ' + r.scene; setError('save', ''); }).catch((e) => setError('save', e.message));

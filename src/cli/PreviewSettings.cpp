@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <initializer_list>
+#include <map>
 
 #include "scene/SceneLoader.h"
 #include "scene/SceneWriter.h"
@@ -18,6 +19,14 @@ nlohmann::json triple(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
 
 bool changed(const nlohmann::json& now, const nlohmann::json& was, const char* key) {
     return now.contains(key) && (!was.contains(key) || now[key] != was[key]);
+}
+
+// `value` as the file's `entry` has `key`: a single number stays one while the value is grey
+// (its three channels equal); otherwise the three channels.
+nlohmann::ordered_json asFileHas(const nlohmann::ordered_json& entry, const char* key, nlohmann::ordered_json value) {
+    const bool single = entry.contains(key) && entry[key].is_number() && value.is_array() && value.size() == 3 &&
+                        value[0] == value[1] && value[1] == value[2];
+    return single ? value[0] : value;
 }
 
 // A light's values as the scene file has them (the emitted quantity, "scale" and "on"), so that
@@ -105,18 +114,25 @@ void PreviewSettings::apply(const std::string& text) {
 
 std::string PreviewSettings::changesFrom(const PreviewSettings& before) const {
     std::string out;
-    const auto compare = [&](const std::string& owner, const nlohmann::json& now, const nlohmann::json& was) {
+    // `words`: what the page calls a key where it is not the key itself.
+    const auto compare = [&](const std::string& owner, const nlohmann::json& now, const nlohmann::json& was,
+                             const std::map<std::string, std::string>& words = {}) {
         for (const auto& [key, value] : now.items())
-            if (!was.contains(key) || was[key] != value)
-                out += (out.empty() ? "" : ", ") + owner + key + " " + value.dump();
+            if (!was.contains(key) || was[key] != value) {
+                const auto word = words.find(key);
+                out +=
+                    (out.empty() ? "" : ", ") + owner + (word == words.end() ? key : word->second) + " " + value.dump();
+            }
     };
-    const std::vector<std::string> lights = lightNames();
+    // Named as the page names them: "body · emission", "spot · intensity".
+    const std::vector<std::string> media = mediumNames(), lights = lightNames();
     for (const auto& [key, value] : settings_.items()) {
         const nlohmann::json& was = before.settings_[key];
         if (key == "media")
-            for (size_t i = 0; i < value.size(); ++i) compare(scene_.media[i].name + " ", value[i], was[i]);
+            for (size_t i = 0; i < value.size(); ++i)
+                compare(media[i] + " · ", value[i], was[i], {{"scale", "density scale"}});
         else if (key == "lights")
-            for (size_t i = 0; i < value.size(); ++i) compare("light " + lights[i] + " ", value[i], was[i]);
+            for (size_t i = 0; i < value.size(); ++i) compare(lights[i] + " · ", value[i], was[i]);
         else if (value.is_object())
             compare(key + " ", value, was);
         else if (value != was)
@@ -147,12 +163,8 @@ nlohmann::ordered_json PreviewSettings::editedScene(nlohmann::ordered_json doc) 
     for (size_t i = 0; i < loaded_.lights.size(); ++i) {
         const nlohmann::json &now = settings_["lights"][i], &was = initial_["lights"][i];
         nlohmann::ordered_json& l = doc["lights"][i];
-        for (const auto& [key, value] : now.items()) {
-            if (!changed(now, was, key.c_str())) continue;
-            const bool single = l.contains(key) && l[key].is_number() && value.is_array() && value[0] == value[1] &&
-                                value[1] == value[2];
-            l[key] = single ? value[0] : value;  // a file's single number stays one where it can
-        }
+        for (const auto& [key, value] : now.items())
+            if (changed(now, was, key.c_str())) l[key] = asFileHas(l, key.c_str(), value);
     }
     size_t entry = 0;  // in the file's "media" (the cavities follow them in the scene, apart in the file)
     for (size_t i = 0; i < loaded_.media.size(); ++i) {
@@ -170,11 +182,11 @@ nlohmann::ordered_json PreviewSettings::editedScene(nlohmann::ordered_json doc) 
             return out;
         };
         for (const char* key : {"g", "emission"})
-            if (changed(now, was, key)) m[key] = now[key];
+            if (changed(now, was, key)) m[key] = asFileHas(m, key, now[key]);
         const bool zero = fileScale <= 0 &&
                           (changed(now, was, "sigma_a") || changed(now, was, "sigma_s") || changed(now, was, "scale"));
         for (const char* key : {"sigma_a", "sigma_s"})
-            if (zero || changed(now, was, key)) m[key] = inUnits(now[key]);
+            if (zero || changed(now, was, key)) m[key] = asFileHas(m, key, inUnits(now[key]));
         if (zero || changed(now, was, "scale")) m["scale"] = unit * now["scale"].get<double>();
     }
     return doc;

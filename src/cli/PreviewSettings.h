@@ -29,8 +29,8 @@ public:
     const nlohmann::json& json() const { return settings_; }
     // The loaded scene with the settings: what is rendered and what a save writes.
     const SceneDesc& scene() const { return scene_; }
-    // The values that differ from `before`, named for a person: "/media/0 (fish.obj) emission
-    // [1e+30, 1e+30, 1e+30], integrator photons 20000" ("" when none do).
+    // The values that differ from `before`, named as the page names them: "body · emission
+    // [1e+30,1e+30,1e+30], spot · scale 90, integrator photons 20000" ("" when none do).
     std::string changesFrom(const PreviewSettings& before) const;
     // Per medium, what the page calls it: its "name" in the scene file, else its mesh's file
     // name, or its place in the file ("/media/2") when it is a built-in shape.
@@ -39,8 +39,9 @@ public:
     std::vector<std::string> lightNames() const;
     // The JSON scene file `original`, as it was read, with the values changed since loading in
     // the file's own terms: only changed keys are written (sigma_a and sigma_s in units of the
-    // medium's own "scale", a new scale as a multiple of it; a light's values as they are);
-    // every other key, mesh references, light scales and units included, stays as it was.
+    // medium's own "scale", a new scale as a multiple of it; a light's values as they are; a
+    // single number stays one while the value is grey); every other key, mesh references, light
+    // scales and units included, stays as it was.
     nlohmann::ordered_json editedScene(nlohmann::ordered_json original) const;
 
 private:
