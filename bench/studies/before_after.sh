@@ -6,16 +6,20 @@
 # each tree's own fish; the photon kernels on their fixed synthetic inputs, except the photon
 # tracing, which reads each tree's scenes/fish.json (compare it only where that file is the same);
 # the renders read this tree's sphere.json and blub.json with both builds.
+# Where a build has no tetglow_bench, only the renders are compared.
 # Usage: bench/studies/before_after.sh BASE_BUILD NEW_BUILD [REPETITIONS]
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 base=${1:?usage: before_after.sh BASE_BUILD NEW_BUILD [REPETITIONS]}
 new=${2:?usage: before_after.sh BASE_BUILD NEW_BUILD [REPETITIONS]}
 reps=${3:-3}
+kernels=1
 for b in "$base" "$new"; do
-  for exe in tetglow tetglow_bench; do
-    [ -x "$b/$exe" ] || { echo "before_after: $b/$exe not found (configure with -DTETGLOW_BUILD_BENCH=ON)" >&2; exit 1; }
-  done
+  [ -x "$b/tetglow" ] || { echo "before_after: $b/tetglow not found" >&2; exit 1; }
+  if [ ! -x "$b/tetglow_bench" ]; then
+    echo "before_after: $b/tetglow_bench not found (configure with -DTETGLOW_BUILD_BENCH=ON): renders only" >&2
+    kernels=0
+  fi
 done
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
@@ -35,8 +39,10 @@ done
 for ((r = 1; r <= reps; ++r)); do
   for side in base new; do
     b=${!side}
-    "$b/tetglow_bench" --benchmark_filter="$filter" --benchmark_min_time=0.2 \
-      --benchmark_out="$out/$side-$r.json" --benchmark_out_format=json "${mesh[@]}" >/dev/null
+    if [ $kernels = 1 ]; then
+      "$b/tetglow_bench" --benchmark_filter="$filter" --benchmark_min_time=0.2 \
+        --benchmark_out="$out/$side-$r.json" --benchmark_out_format=json "${mesh[@]}" >/dev/null
+    fi
     for scene in "${scenes[@]}"; do
       for integ in volpath photon; do
         start=$(date +%s%N)
@@ -49,12 +55,12 @@ for ((r = 1; r <= reps; ++r)); do
     done
   done
 done
-python3 - "$out" "$reps" <<'PY'
+python3 - "$out" "$reps" "$kernels" <<'PY'
 import json, sys
-out, reps = sys.argv[1], int(sys.argv[2])
+out, reps, kernels = sys.argv[1], int(sys.argv[2]), sys.argv[3] == "1"
 best = {"base": {}, "new": {}}  # name -> (rate, unit): higher is faster
 for side in best:
-    for r in range(1, reps + 1):
+    for r in range(1, reps + 1 if kernels else 1):
         for b in json.load(open(f"{out}/{side}-{r}.json"))["benchmarks"]:
             if b.get("run_type") == "aggregate":
                 continue
