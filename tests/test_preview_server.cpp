@@ -203,6 +203,26 @@ TEST_F(PreviewServer, SlowClientsLeaveThreadsForOthers) {
     EXPECT_EQ(r.status, 200) << "a normal client was not served while 32 slow ones were connected";
 }
 
+// A scattering sphere in glass under a point light: volpath cannot carry that light into it,
+// and the page is told so, as `tetglow render` says it; photon mapping, which can, says nothing.
+TEST_F(PreviewServer, LightTheIntegratorCannotCarryIsReported) {
+    std::ofstream(dir_ / "glass.json") << R"({
+  "camera": {"position": [0, 0, 4], "look_at": [0, 0, 0], "resolution": [16, 16]},
+  "integrator": {"type": "volpath", "spp": 2, "photons": 1000},
+  "lights": [{"type": "point", "position": [2, 3, 2], "intensity": 20}],
+  "media": [{"shape": {"type": "sphere", "center": [0, 0, 0], "radius": 1, "subdivisions": 2},
+             "sigma_s": 2, "boundary": {"type": "dielectric", "ior": 1.5}}]
+})";
+    server_ = std::make_unique<PreviewProcess>((dir_ / "glass.json").string() + " --port 0 --threads 1");
+    ASSERT_TRUE(waitFor([](const Json& s) { return s["warnings"].size() == 1; })) << state().dump();
+    EXPECT_EQ(state()["warnings"][0].get<std::string>().rfind(
+                  "/media/0 lies inside a dielectric boundary, through which volpath cannot carry light", 0),
+              0u)
+        << state()["warnings"];
+    ASSERT_EQ(change(R"({"integrator": {"type": "photon"}})").status, 200);
+    ASSERT_TRUE(waitFor([](const Json& s) { return s["warnings"].empty(); })) << state()["warnings"];
+}
+
 TEST_F(PreviewServer, AValueThatOverflowsTheFilmIsNamedAndUndone) {
     ASSERT_TRUE(waitFor([](const Json& s) { return !s["image"].is_null() && s["image"]["passes"] == 4; }));
     const Json good = state()["settings"];

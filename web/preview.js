@@ -345,6 +345,7 @@ async function poll() {
     }
     showImage(state.image);
     setError('render', state.render_error);
+    setError('warnings', (state.warnings || []).map((w) => 'warning: ' + w).join(' '));
     setError('server', '');
   } catch (e) {
     setError('server', 'the preview server does not answer: ' + e.message);

@@ -39,6 +39,11 @@ std::string LiveRender::error() const {
     return error_;
 }
 
+std::vector<std::string> LiveRender::warnings() const {
+    std::lock_guard lock(mutex_);
+    return warnings_;
+}
+
 void LiveRender::work() {
     for (;;) {
         SceneDesc desc;
@@ -84,6 +89,10 @@ void LiveRender::renderGeneration(const SceneDesc& desc, uint64_t generation) {
     // A fresh integrator, so that pass p is what `tetglow render --passes` renders as pass p.
     scene_->setCamera(desc.camera);
     const auto integrator = makeIntegrator(*scene_, desc.integrator);
+    {
+        std::lock_guard lock(mutex_);
+        if (generation == generation_) warnings_ = integrator->warnings();
+    }
     options.spp = desc.integrator.spp;  // where `tetglow render` stops too
     options.passDone = [&](const PassReport& p) { publish(p.film.image(), p.passes, generation, seconds()); };
     render(*scene_, *integrator, options);

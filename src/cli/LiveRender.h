@@ -10,6 +10,7 @@
 #include <optional>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "render/Image.h"
 #include "render/Scene.h"
@@ -37,6 +38,8 @@ public:
     uint64_t restart(const SceneDesc& desc);
     std::shared_ptr<const LiveImage> latest() const;  // null before the first image
     std::string error() const;  // why the render of the last restart() failed ("" when it did not)
+    // The light its integrator cannot carry (Integrator::warnings), as of the last render started.
+    std::vector<std::string> warnings() const;
 
 private:
     void work();
@@ -53,6 +56,7 @@ private:
     std::atomic<bool> cancel_{false};
     std::shared_ptr<const LiveImage> latest_;
     std::string error_;
+    std::vector<std::string> warnings_;
     std::thread worker_;  // last: starts when everything else is ready
 };
 

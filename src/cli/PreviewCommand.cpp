@@ -225,6 +225,7 @@ private:
             j["light_names"] = settings_.lightNames();
             j["generation"] = generation_;
             j["render_error"] = renderError_.empty() ? live_->error() : renderError_;
+            j["warnings"] = live_->warnings();
         }
         j["image"] = nullptr;
         if (live)
