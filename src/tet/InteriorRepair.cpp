@@ -400,7 +400,7 @@ RepairReport repairInterior(TriangleMesh& mesh) {
     // around each hole. Their vertices come first in TetGen's output, then the box's, the
     // lattice's, then Steiner points.
     RegionComplex plc;
-    ResolvedSurface resolved = resolveIntersections(soup);
+    ResolvedSurface resolved = resolveIntersections(soup, pairs);
     plc.surface = std::move(resolved.surface);
     report.unsplitTriangles = resolved.unsplit;
     report.unsplitReason = resolved.unsplitReason;

@@ -105,11 +105,10 @@ SoupCleaning dropDegenerateAndDuplicates(TriangleMesh& soup) {
     return c;
 }
 
-ResolvedSurface resolveIntersections(const TriangleMesh& soup) {
+ResolvedSurface resolveIntersections(const TriangleMesh& soup, std::vector<std::pair<uint32_t, uint32_t>> crossings) {
     ResolvedSurface r;
     r.surface = soup;
-    for (int round = 0; round < kMaxRounds; ++round) {
-        if (findSelfIntersections(r.surface).empty()) return r;
+    for (int round = 0; round < kMaxRounds && !crossings.empty(); ++round) {
         try {
             TriangleMesh split = autorefineIsolated(r.surface);
             weldVertices(split);  // rounds the constructed points to float
@@ -119,14 +118,14 @@ ResolvedSurface resolveIntersections(const TriangleMesh& soup) {
             r.unsplitReason = e.what();
             break;
         }
+        crossings = findSelfIntersections(r.surface);
     }
-    const auto left = findSelfIntersections(r.surface);
-    if (left.empty()) return r;
+    if (crossings.empty()) return r;
     if (r.unsplitReason.empty())
-        r.unsplitReason = std::to_string(left.size()) + " crossing pairs remained after splitting them " +
+        r.unsplitReason = std::to_string(crossings.size()) + " crossing pairs remained after splitting them " +
                           std::to_string(kMaxRounds) + " times at float precision";
     std::vector<char> crossing(r.surface.triangles.size(), 0);
-    for (const auto& [i, j] : left) {
+    for (const auto& [i, j] : crossings) {
         crossing[i] = 1;
         crossing[j] = 1;
     }

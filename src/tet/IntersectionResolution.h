@@ -2,6 +2,8 @@
 // shared edges and vertices: a valid constraint set for TetGen.
 #pragma once
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "tet/TriangleMesh.h"
 
@@ -25,12 +27,13 @@ struct ResolvedSurface {
     std::string unsplitReason;
 };
 
-// `soup`: float vertices, welded and cleaned as above. Splits every intersecting pair with CGAL's
+// `soup`: float vertices, welded and cleaned as above; `crossings`: its findSelfIntersections
+// (SelfIntersection.h), which the caller has already. Splits every intersecting pair with CGAL's
 // autorefinement (exact predicates; intersection points constructed exactly, then rounded to
 // double), rounds the new vertices to float for Embree, welds and cleans, and checks again
 // with exact predicates: rounding can make new crossings, which the next round splits. Where
 // CGAL fails (it crashes on some coplanar overlaps) or crossings remain after a few rounds, the
 // triangles still crossing are left out, so that the rest stays exact.
-ResolvedSurface resolveIntersections(const TriangleMesh& soup);
+ResolvedSurface resolveIntersections(const TriangleMesh& soup, std::vector<std::pair<uint32_t, uint32_t>> crossings);
 
 }  // namespace tetglow
