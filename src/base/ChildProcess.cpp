@@ -210,14 +210,10 @@ std::string runInChild(const std::function<std::string()>& work, ChildLimits lim
     const char tag = answer.back();
     answer.pop_back();
     switch (tag) {
-        case kResult:
-            return answer;
-        case kInputError:
-            throw InputError(answer);
-        case kOutOfMemory:
-            throw outOfMemory(limits.memoryBytes);
-        default:
-            throw ChildFailure(ChildFailure::Kind::Exception, answer, "failed: " + oneLine(answer));
+        case kResult: return answer;
+        case kInputError: throw InputError(answer);
+        case kOutOfMemory: throw outOfMemory(limits.memoryBytes);
+        default: throw ChildFailure(ChildFailure::Kind::Exception, answer, "failed: " + oneLine(answer));
     }
 }
 

@@ -38,12 +38,9 @@ int interruptSignal() { return firstSignal; }
 
 const char* interruptName() {
     switch (firstSignal) {
-        case SIGTERM:
-            return "SIGTERM";
-        case SIGHUP:
-            return "SIGHUP";
-        default:
-            return "SIGINT";
+        case SIGTERM: return "SIGTERM";
+        case SIGHUP: return "SIGHUP";
+        default: return "SIGINT";
     }
 }
 

@@ -18,12 +18,9 @@ std::unique_ptr<Integrator> makeIntegrator(const Scene& scene, const IntegratorD
         checkMarchStep("step (/integrator/step or --step)", desc.stepSize, diagonal, scene.rayEpsilon());
     }
     switch (desc.type) {
-        case IntegratorType::VolPath:
-            return std::make_unique<VolPathIntegrator>(scene, desc.maxDepth);
-        case IntegratorType::Single:
-            return std::make_unique<SingleScatterIntegrator>(scene, desc);
-        case IntegratorType::Photon:
-            return std::make_unique<PhotonIntegrator>(scene, desc);
+        case IntegratorType::VolPath: return std::make_unique<VolPathIntegrator>(scene, desc.maxDepth);
+        case IntegratorType::Single: return std::make_unique<SingleScatterIntegrator>(scene, desc);
+        case IntegratorType::Photon: return std::make_unique<PhotonIntegrator>(scene, desc);
     }
     return nullptr;
 }

@@ -36,13 +36,9 @@ RGB transmittance(const Scene& scene, Ray ray, double tMax, VolumeState state, R
         double moved = 0;
         // The walk's exit face may be a dielectric interface, which blocks.
         switch (endStretch(scene, hit, exit, ray, state, &moved)) {
-            case StretchEnd::Escaped:
-                return tr;
-            case StretchEnd::Crossed:
-                tMax -= moved;
-                break;
-            default:
-                return RGB(0);
+            case StretchEnd::Escaped: return tr;
+            case StretchEnd::Crossed: tMax -= moved; break;
+            default: return RGB(0);
         }
     }
     return RGB(0);

@@ -262,8 +262,7 @@ double SpotProfile::falloff(const glm::dvec3& w) const {
 
 std::unique_ptr<Light> makeLight(const LightDesc& desc, const Bounds3& sceneBounds) {
     switch (desc.type) {
-        case LightType::Point:
-            return std::make_unique<PointLight>(desc.position, desc.intensity);
+        case LightType::Point: return std::make_unique<PointLight>(desc.position, desc.intensity);
         case LightType::Spot: {
             const SpotProfile profile(desc.lookAt - desc.position, desc.coneAngle, desc.coneDelta);
             if (desc.radius == 0) return std::make_unique<PointLight>(desc.position, desc.intensity, profile);
@@ -279,12 +278,9 @@ std::unique_ptr<Light> makeLight(const LightDesc& desc, const Bounds3& sceneBoun
             if (std::abs(skew) <= 1e-9 * lengths) light->setRectangle();
             return light;
         }
-        case LightType::Mesh:
-            return std::make_unique<AreaLight>(desc.mesh, desc.radiance, desc.twoSided);
-        case LightType::Distant:
-            return std::make_unique<DistantLight>(desc.direction, desc.irradiance, sceneBounds);
-        case LightType::Environment:
-            return std::make_unique<EnvironmentLight>(desc.radiance, sceneBounds);
+        case LightType::Mesh: return std::make_unique<AreaLight>(desc.mesh, desc.radiance, desc.twoSided);
+        case LightType::Distant: return std::make_unique<DistantLight>(desc.direction, desc.irradiance, sceneBounds);
+        case LightType::Environment: return std::make_unique<EnvironmentLight>(desc.radiance, sceneBounds);
     }
     return nullptr;
 }

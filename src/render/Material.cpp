@@ -44,10 +44,8 @@ BsdfSample sampleDielectric(double ior, const glm::dvec3& d, const glm::dvec3& n
 BsdfSample sampleMaterial(const MaterialDesc& m, const glm::dvec3& d, const glm::dvec3& n, const glm::dvec2& u,
                           TransportMode mode) {
     switch (m.type) {
-        case MaterialType::Interface:
-            return {d, RGB(1), 0, true, true};
-        case MaterialType::Dielectric:
-            return sampleDielectric(m.ior, d, n, u.x, mode);
+        case MaterialType::Interface: return {d, RGB(1), 0, true, true};
+        case MaterialType::Dielectric: return sampleDielectric(m.ior, d, n, u.x, mode);
         case MaterialType::Diffuse: {
             const glm::dvec3 facing = glm::dot(d, n) < 0 ? n : -n;
             const glm::dvec3 wi = sampleCosineHemisphere(facing, u);

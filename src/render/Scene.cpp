@@ -303,14 +303,12 @@ const MaterialDesc& Scene::material(const Intersection& hit) const {
     static const MaterialDesc black{MaterialType::Diffuse, RGB(0)}, pass{MaterialType::Interface};
     if (hit.touch) return pass;
     switch (hit.kind) {
-        case HitKind::Surface:
-            return desc_.surfaces[hit.index].material;
+        case HitKind::Surface: return desc_.surfaces[hit.index].material;
         case HitKind::MediumBoundary: {
             const SceneVolume& v = volumes_[hit.index];
             return v.materials[v.triangleMaterial[hit.triangle]];
         }
-        case HitKind::Light:
-            return black;
+        case HitKind::Light: return black;
     }
     return black;
 }

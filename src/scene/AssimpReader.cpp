@@ -193,14 +193,10 @@ void append(TriangleMesh& out, TriangleMesh local, const glm::dmat4& world) {
 
 const char* extension(SceneMeshFormat f) {
     switch (f) {
-        case SceneMeshFormat::Gltf:
-            return "gltf";
-        case SceneMeshFormat::Glb:
-            return "glb";
-        case SceneMeshFormat::Fbx:
-            return "fbx";
-        case SceneMeshFormat::Collada:
-            return "dae";
+        case SceneMeshFormat::Gltf: return "gltf";
+        case SceneMeshFormat::Glb: return "glb";
+        case SceneMeshFormat::Fbx: return "fbx";
+        case SceneMeshFormat::Collada: return "dae";
     }
     return "";
 }

@@ -35,10 +35,8 @@ double valueNoise(const glm::dvec3& p, uint32_t seed) {
 
 double evaluateDensity(const DensityDesc& density, const glm::dvec3& p) {
     switch (density.type) {
-        case DensityDesc::Type::Constant:
-            return density.offset;
-        case DensityDesc::Type::Linear:
-            return std::max(0.0, density.offset + glm::dot(density.gradient, p));
+        case DensityDesc::Type::Constant: return density.offset;
+        case DensityDesc::Type::Linear: return std::max(0.0, density.offset + glm::dot(density.gradient, p));
         case DensityDesc::Type::Noise:
             return std::max(0.0,
                             density.offset * (1 + density.amplitude * valueNoise(density.frequency * p, density.seed)));

@@ -16,16 +16,11 @@ enum class Format { Obj, Off, Ply, Stl, Gltf, Glb, Fbx, Collada };
 
 const char* name(Format f) {
     switch (f) {
-        case Format::Obj:
-            return "an OBJ";
-        case Format::Off:
-            return "an OFF";
-        case Format::Ply:
-            return "a PLY";
-        case Format::Stl:
-            return "an STL";
-        default:
-            return "a scene";
+        case Format::Obj: return "an OBJ";
+        case Format::Off: return "an OFF";
+        case Format::Ply: return "a PLY";
+        case Format::Stl: return "an STL";
+        default: return "a scene";
     }
 }
 
@@ -72,18 +67,10 @@ MeshFile readMeshFile(const std::string& path, const std::string& node, std::vec
                          "' from (only glTF, GLB, FBX and Collada files have)");
     MeshFile out;
     switch (format) {
-        case Format::Obj:
-            out.mesh = parseObj(data, path, warnings);
-            break;
-        case Format::Off:
-            out.mesh = parseOff(data, path);
-            break;
-        case Format::Ply:
-            out = parsePly(data, path);
-            break;
-        case Format::Stl:
-            out.mesh = parseStl(data, path);
-            break;
+        case Format::Obj: out.mesh = parseObj(data, path, warnings); break;
+        case Format::Off: out.mesh = parseOff(data, path); break;
+        case Format::Ply: out = parsePly(data, path); break;
+        case Format::Stl: out.mesh = parseStl(data, path); break;
         case Format::Gltf:
             out.mesh = parseSceneMeshes(std::move(data), path, SceneMeshFormat::Gltf, node, warnings);
             break;

@@ -32,16 +32,12 @@ bool takesStrings(Class c) { return c == Class::Bool || c == Class::String || c 
 size_t groupSize(const PbrtParam& p) {
     switch (p.cls) {
         case Class::Point2:
-        case Class::Vector2:
-            return 2;
+        case Class::Vector2: return 2;
         case Class::Point3:
         case Class::Vector3:
-        case Class::Normal:
-            return 3;
-        case Class::Spectrum:
-            return p.type == "rgb" || p.type == "color" || p.type == "xyz" ? 3 : 2;
-        default:
-            return 1;
+        case Class::Normal: return 3;
+        case Class::Spectrum: return p.type == "rgb" || p.type == "color" || p.type == "xyz" ? 3 : 2;
+        default: return 1;
     }
 }
 

@@ -15,20 +15,14 @@ bool isSpace(char c) { return c == ' ' || c == '\n' || c == '\t' || c == '\r'; }
 // pbrt-v3's escapes in quoted strings.
 char unescape(char c, const PbrtLocation& at) {
     switch (c) {
-        case 'b':
-            return '\b';
-        case 'f':
-            return '\f';
-        case 'n':
-            return '\n';
-        case 'r':
-            return '\r';
-        case 't':
-            return '\t';
+        case 'b': return '\b';
+        case 'f': return '\f';
+        case 'n': return '\n';
+        case 'r': return '\r';
+        case 't': return '\t';
         case '\\':
         case '\'':
-        case '"':
-            return c;
+        case '"': return c;
     }
     pbrtError(at, std::string("unknown escape \\") + c + " in a string");
 }

@@ -46,17 +46,13 @@ Type typeOf(const std::string& name, const std::string& path) {
 size_t sizeOf(Type t) {
     switch (t) {
         case Type::Int8:
-        case Type::UInt8:
-            return 1;
+        case Type::UInt8: return 1;
         case Type::Int16:
-        case Type::UInt16:
-            return 2;
+        case Type::UInt16: return 2;
         case Type::Int32:
         case Type::UInt32:
-        case Type::Float32:
-            return 4;
-        case Type::Float64:
-            return 8;
+        case Type::Float32: return 4;
+        case Type::Float64: return 8;
     }
     return 0;
 }
@@ -83,22 +79,14 @@ public:
 private:
     static double decode(Type t, const unsigned char* b) {
         switch (t) {
-            case Type::Int8:
-                return double(int8_t(b[0]));
-            case Type::UInt8:
-                return double(b[0]);
-            case Type::Int16:
-                return double(load<int16_t>(b));
-            case Type::UInt16:
-                return double(load<uint16_t>(b));
-            case Type::Int32:
-                return double(load<int32_t>(b));
-            case Type::UInt32:
-                return double(load<uint32_t>(b));
-            case Type::Float32:
-                return double(load<float>(b));
-            case Type::Float64:
-                return load<double>(b);
+            case Type::Int8: return double(int8_t(b[0]));
+            case Type::UInt8: return double(b[0]);
+            case Type::Int16: return double(load<int16_t>(b));
+            case Type::UInt16: return double(load<uint16_t>(b));
+            case Type::Int32: return double(load<int32_t>(b));
+            case Type::UInt32: return double(load<uint32_t>(b));
+            case Type::Float32: return double(load<float>(b));
+            case Type::Float64: return load<double>(b);
         }
         return 0;
     }

@@ -140,20 +140,14 @@ Shape readShape(JsonObject& o, const fs::path& dir, bool closed) {
             s.mesh = readShapeMesh(file, node, dir);
             break;
         }
-        case ShapeType::Sphere:
-            s.mesh = readSphere(o);
-            break;
-        case ShapeType::Box:
-            s.mesh = readBox(o);
-            break;
+        case ShapeType::Sphere: s.mesh = readSphere(o); break;
+        case ShapeType::Box: s.mesh = readBox(o); break;
         case ShapeType::Quad: {
             const Parallelogram p = readParallelogram(o);
             s.mesh = quad(p.corner, p.edge0, p.edge1);
             break;
         }
-        case ShapeType::Disk:
-            s.mesh = readDisk(o);
-            break;
+        case ShapeType::Disk: s.mesh = readDisk(o); break;
     }
     const JsonValue transform = o["transform"];
     place(o.self(), s.mesh, transform ? readTransform(transform) : glm::dmat4(1));

@@ -39,12 +39,10 @@ void print(const Json& j, const std::string& indent, std::string& out) {
 
 Json densityJson(const DensityDesc& d) {
     switch (d.type) {
-        case DensityDesc::Type::Constant:
-            return {{"type", "constant"}, {"value", d.offset}};
+        case DensityDesc::Type::Constant: return {{"type", "constant"}, {"value", d.offset}};
         case DensityDesc::Type::Linear:
             return {{"type", "linear"}, {"offset", d.offset}, {"gradient", vec(d.gradient)}};
-        case DensityDesc::Type::Noise:
-            break;
+        case DensityDesc::Type::Noise: break;
     }
     return {{"type", "noise"},
             {"offset", d.offset},
@@ -95,12 +93,9 @@ public:
 private:
     static Json material(const MaterialDesc& m) {
         switch (m.type) {
-            case MaterialType::Diffuse:
-                return {{"type", "diffuse"}, {"reflectance", vec(m.reflectance)}};
-            case MaterialType::Dielectric:
-                return {{"type", "dielectric"}, {"ior", m.ior}};
-            case MaterialType::Interface:
-                break;
+            case MaterialType::Diffuse: return {{"type", "diffuse"}, {"reflectance", vec(m.reflectance)}};
+            case MaterialType::Dielectric: return {{"type", "dielectric"}, {"ior", m.ior}};
+            case MaterialType::Interface: break;
         }
         return {{"type", "interface"}};
     }
@@ -144,8 +139,7 @@ private:
                         {"shape", mesh(l.mesh, "light", index)},
                         {"radiance", vec(l.radiance)},
                         {"two_sided", l.twoSided}};
-            case LightType::Environment:
-                break;
+            case LightType::Environment: break;
         }
         return {{"type", "environment"}, {"radiance", vec(l.radiance)}};
     }

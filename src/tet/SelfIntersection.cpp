@@ -142,14 +142,10 @@ bool intersectBeyondShared(const TriangleMesh& mesh, uint32_t i, uint32_t j) {
     };
     const Tri a = corners(ia), b = corners(ib);
     switch (shared) {
-        case 0:
-            return trianglesIntersect(a, b);
-        case 1:
-            return meetBeyondVertex(a, b);
-        case 2:
-            return foldOver(a, b);
-        default:
-            return true;  // the same triangle twice
+        case 0: return trianglesIntersect(a, b);
+        case 1: return meetBeyondVertex(a, b);
+        case 2: return foldOver(a, b);
+        default: return true;  // the same triangle twice
     }
 }
 

@@ -12,20 +12,13 @@ namespace {
 
 std::string tetgenFailure(int code) {
     switch (code) {
-        case 1:
-            return "TetGen ran out of memory";
-        case 2:
-            return "TetGen hit an internal error on this mesh";
-        case 3:
-            return "TetGen found self-intersecting faces";
-        case 4:
-            return "TetGen found a feature too small to resolve (nearly touching faces)";
-        case 5:
-            return "TetGen found two facets too close to each other";
-        case 10:
-            return "TetGen rejected the input";
-        default:
-            return "TetGen failed (error " + std::to_string(code) + ")";
+        case 1: return "TetGen ran out of memory";
+        case 2: return "TetGen hit an internal error on this mesh";
+        case 3: return "TetGen found self-intersecting faces";
+        case 4: return "TetGen found a feature too small to resolve (nearly touching faces)";
+        case 5: return "TetGen found two facets too close to each other";
+        case 10: return "TetGen rejected the input";
+        default: return "TetGen failed (error " + std::to_string(code) + ")";
     }
 }
 
