@@ -53,6 +53,31 @@ TEST(DensePhoton, WalksLoseNoPower) {
     }
 }
 
+// The photon integrator walks a dense medium with the eye path and keeps none of its photons: a
+// pass stores none there (it stored up to max depth per path, 32 bytes each, and threw them
+// away), while the paths, and so the power reaching everything else, are the same.
+TEST(DensePhoton, AWalkedMediumStoresNoPhotons) {
+    const Scene scene(denseSphere(8));
+    const PhotonSource source(scene);
+    const TracedPhotons all = tracePhotons(scene, source, {2000, 64, 3, 0});
+    PhotonTracingOptions options{2000, 64, 3, 0};
+    options.storedMedia = {0};
+    const TracedPhotons none = tracePhotons(scene, source, options);
+    EXPECT_GT(all.volume[0].size(), 100u);
+    EXPECT_TRUE(none.volume[0].empty());
+    EXPECT_EQ(none.surface.size(), all.surface.size());
+    for (int c = 0; c < 3; ++c) {
+        EXPECT_EQ(none.energy.escaped[c], all.energy.escaped[c]);
+        EXPECT_EQ(none.energy.cut[c], all.energy.cut[c]);
+    }
+    IntegratorDesc desc;
+    desc.type = IntegratorType::Photon;
+    desc.photons = 2000;
+    PhotonIntegrator photon(scene, desc);
+    photon.beginPass(0);
+    EXPECT_EQ(photon.stats().volumePhotons, 0u);
+}
+
 // The photon kernel cannot resolve a density that changes within a mean free path of the
 // boundary, where the eye sees the medium (it read 25 to 50% dark, darker at greater depths):
 // the image agrees with volpath's at the same max depth, short and long.

@@ -75,6 +75,10 @@ PhotonIntegrator::PhotonIntegrator(const Scene& scene, const IntegratorDesc& des
         MediumPhotons photons;
         photons.maxRadius = float(kMaxRadiusFraction * box.diagonal());
         photons.dense = opticalSize(scene, domains_.media[d], box.diagonal()) * kDenseMeanFreePath > 1;
+        if (photons.dense) {  // the eye path walks the domain: a pass stores no photons there
+            storedMedia_.resize(scene.media().size(), 1);
+            for (int m : domains_.media[d]) storedMedia_[size_t(m)] = 0;
+        }
         media_.push_back(std::move(photons));
         all.extend(box);
     }
@@ -109,9 +113,9 @@ double PhotonIntegrator::radiusScale(uint64_t pass, double alpha, int dim) {
 void PhotonIntegrator::beginPass(uint64_t pass, const std::atomic<bool>* cancel) {
     const auto start = std::chrono::steady_clock::now();
     const auto maxStored = uint64_t(physicalMemory() / kBytesPerStoredPhoton);
-    TracedPhotons traced = tracePhotons(
-        scene_, source_,
-        {desc_.photons, desc_.maxDepth, desc_.seed, pass, desc_.finalGather, maxStored, deadline_, cancel});
+    TracedPhotons traced = tracePhotons(scene_, source_,
+                                        {desc_.photons, desc_.maxDepth, desc_.seed, pass, desc_.finalGather, maxStored,
+                                         deadline_, cancel, storedMedia_});
     // k-NN balls are three-dimensional kernels, beam discs and surface discs two-dimensional.
     auto scale = [&](int dim) { return radiusScale(pass, desc_.alpha > 0 ? desc_.alpha : balancedAlpha(dim), dim); };
     volumeScale_ = scale(desc_.estimate == PhotonEstimate::Beam ? 2 : 3);
@@ -129,7 +133,6 @@ void PhotonIntegrator::beginPass(uint64_t pass, const std::atomic<bool>* cancel)
             else
                 photons.insert(photons.end(), stored.begin(), stored.end());
         }
-        if (mp.dense) photons.clear();  // the eye path walks the medium instead
         stats_.volumePhotons += photons.size();
         if (photons.empty()) continue;
         mp.map = std::make_unique<PhotonMap>(std::move(photons));

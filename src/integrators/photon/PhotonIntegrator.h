@@ -99,7 +99,8 @@ private:
     std::vector<std::unique_ptr<SurfaceBVH>> regionBoundaries_;  // per photon domain: its boundary's triangles
     std::vector<BallVolume> balls_;                              // per photon domain, over its boundary
     std::vector<MediumPhotons> media_;                           // per photon domain
-    std::unique_ptr<PhotonMap> surface_;                         // every surface photon not straight from its light
+    std::vector<char> storedMedia_;       // per scene medium, whether a pass stores its photons (PhotonTracingOptions)
+    std::unique_ptr<PhotonMap> surface_;  // every surface photon not straight from its light
     std::unique_ptr<PhotonMap> caustic_;  // those from a light by specular events only (final gathering)
     float surfaceMaxRadius_ = 0;
     double volumeScale_ = 1, surfaceScale_ = 1;                      // this pass's radius factors

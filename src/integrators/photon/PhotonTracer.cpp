@@ -61,7 +61,8 @@ public:
                     [&](const PhotonEvent& event) {
                         // Stored in the photon map of the medium that scattered it.
                         const int m = volume.regionMedium[size_t(volume.media->mesh().region(event.tet))];
-                        if (!direct) store(out_.volume[m], makePhoton(event.position, event.power, event.direction));
+                        if (!direct && (options_.storedMedia.empty() || options_.storedMedia[size_t(m)]))
+                            store(out_.volume[m], makePhoton(event.position, event.power, event.direction));
                         direct = specularOnly = false;
                     });
                 energy.absorbedInMedia += walk.absorbedFlux;

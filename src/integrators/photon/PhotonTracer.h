@@ -33,6 +33,9 @@ struct PhotonTracingOptions {
     // power is scaled to the paths that were: a pass under a time limit ends in time.
     std::optional<std::chrono::steady_clock::time_point> deadline = std::nullopt;
     const std::atomic<bool>* cancel = nullptr;  // once set, the paths not yet begun are skipped
+    // Per scene medium, whether the photons it scatters are stored (empty: all are). Paths still
+    // cross the others and scatter in them; only their photons there are not kept.
+    std::vector<char> storedMedia = {};
 };
 
 // Where the emitted power went, summed over the paths: emitted = absorbed + escaped + cut in
