@@ -2,6 +2,7 @@
 // agreement with the error against a long reference, and `noiseTarget` stopping at the same pass
 // on any thread count (the commands: test_render_cli.cpp).
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <string>
 
@@ -11,16 +12,20 @@
 #include "integrators/Integrator.h"
 #include "integrators/Renderer.h"
 #include "render/NoiseEstimate.h"
+#include "scene/SceneLoader.h"
 
 namespace tetglow::test {
 namespace {
 
 // One pixel whose even passes all give a and odd ones b: the halves differ by a - b, and the
-// full image's squared error is estimated as a quarter of that squared, relative to its mean.
+// full image's squared error is estimated as a quarter of that squared, relative to its mean (red:
+// halves 1 and 3), or to the smaller half where one half is more than 7 times the other (green:
+// 1 and 20, a rare bright path in the odd half; blue: 0.5 and 0).
 TEST(NoiseEstimate, ClosedFormOnTwoValues) {
     Film all(1, 1), even(1, 1);
     EXPECT_TRUE(inFirstHalf(0) && !inFirstHalf(1) && inFirstHalf(2));
-    const RGB a(1, 2, 0.5), b(3, 2, 0);
+    const RGB a(1, 1, 0.5), b(3, 20, 0);
+    const double converged[3] = {2, 1, 0};
     EXPECT_FALSE(estimateRelMse(all, even));
     for (int pass = 0; pass < 6; ++pass) {
         const RGB L = pass % 2 == 0 ? a : b;
@@ -29,8 +34,8 @@ TEST(NoiseEstimate, ClosedFormOnTwoValues) {
     }
     double expected = 0;
     for (int c = 0; c < 3; ++c) {
-        const double d = a[c] - b[c], mean = (a[c] + b[c]) / 2;
-        expected += d * d / 4 / (mean * mean + kRelMseFloor) / 3;
+        const double d = a[c] - b[c];
+        expected += d * d / 4 / (converged[c] * converged[c] + kRelMseFloor) / 3;
     }
     ASSERT_TRUE(estimateRelMse(all, even));
     EXPECT_NEAR(*estimateRelMse(all, even), expected, 1e-12);
@@ -43,11 +48,12 @@ TEST(NoiseEstimate, ClosedFormOnTwoValues) {
     EXPECT_EQ(*estimateRelMse(flat, flatEven), 0);
 }
 
-// The estimate after n passes against the error measured against a render of 256 passes with
-// another seed (whose own error is part of what is measured). The passes' stratification makes
-// the true error smaller than independent samples would (render/NoiseEstimate.cpp): the estimate
-// is at least the error and at most four times it.
-TEST(NoiseEstimate, AgreesWithTheErrorAgainstALongReference) {
+// The estimate after 16 passes against the error measured against a render of 1024 passes
+// (whose own error, a 64th of the render's, is part of what is measured), summed over six seeds.
+// With independent halves the estimate has no bias: the sums agree. With one sequence over all
+// passes the image is better than its halves predict (render/NoiseEstimate.cpp): the estimate is
+// conservative.
+TEST(NoiseEstimate, IndependentHalvesEstimateTheErrorWithoutBias) {
     const Scene scene(glowingSphereUnderQuad(24));
     for (const IntegratorType type : {IntegratorType::VolPath, IntegratorType::Single}) {
         SCOPED_TRACE(type == IntegratorType::VolPath ? "volpath" : "single");
@@ -55,19 +61,60 @@ TEST(NoiseEstimate, AgreesWithTheErrorAgainstALongReference) {
         integ.type = type;
         const auto integrator = makeIntegrator(scene, integ);
         RenderOptions options;
-        options.spp = 256;
+        options.spp = 1024;
         options.seed = 1;
         const Image reference = render(scene, *integrator, options).image;
-        for (const int passes : {4, 16}) {
-            options.spp = passes;
-            options.seed = 2;
-            const RenderResult result = render(scene, *integrator, options);
-            ASSERT_TRUE(result.noise);
-            const double truth = compare(result.image, reference).relMse;
-            EXPECT_GT(*result.noise, truth) << passes << " passes";
-            EXPECT_LT(*result.noise, truth * 4) << passes << " passes";
+        for (const bool independent : {true, false}) {
+            double estimate = 0, truth = 0;
+            options.spp = 16;
+            options.independentHalves = independent;
+            for (uint64_t seed = 2; seed < 8; ++seed) {
+                options.seed = seed;
+                const RenderResult result = render(scene, *integrator, options);
+                ASSERT_TRUE(result.noise);
+                estimate += *result.noise;
+                truth += compare(result.image, reference).relMse;
+            }
+            std::printf("%s halves: estimate / error %.3f\n", independent ? "independent" : "stratified",
+                        estimate / truth);
+            if (independent)
+                EXPECT_NEAR(estimate / truth, 1, 0.2);
+            else
+                EXPECT_GT(estimate / truth, 1.3);
         }
     }
+}
+
+// The blue cloud, whose medium a few bright paths light: a noise target of 0.01 at 48x36 with
+// seeds 1..10 against a render of 1024 passes (its own error about 1/25 of the target). Where a
+// rare path dominated a pixel's mean, the estimate read that pixel's error as about 1 and
+// stopped too early: the errors averaged 1.6 times the target. The error of a render itself
+// spreads by about 1.4 either way from seed to seed at this size (docs/RESULTS.md, --noise).
+TEST(NoiseEstimate, NoiseTargetHoldsWhereRarePathsLightTheImage) {
+    SceneDesc desc = loadScene(std::string(TETGLOW_SOURCE_DIR) + "/scenes/cloud-blue.json");
+    desc.camera.width = 48;
+    desc.camera.height = 36;
+    desc.integrator.type = IntegratorType::VolPath;
+    const Scene scene(desc);
+    const auto integrator = makeIntegrator(scene, desc.integrator);
+    RenderOptions options;
+    options.spp = 1024;
+    options.seed = 1000;
+    const Image reference = render(scene, *integrator, options).image;
+    options.noiseTarget = 0.01;
+    options.independentHalves = true;
+    double sum = 0;
+    int within = 0;
+    for (uint64_t seed = 1; seed <= 10; ++seed) {
+        options.seed = seed;
+        const RenderResult result = render(scene, *integrator, options);
+        const double error = compare(result.image, reference).relMse;
+        std::printf("seed %d: %d passes, estimate %.4f, error %.4f\n", int(seed), result.passes, *result.noise, error);
+        sum += error;
+        within += error >= 0.01 / 1.5 && error <= 0.01 * 1.5;
+    }
+    EXPECT_NEAR(sum / 10, 0.01, 0.0025);
+    EXPECT_GE(within, 8);
 }
 
 TEST(NoiseEstimate, NoiseTargetStopsAtTheSamePassOnAnyThreadCount) {

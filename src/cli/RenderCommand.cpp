@@ -83,6 +83,7 @@ void run(const Options& o) {
     options.seed = desc.integrator.seed;
     options.threads = o.args.threads;
     options.noiseTarget = o.noise;
+    options.independentHalves = o.noise > 0;
     options.cancel = &interrupted();
     Progress progress("render", {(part.endPass > 0 ? part.endPass : options.spp) - part.firstPass, options.timeLimit,
                                  options.noiseTarget, desc.integrator.type == IntegratorType::Photon});

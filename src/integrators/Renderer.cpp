@@ -10,6 +10,20 @@
 #include "render/NoiseEstimate.h"
 
 namespace tetglow {
+namespace {
+
+// The sequence a pass's samples come from, and their index in it.
+struct PassSequence {
+    uint64_t seed;
+    uint32_t index;
+};
+
+PassSequence passSequence(const RenderOptions& options, int pass) {
+    if (!options.independentHalves) return {options.seed, uint32_t(pass)};
+    return {inFirstHalf(pass) ? options.seed : mixBits(options.seed ^ 0x6a09e667f3bcc909ull), uint32_t(pass / 2)};
+}
+
+}  // namespace
 
 RenderResult render(const Scene& scene, Integrator& integrator, const RenderOptions& options) {
     const auto start = std::chrono::steady_clock::now();
@@ -27,6 +41,7 @@ RenderResult render(const Scene& scene, Integrator& integrator, const RenderOpti
     auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
     for (int pass = options.firstPass; pass < endPass && !cancelled(); ++pass) {
         if (pass > options.firstPass && options.timeLimit > 0 && elapsed() >= options.timeLimit) break;
+        const PassSequence sequence = passSequence(options, pass);
         arena.execute([&] {
             integrator.beginPass(uint64_t(pass), options.cancel);
             tbb::parallel_for(
@@ -35,7 +50,7 @@ RenderResult render(const Scene& scene, Integrator& integrator, const RenderOpti
                     for (int y = tile.rows().begin(); y < tile.rows().end(); ++y)
                         for (int x = tile.cols().begin(); x < tile.cols().end(); ++x) {
                             // The pass is the sample's index in the pixel's sequence: passes stratify.
-                            Rng rng = Rng::pixelSample(options.seed, uint64_t(y) * camera.width() + x, uint32_t(pass));
+                            Rng rng = Rng::pixelSample(sequence.seed, uint64_t(y) * camera.width() + x, sequence.index);
                             const double jx = rng.uniform(), jy = rng.uniform();
                             const RGB L = integrator.radiance(camera.generateRay(x + jx, y + jy), rng);
                             film.add(x, y, L);
@@ -47,7 +62,8 @@ RenderResult render(const Scene& scene, Integrator& integrator, const RenderOpti
         result.passes = pass + 1 - options.firstPass;
         result.noise = estimateRelMse(film, half);
         if (options.passDone) options.passDone({film, result.passes, elapsed(), result.noise});
-        if (options.noiseTarget > 0 && result.passes >= 4 && result.noise && *result.noise <= options.noiseTarget)
+        if (options.noiseTarget > 0 && result.passes >= kMinNoisePasses && !inFirstHalf(pass) && result.noise &&
+            *result.noise <= options.noiseTarget)
             break;
     }
     result.cancelled = cancelled();

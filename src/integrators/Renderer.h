@@ -17,6 +17,10 @@ struct PassReport {
     std::optional<double> noise;  // estimateRelMse (render/NoiseEstimate.h), from the second pass on
 };
 
+// The fewest passes a noiseTarget stops after: with fewer, each half has one sample per pixel and
+// the estimate is too rough to trust.
+inline constexpr int kMinNoisePasses = 4;
+
 struct RenderOptions {
     int spp = 16;
     // Passes firstPass .. endPass - 1 of the spp (endPass 0: spp). Each keeps its global index
@@ -25,10 +29,16 @@ struct RenderOptions {
     uint64_t seed = 0;
     int threads = 0;       // 0: all cores
     double timeLimit = 0;  // > 0: no pass starts after this many seconds (at least one runs)
-    // > 0: stop after the first complete pass (from the fourth on) whose noise estimate is at
-    // most this. Decided between passes from exact sums, so the same seed stops at the same pass
-    // at any thread count.
+    // > 0: stop after the first complete odd pass (the halves equal, at least kMinNoisePasses
+    // passes) whose noise estimate is at most this. Decided between passes from exact sums, so
+    // the same seed stops at the same pass at any thread count.
     double noiseTarget = 0;
+    // The even and the odd passes draw from two independently scrambled sequences (a pass's index
+    // in its half is pass / 2), so the halves are independent and the noise estimate of an even
+    // pass count is unbiased (render/NoiseEstimate.h). One sequence over all passes stratifies
+    // better: a smooth scene's image is then better than its halves predict, and the estimate
+    // conservative (by about 2 on a lit sphere). Set it where the estimate decides.
+    bool independentHalves = false;
     const std::atomic<bool>* cancel = nullptr;  // checked between tiles
     // After each complete pass (progress, live previews), on the thread that called render().
     std::function<void(const PassReport&)> passDone;
@@ -44,7 +54,8 @@ struct RenderResult {
     std::optional<double> noise;  // the last complete pass's estimate
 };
 
-// Pixel (x, y) in pass s uses Rng::pixelSample(seed, pixel index, s) only, so the image is the
+// Pixel (x, y) in pass s uses Rng::pixelSample(seed, pixel index, s) only (or its half's seed and
+// s / 2, independentHalves), so the image is the
 // same for any thread count and any tile schedule; the first numbers it draws (the point in the
 // pixel, then the path's) are stratified over the passes.
 RenderResult render(const Scene& scene, Integrator& integrator, const RenderOptions& options);
