@@ -140,11 +140,11 @@ std::vector<uint32_t> orientShells(TriangleMesh& mesh, const std::unordered_map<
     const uint32_t none = UINT32_MAX;
     std::vector<uint32_t> shell(mesh.triangles.size(), none);
     std::vector<uint32_t> stack;
-    for (uint32_t seed = 0; seed < mesh.triangles.size(); ++seed) {
-        if (shell[seed] != none) continue;
+    for (uint32_t start = 0; start < mesh.triangles.size(); ++start) {
+        if (shell[start] != none) continue;
         const uint32_t id = static_cast<uint32_t>(report.components++);
-        shell[seed] = id;
-        stack.push_back(seed);
+        shell[start] = id;
+        stack.push_back(start);
         while (!stack.empty()) {
             const uint32_t t = stack.back();
             stack.pop_back();

@@ -59,8 +59,8 @@ std::array<int32_t, 2> sidesOf(const std::vector<Holder>& holders, const std::ve
 // the centres of r's largest triangles by shrinking fractions of their size; each candidate is
 // checked exactly, so the point is certain, and the first steps are long, so it lies well
 // away from the surfaces where the region allows.
-glm::dvec3 placeSeed(const TriangleMesh& surface, const std::vector<const TriangleMesh*>& children,
-                     const std::string& name) {
+glm::dvec3 placeInsidePoint(const TriangleMesh& surface, const std::vector<const TriangleMesh*>& children,
+                            const std::string& name) {
     std::vector<uint32_t> order(surface.triangles.size());
     std::iota(order.begin(), order.end(), 0u);
     std::vector<glm::dvec3> normals(order.size());
@@ -212,13 +212,14 @@ RegionComplex validatedComplex(std::vector<TriangleMesh> surfaces, const std::ve
     return buildRegionComplex(surfaces, names);
 }
 
-void placeSeeds(RegionComplex& complex, const std::vector<TriangleMesh>& surfaces,
-                const std::vector<std::string>& names) {
+void placeInsidePoints(RegionComplex& complex, const std::vector<TriangleMesh>& surfaces,
+                       const std::vector<std::string>& names) {
     std::vector<std::vector<const TriangleMesh*>> children(surfaces.size());
     for (size_t i = 0; i < surfaces.size(); ++i)
         if (complex.parent[i] >= 0) children[complex.parent[i]].push_back(&surfaces[i]);
-    complex.seeds.clear();
-    for (size_t i = 0; i < surfaces.size(); ++i) complex.seeds.push_back(placeSeed(surfaces[i], children[i], names[i]));
+    complex.insidePoints.clear();
+    for (size_t i = 0; i < surfaces.size(); ++i)
+        complex.insidePoints.push_back(placeInsidePoint(surfaces[i], children[i], names[i]));
 }
 
 }  // namespace tetglow

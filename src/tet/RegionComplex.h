@@ -19,16 +19,16 @@ struct RegionComplex {
     std::vector<std::array<int32_t, 2>> sides;
     // Per triangle: {input surface, triangle index in it} of the winding kept.
     std::vector<std::array<uint32_t, 2>> source;
-    std::vector<int32_t> parent;    // per region: the region around it, -1 none
-    std::vector<glm::dvec3> seeds;  // per region: a point strictly inside it (TetGen -A), see placeSeeds
+    std::vector<int32_t> parent;           // per region: the region around it, -1 none
+    std::vector<glm::dvec3> insidePoints;  // per region: a point strictly inside it (TetGen -A), see placeInsidePoints
 
     size_t regionCount() const { return parent.size(); }
 };
 
-// One region behind every triangle of one closed surface, no seeds: TetGen's input as it is.
+// One region behind every triangle of one closed surface, no inside points: TetGen's input as it is.
 RegionComplex singleRegion(const TriangleMesh& surface);
 
-// From validated surfaces (validateAndRepair), named in messages by `names`, without seeds.
+// From validated surfaces (validateAndRepair), named in messages by `names`, without inside points.
 // Throws InputError when two surfaces cross or touch other than along shared triangles (naming
 // both and one pair of triangles) or have the same inside.
 RegionComplex buildRegionComplex(const std::vector<TriangleMesh>& surfaces, const std::vector<std::string>& names);
@@ -38,9 +38,9 @@ RegionComplex buildRegionComplex(const std::vector<TriangleMesh>& surfaces, cons
 RegionComplex validatedComplex(std::vector<TriangleMesh> surfaces, const std::vector<std::string>& names,
                                bool strict = false);
 
-// Fills complex.seeds; the surfaces and names are the ones it was built from. Throws InputError
+// Fills complex.insidePoints; the surfaces and names are the ones it was built from. Throws InputError
 // naming a region that its children leave no room.
-void placeSeeds(RegionComplex& complex, const std::vector<TriangleMesh>& surfaces,
-                const std::vector<std::string>& names);
+void placeInsidePoints(RegionComplex& complex, const std::vector<TriangleMesh>& surfaces,
+                       const std::vector<std::string>& names);
 
 }  // namespace tetglow

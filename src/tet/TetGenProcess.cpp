@@ -45,11 +45,11 @@ std::string runTetGen(const RegionComplex& complex, const std::string& switches)
         facet.polygonlist[0].vertexlist = new int[3];
         for (int k = 0; k < 3; ++k) facet.polygonlist[0].vertexlist[k] = int(mesh.triangles[f][k]);
     }
-    in.numberofregions = int(complex.seeds.size());
-    in.regionlist = complex.seeds.empty() ? nullptr : new REAL[5 * complex.seeds.size()];
-    for (size_t r = 0; r < complex.seeds.size(); ++r) {
-        for (int k = 0; k < 3; ++k) in.regionlist[5 * r + k] = complex.seeds[r][k];
-        in.regionlist[5 * r + 3] = double(r + 1);  // TetGen numbers the cells no seed reaches itself
+    in.numberofregions = int(complex.insidePoints.size());
+    in.regionlist = complex.insidePoints.empty() ? nullptr : new REAL[5 * complex.insidePoints.size()];
+    for (size_t r = 0; r < complex.insidePoints.size(); ++r) {
+        for (int k = 0; k < 3; ++k) in.regionlist[5 * r + k] = complex.insidePoints[r][k];
+        in.regionlist[5 * r + 3] = double(r + 1);  // TetGen numbers the cells no inside point reaches itself
         in.regionlist[5 * r + 4] = -1;             // no volume bound of its own
     }
     tetgenbehavior b;

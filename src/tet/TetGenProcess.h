@@ -13,7 +13,8 @@ namespace tetglow {
 struct RawTets {
     std::vector<double> points;
     std::vector<int> tets, neighbours;
-    std::vector<double> attributes;  // per tet, with -A: the seeded region + 1, or TetGen's own number
+    std::vector<double>
+        attributes;  // per tet, with -A: the region of the inside point it holds + 1, or TetGen's own number
 };
 
 // The bounds of a child process that meshes a surface of `triangles` (TetGen, CGAL's
@@ -22,7 +23,7 @@ struct RawTets {
 // bounded by kMaxTets).
 inline ChildLimits meshingLimits(size_t triangles) { return {defaultChildMemory(), 600 + 1e-3 * double(triangles)}; }
 
-// TetGen on complex.surface (and its seeds, with -A) under `switches`, in a forked child.
+// TetGen on complex.surface (and its inside points, with -A) under `switches`, in a forked child.
 RawTets runIsolated(const RegionComplex& complex, const std::string& switches);
 
 }  // namespace tetglow

@@ -42,8 +42,8 @@ std::array<uint32_t, 3> sortedFace(const std::array<uint32_t, 4>& v, int j) {
 // triangles, tets grouped by region. TetGen fills every space the triangles enclose; the
 // connected pieces between triangles (cells) take their region from the side of a triangle
 // they lie on, exactly, and cells outside every region (such as the cavity of a hollow mesh)
-// are removed. With -A, TetGen's attribute of each kept tet must agree: the seed's region + 1,
-// or a number of TetGen's own (0 or above the seeds') for a cell that no seed reaches, such as
+// are removed. With -A, TetGen's attribute of each kept tet must agree: the inside point's region + 1,
+// or a number of TetGen's own (0 or above the regions') for a cell that no inside point reaches, such as
 // a second shell of one mesh.
 TetMesh assemble(const RegionComplex& complex, const RawTets& raw) {
     const TriangleMesh& surface = complex.surface;
@@ -98,12 +98,12 @@ TetMesh assemble(const RegionComplex& complex, const RawTets& raw) {
     constexpr int kUndecided = -2;
     std::vector<int> cell(nt, -1), cellRegion;
     std::vector<uint32_t> stack;
-    for (uint32_t seed = 0; seed < nt; ++seed) {
-        if (cell[seed] >= 0) continue;
+    for (uint32_t start = 0; start < nt; ++start) {
+        if (cell[start] >= 0) continue;
         const int id = int(cellRegion.size());
         cellRegion.push_back(kUndecided);
-        cell[seed] = id;
-        stack.push_back(seed);
+        cell[start] = id;
+        stack.push_back(start);
         while (!stack.empty()) {
             const uint32_t t = stack.back();
             stack.pop_back();
@@ -122,16 +122,17 @@ TetMesh assemble(const RegionComplex& complex, const RawTets& raw) {
     }
     const auto regionOf = [&](size_t t) { return cellRegion[cell[t]] == kUndecided ? -1 : cellRegion[cell[t]]; };
     if (!raw.attributes.empty()) {
-        std::vector<char> seeded(nr, 0);
+        std::vector<char> reached(nr, 0);
         for (size_t t = 0; t < nt; ++t) {
             const int r = regionOf(t), a = int(std::lround(raw.attributes[t]));
             if (r < 0) continue;
             if (a >= 1 && a <= int(nr) && a != r + 1)
                 throw InputError("TetGen's region of tet " + std::to_string(t) + " disagrees with the surfaces");
-            seeded[r] |= a == r + 1;
+            reached[r] |= a == r + 1;
         }
         for (size_t r = 0; r < nr; ++r)
-            if (!seeded[r]) throw InputError("TetGen found no tets around the seed of region " + std::to_string(r));
+            if (!reached[r])
+                throw InputError("TetGen found no tets around the inside point of region " + std::to_string(r));
     }
 
     // Kept tets by region, each region's in Morton order of their centroids: a walk's next tet
@@ -199,7 +200,7 @@ TetMesh assemble(const RegionComplex& complex, const RawTets& raw) {
     return m;
 }
 
-// The whole set of surfaces: TetGen's input (merged surface, seeds) and how it is read back
+// The whole set of surfaces: TetGen's input (merged surface, inside points) and how it is read back
 // (the sides of every triangle, the nesting).
 uint64_t cacheKey(const RegionComplex& complex, const std::string& switches) {
     const TriangleMesh& mesh = complex.surface;
@@ -209,7 +210,7 @@ uint64_t cacheKey(const RegionComplex& complex, const std::string& switches) {
     h = fnv1a(h, complex.sides.data(), complex.sides.size() * sizeof(complex.sides[0]));
     h = fnv1a(h, complex.source.data(), complex.source.size() * sizeof(complex.source[0]));
     h = fnv1a(h, complex.parent.data(), complex.parent.size() * sizeof(complex.parent[0]));
-    h = fnv1a(h, complex.seeds.data(), complex.seeds.size() * sizeof(complex.seeds[0]));
+    h = fnv1a(h, complex.insidePoints.data(), complex.insidePoints.size() * sizeof(complex.insidePoints[0]));
     h = fnv1a(h, switches.data(), switches.size());
     return h;
 }
@@ -249,7 +250,7 @@ TetMesh tetrahedralize(std::vector<TriangleMesh> surfaces, const std::vector<std
     }
     checkTetCount(largestVolume, options.maxVolume);
     RegionComplex complex = buildRegionComplex(surfaces, names);
-    placeSeeds(complex, surfaces, names);
+    placeInsidePoints(complex, surfaces, names);
     const std::string switches = options.switches();
     const uint64_t key = cacheKey(complex, switches);
     TetStats local;
