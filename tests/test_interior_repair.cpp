@@ -101,6 +101,14 @@ TEST(InteriorRepair, PunchedHolesLoseAtMostTheirCap) {
     }
 }
 
+// The minimum cut over uncertain labels (InsideLabels.h) gives the same tets on every run.
+TEST(InteriorRepair, SameTetsTwice) {
+    const TriangleMesh holed = punch(icosphere(4), {0, 0, 1}, 2 * std::sin(0.45));
+    const TetMesh first = tets(holed), second = tets(holed);
+    EXPECT_EQ(first.vertices, second.vertices);
+    EXPECT_EQ(first.tets, second.tets);
+}
+
 TEST(InteriorRepair, SharedMeshesWithHoles) {
     for (const char* name : {"spot", "bob", "blub"}) {
         const std::string path = test::sharedMesh(name);
