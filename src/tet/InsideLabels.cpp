@@ -3,8 +3,16 @@
 #include <algorithm>
 #include <cmath>
 
+// GCC 12 takes the boost::optional in Boost's edge iterator for uninitialized (a false positive).
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
 #include <boost/graph/adjacency_list.hpp>
 #include <boost/graph/boykov_kolmogorov_max_flow.hpp>
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic pop
+#endif
 #include <glm/geometric.hpp>
 
 #include "tet/Predicates.h"
