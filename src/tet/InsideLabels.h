@@ -28,7 +28,7 @@ inline std::array<uint32_t, 3> faceOf(const std::array<uint32_t, 4>& tet, int j)
 // with an input triangle as a face: the cut moves only the others, so a clean closed part (0 or
 // 1 everywhere) is labelled as by the threshold, the graph holds only the tets near holes and
 // where parts cross, and no input triangle leaves the boundary or joins it (with those tets
-// free, the cut shaved two triangles off the jagged rim of
+// free, the cut shaved three triangles off the jagged rim of
 // InteriorRepair.PunchedHolesLoseAtMostTheirCap to shorten the spanning surface). 1/4 is
 // kInsideWinding's margin: a tet at 3/4 or above stays inside, so a mesh that encloses volume
 // keeps some.
