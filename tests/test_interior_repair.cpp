@@ -7,6 +7,7 @@
 #include <set>
 
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 #include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
 
@@ -99,6 +100,69 @@ TEST(InteriorRepair, PunchedHolesLoseAtMostTheirCap) {
         EXPECT_EQ(inputTrianglesOnBoundary(holed, mesh), holed.triangles.size()) << angle;
         EXPECT_EQ(mesh.surface.size(), holed.triangles.size() + report.repair.spannedTriangles.size()) << angle;
     }
+}
+
+// A unit sphere of `rings` latitude bands, `sides` around, with the bands within `open` of each
+// pole left out: a barrel whose two rims are flat regular polygons.
+TriangleMesh barrel(int rings, int sides, int open) {
+    TriangleMesh m;
+    for (int i = 0; i <= rings; ++i)
+        for (int k = 0; k < sides; ++k) {
+            const double theta = M_PI * i / rings, phi = 2 * M_PI * k / sides;
+            m.positions.push_back({std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)});
+        }
+    const auto at = [&](int i, int k) { return uint32_t(i * sides + k % sides); };
+    for (int i = open; i < rings - open; ++i)
+        for (int k = 0; k < sides; ++k) {
+            m.triangles.push_back({at(i, k), at(i + 1, k), at(i + 1, k + 1)});
+            m.triangles.push_back({at(i, k), at(i + 1, k + 1), at(i, k + 1)});
+        }
+    return m;
+}
+
+// The band within 30 degrees of the equator: its winding number is 1/2 at the centre and just
+// below along the axis, so the labels there are uncertain. By the threshold the two spanning
+// surfaces run together through the middle (one hole, 20% more area than the rims' two flat
+// polygons); the minimum cut keeps them apart and within 11% of the polygons' area. The volume
+// stays far below the barrel closed by the polygons for both: the winding number's 1/2 surface
+// itself bows in to the centre.
+TEST(InteriorRepair, MinimumCutSeparatesTheSpanningSurfaces) {
+    const int rings = 12, sides = 32, open = 4;
+    const TriangleMesh holed = barrel(rings, sides, open);
+    TriangleMesh closed = holed;
+    double polygons = 0;
+    for (int ring : {open, rings - open}) {  // each rim closed by a fan from its centre
+        const double theta = M_PI * ring / rings;
+        closed.positions.push_back({0, 0, std::cos(theta)});
+        const uint32_t c = uint32_t(closed.positions.size() - 1);
+        for (int k = 0; k < sides; ++k) {
+            const uint32_t a = uint32_t(ring * sides + k), b = uint32_t(ring * sides + (k + 1) % sides);
+            closed.triangles.push_back(ring == open ? std::array{c, a, b} : std::array{c, b, a});
+        }
+        polygons += 0.5 * sides * std::pow(std::sin(theta), 2) * std::sin(2 * M_PI / sides);
+    }
+    ValidationReport report;
+    const TetMesh mesh = tets(holed, &report);
+    std::printf("closed by the rims' polygons: area %.6f, volume %.6f; repaired: area %.6f, volume %.6f, %zu holes\n",
+                polygons, signedVolume(closed), report.repair.spannedArea, mesh.volume(), report.repair.holes.size());
+    EXPECT_EQ(report.repair.holes.size(), 2u);
+    EXPECT_GT(report.repair.spannedArea, polygons);
+    EXPECT_LT(report.repair.spannedArea, 1.11 * polygons);
+    EXPECT_LT(mesh.volume(), signedVolume(closed));
+    EXPECT_NEAR(mesh.volume(), mesh.surfaceVolume(), 1e-9);
+    EXPECT_EQ(inputTrianglesOnBoundary(holed, mesh), holed.triangles.size());
+    EXPECT_EQ(mesh.surface.size(), holed.triangles.size() + report.repair.spannedTriangles.size());
+}
+
+// The minimum cut over uncertain labels (InsideLabels.h) gives the same tets on every run and
+// at any thread count (the winding numbers are computed in parallel).
+TEST(InteriorRepair, SameTetsTwice) {
+    const TriangleMesh holed = barrel(12, 32, 4);
+    const TetMesh first = tets(holed);
+    const tbb::global_control oneThread(tbb::global_control::max_allowed_parallelism, 1);
+    const TetMesh second = tets(holed);
+    EXPECT_EQ(first.vertices, second.vertices);
+    EXPECT_EQ(first.tets, second.tets);
 }
 
 TEST(InteriorRepair, SharedMeshesWithHoles) {

@@ -12,6 +12,7 @@
 #include <glm/geometric.hpp>
 #include <glm/vector_relational.hpp>
 
+#include "tet/InsideLabels.h"
 #include "tet/IntersectionResolution.h"
 #include "tet/Predicates.h"
 #include "tet/RegionComplex.h"
@@ -287,13 +288,6 @@ Tets unpack(const RawTets& raw) {
     return t;
 }
 
-std::array<uint32_t, 3> faceOf(const std::array<uint32_t, 4>& tet, int j) {
-    std::array<uint32_t, 3> f;
-    for (int k = 0, m = 0; k < 4; ++k)
-        if (k != j) f[m++] = tet[k];
-    return f;
-}
-
 bool isBoundary(const Tets& t, const std::vector<char>& inside, size_t i, int j) {
     const int n = t.neighbours[i][j];
     return inside[i] && (n < 0 || !inside[size_t(n)]);
@@ -370,7 +364,7 @@ std::string RepairReport::summary() const {
     if (unsplitTriangles)
         s += ", " + plural(unsplitTriangles, "crossing triangle", "crossing triangles") + " left unsplit (" +
              unsplitReason + "; the boundary near them follows the tets)";
-    return s + " (inside: winding number above 1/2)";
+    return s + " (inside: winding number above 1/2, smoothed by a minimum cut where within 1/4 of it)";
 }
 
 RepairReport repairInterior(TriangleMesh& mesh) {
@@ -437,8 +431,8 @@ RepairReport repairInterior(TriangleMesh& mesh) {
             kInsideWinding, report.maxWinding);
         throw InputError(text);
     }
-    std::vector<char> inside(w.size());
-    for (size_t i = 0; i < w.size(); ++i) inside[i] = w[i] > 0.5;
+    const std::vector<char> inside =
+        insideLabels(tets.points, tets.tets, tets.neighbours, w, constraints, kCutGammaPerEdge);
     mesh = boundaryOf(tets, inside, constraints, report.spannedTriangles);
     describeHoles(mesh, report.spannedTriangles, report);
     return report;

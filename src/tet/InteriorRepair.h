@@ -2,7 +2,9 @@
 // flipped or duplicated faces, non-manifold edges): Jacobson, Kavan and Sorkine-Hornung 2013.
 // The input's triangles, their crossings split exactly, constrain a Delaunay tetrahedralization
 // of a box around them; every tet is inside where the generalized winding number of the input
-// at its centroid exceeds 1/2. The medium's boundary is then the input's triangles (or their
+// at its centroid exceeds 1/2, and where that is uncertain (within 1/4 of 1/2, away from the
+// input's triangles) a minimum cut trades it against the area of the faces spanning a hole
+// (InsideLabels.h). The medium's boundary is then the input's triangles (or their
 // pieces) wherever the input has a surface, and tet faces across its holes.
 #pragma once
 #include "tet/MeshValidation.h"
