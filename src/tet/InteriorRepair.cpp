@@ -74,10 +74,10 @@ void orientPatches(TriangleMesh& soup, const EdgeMap& edges, RepairReport& repor
         std::swap(soup.triangles[t][1], soup.triangles[t][2]);
         flipped[t] ^= 1;
     };
-    for (uint32_t seed = 0; seed < n; ++seed) {
-        if (visited[seed]) continue;
-        visited[seed] = 1;
-        stack = {seed};
+    for (uint32_t start = 0; start < n; ++start) {
+        if (visited[start]) continue;
+        visited[start] = 1;
+        stack = {start};
         patch.clear();
         double flippedArea = 0, keptArea = 0;
         while (!stack.empty()) {
