@@ -154,6 +154,49 @@ TEST(InteriorRepair, MinimumCutSeparatesTheSpanningSurfaces) {
     EXPECT_EQ(mesh.surface.size(), holed.triangles.size() + report.repair.spannedTriangles.size());
 }
 
+// A unit sphere of `rings` latitude bands (one vertex at each pole), `sides` around, without its
+// top `open` bands (at least one): a bowl whose rim is a flat regular polygon.
+TriangleMesh bowl(int rings, int sides, int open) {
+    TriangleMesh m;
+    m.positions.push_back({0, 0, 1});
+    for (int i = 1; i < rings; ++i)
+        for (int k = 0; k < sides; ++k) {
+            const double theta = M_PI * i / rings, phi = 2 * M_PI * k / sides;
+            m.positions.push_back({std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)});
+        }
+    m.positions.push_back({0, 0, -1});
+    const uint32_t south = uint32_t(m.positions.size() - 1);
+    const auto at = [&](int i, int k) {
+        return i == 0 ? 0u : i == rings ? south : uint32_t(1 + (i - 1) * sides + k % sides);
+    };
+    for (int i = open; i < rings; ++i)  // open >= 1: the north pole is left out
+        for (int k = 0; k < sides; ++k) {
+            if (i + 1 < rings) m.triangles.push_back({at(i, k), at(i + 1, k), at(i + 1, k + 1)});
+            m.triangles.push_back({at(i, k), at(i + 1, k + 1), at(i, k + 1)});
+        }
+    return m;
+}
+
+// TetGen 1.5 failed an assertion (flip41) on the lattice around this bowl's rim, and the mesh was
+// refused as "TetGen crashed ... nearly touching or intersecting faces". The repair moves the
+// lattice and tries again: the bowl's inside comes out, closed by a surface across its rim
+// within 1% of the bowl closed by the rim's polygon.
+TEST(InteriorRepair, LatticeTetGenFailsOnIsMoved) {
+    const int rings = 8, sides = 64, open = 3;
+    const TriangleMesh holed = bowl(rings, sides, open);
+    TriangleMesh closed = holed;
+    closed.positions.push_back({0, 0, std::cos(M_PI * open / rings)});
+    const uint32_t c = uint32_t(closed.positions.size() - 1);
+    for (int k = 0; k < sides; ++k)
+        closed.triangles.push_back(
+            {c, uint32_t(1 + (open - 1) * sides + k), uint32_t(1 + (open - 1) * sides + (k + 1) % sides)});
+    ValidationReport report;
+    const TetMesh mesh = tets(holed, &report);
+    EXPECT_NEAR(mesh.volume(), signedVolume(closed), 0.01 * signedVolume(closed));
+    EXPECT_EQ(report.repair.holes.size(), 1u);
+    EXPECT_EQ(inputTrianglesOnBoundary(holed, mesh), holed.triangles.size());
+}
+
 // The minimum cut over uncertain labels (InsideLabels.h) gives the same tets on every run and
 // at any thread count (the winding numbers are computed in parallel).
 TEST(InteriorRepair, SameTetsTwice) {

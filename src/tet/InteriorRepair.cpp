@@ -164,7 +164,7 @@ double distanceToSegment(const glm::dvec3& p, const glm::dvec3& a, const glm::dv
 // less than kSmallHole rim edges across gets none: the tets between its rim vertices span it
 // flat, where lattice points beside the surface would let tets poke out of it.
 std::vector<glm::dvec3> holeLattice(const TriangleMesh& soup, const EdgeMap& edges, const WindingNumber& winding,
-                                    const Bounds3& box) {
+                                    const Bounds3& box, const glm::dvec3& offset) {
     static constexpr double kLatticeAcross = 16, kBallScale = 1.25, kLatticeBudget = 200000, kSmallHole = 2;
     static constexpr int kBisections = 10;
     static constexpr double kRimClearance = 0.5;
@@ -222,9 +222,7 @@ std::vector<glm::dvec3> holeLattice(const TriangleMesh& soup, const EdgeMap& edg
         if (b.radius < kSmallHole * b.edgeLength) continue;
         const double s = b.spacing * coarsen;
         const int n = int(std::ceil(b.radius / s)), side = 2 * n + 1;
-        const auto at = [&](int i, int j, int k) {
-            return b.centre + s * glm::dvec3(i + 0.3183, j + 0.2718, k + 0.4142);
-        };
+        const auto at = [&](int i, int j, int k) { return b.centre + s * (glm::dvec3(i, j, k) + offset); };
         const auto index = [&](int i, int j, int k) { return size_t((i + n) * side + j + n) * side + k + n; };
         std::vector<double> w(size_t(side) * side * side, NAN);  // NaN: outside the ball
         for (int i = -n; i <= n; ++i)
@@ -407,9 +405,25 @@ RepairReport repairInterior(TriangleMesh& mesh) {
     // Labels from the cleaned and oriented input, not from its split pieces: the same field,
     // without the rounding of the split points.
     const WindingNumber winding(soup);
-    const std::vector<glm::dvec3> lattice = holeLattice(soup, edges, winding, bounds(plc.surface));
-    plc.surface.positions.insert(plc.surface.positions.end(), lattice.begin(), lattice.end());
-    const Tets tets = unpack(runIsolated(plc, "pYnQz"));
+    // TetGen 1.5 fails an assertion on some lattices near the input (flip41 on an open sphere of
+    // 8 rings and 64 sides without its top three bands); the lattice moved within its cell
+    // avoids the configuration.
+    static constexpr glm::dvec3 kLatticeOffsets[] = {
+        {0.3183, 0.2718, 0.4142}, {0.1183, 0.5718, 0.2142}, {0.7071, 0.1618, 0.5772}};
+    const Bounds3 box = bounds(plc.surface);
+    const size_t constrained = plc.surface.positions.size();
+    Tets tets;
+    for (const glm::dvec3& offset : kLatticeOffsets) {
+        const std::vector<glm::dvec3> lattice = holeLattice(soup, edges, winding, box, offset);
+        plc.surface.positions.resize(constrained);
+        plc.surface.positions.insert(plc.surface.positions.end(), lattice.begin(), lattice.end());
+        try {
+            tets = unpack(runIsolated(plc, "pYnQz"));
+            break;
+        } catch (const TetGenCrash&) {
+            if (&offset == &kLatticeOffsets[std::size(kLatticeOffsets) - 1]) throw;
+        }
+    }
     if (tets.tets.empty()) throw InputError("TetGen produced no tetrahedra");
 
     std::vector<double> w(tets.tets.size());

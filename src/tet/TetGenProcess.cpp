@@ -82,8 +82,8 @@ RawTets runIsolated(const RegionComplex& complex, const std::string& switches) {
             runInChild([&] { return runTetGen(complex, switches); }, meshingLimits(complex.surface.triangles.size()));
     } catch (const ChildFailure& e) {
         if (e.kind == ChildFailure::Kind::Signal)
-            throw InputError("TetGen crashed (" + e.detail +
-                             ") on this mesh; it likely has nearly touching or intersecting faces");
+            throw TetGenCrash("TetGen crashed (" + e.detail +
+                              ") on this mesh; it likely has nearly touching or intersecting faces");
         throw InputError("TetGen " + std::string(e.what()));
     }
     ByteReader reply(std::move(answer), "TetGen");

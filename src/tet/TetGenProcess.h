@@ -23,7 +23,13 @@ struct RawTets {
 // bounded by kMaxTets).
 inline ChildLimits meshingLimits(size_t triangles) { return {defaultChildMemory(), 600 + 1e-3 * double(triangles)}; }
 
+// TetGen died of a signal (1.5 fails assertions on some configurations of points and facets).
+struct TetGenCrash : InputError {
+    using InputError::InputError;
+};
+
 // TetGen on complex.surface (and its inside points, with -A) under `switches`, in a forked child.
+// Throws TetGenCrash when it dies of a signal, InputError for any other failure.
 RawTets runIsolated(const RegionComplex& complex, const std::string& switches);
 
 }  // namespace tetglow
