@@ -12,6 +12,7 @@
 #include "TestMeshes.h"
 #include "scene/MeshFile.h"
 #include "tet/Predicates.h"
+#include "tet/Shapes.h"
 #include "tet/TetVolume.h"
 #include "tet/Tetrahedralizer.h"
 
@@ -371,6 +372,26 @@ TEST(TetWalkDegenerate, BodyDiagonalThroughAPinch) {
             TetVolume::kOutside));
         EXPECT_NEAR(length, 2.0, 1e-6);
     }
+}
+
+// A max volume TetGen cannot meet without splitting the boundary: a unit box stays 12 tets at
+// 0.001, which was silent; now it is said. An icosphere of radius 1 at 0.01 meets it.
+TEST(TetOptions, MaxVolumeTetGenCannotMeetIsReported) {
+    TetOptions options;
+    options.useCache = false;
+    options.maxVolume = 0.001;
+    TetStats stats;
+    const TetMesh cube = tetrahedralize(box(), options, &stats);
+    EXPECT_EQ(
+        stats.maxVolumeWarning.rfind(std::to_string(cube.tets.size()) + " of " + std::to_string(cube.tets.size()) +
+                                         " tets are larger than the max volume 0.001",
+                                     0),
+        0u)
+        << stats.maxVolumeWarning;
+    options.maxVolume = 0.01;
+    const TetMesh sphere = tetrahedralize(icosphere(3), options, &stats);
+    EXPECT_GT(sphere.tets.size(), 4.0 / 0.01);
+    EXPECT_EQ(stats.maxVolumeWarning, "");
 }
 
 }  // namespace

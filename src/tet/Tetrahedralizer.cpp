@@ -32,6 +32,27 @@ std::string TetOptions::switches() const {
 
 namespace {
 
+// TetGen keeps the boundary exact (-Y) by never splitting it: a tet whose circumcentre, the
+// point refinement would insert, lies too near a boundary face stays as it is, whatever -a
+// asks (a box stays 12 tets at any max volume).
+std::string maxVolumeWarning(const TetMesh& mesh, double maxVolume) {
+    if (maxVolume <= 0) return "";
+    size_t over = 0;
+    double largest = 0;
+    for (uint32_t t = 0; t < mesh.tets.size(); ++t) {
+        const double v = mesh.tetVolume(t);
+        over += v > maxVolume;
+        largest = std::max(largest, v);
+    }
+    if (over == 0) return "";
+    char text[320];
+    std::snprintf(text, sizeof text,
+                  "%zu of %zu tets are larger than the max volume %.6g (the largest %.6g): TetGen adds no point that "
+                  "would split the exact boundary, and these tets' refinement points lie too near it",
+                  over, mesh.tets.size(), maxVolume, largest);
+    return text;
+}
+
 std::array<uint32_t, 3> sortedFace(const std::array<uint32_t, 4>& v, int j) {
     std::array<uint32_t, 3> f{v[kInwardFace[j][0]], v[kInwardFace[j][1]], v[kInwardFace[j][2]]};
     std::sort(f.begin(), f.end());
@@ -295,6 +316,8 @@ TetMesh tetrahedralize(std::vector<TriangleMesh> surfaces, const std::vector<std
             }
         }
     }
+    local.maxVolumeWarning = maxVolumeWarning(mesh, options.maxVolume);
+    if (!local.maxVolumeWarning.empty()) std::fprintf(stderr, "tetglow: warning: %s\n", local.maxVolumeWarning.c_str());
     local.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (stats) *stats = local;
     return mesh;

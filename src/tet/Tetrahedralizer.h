@@ -25,6 +25,8 @@ struct TetStats {
     bool fromCache = false;
     std::string cacheFile;     // "" when caching is off or the directory is not writable
     std::string cacheWarning;  // why a cache entry found was not used (also printed to stderr); "" if none
+    // Tets larger than TetOptions::maxVolume, and why (also printed to stderr); "" if none.
+    std::string maxVolumeWarning;
 };
 
 // The most tets a tetrahedralization may have (about 3 GB with TetGen's own data): a max volume
