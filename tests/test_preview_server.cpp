@@ -176,6 +176,14 @@ TEST_F(PreviewServer, TheTooLargeMessageNamesTheLimitApplied) {
                                     R"({"media": [{"g": 0.25)" + std::string(70000, ' ') + "}]}"));
     EXPECT_EQ(over.status, 413);
     EXPECT_EQ(Json::parse(over.body)["error"], "request too large: at most 65536 bytes");
+    // httplib's limits on a line: the reply said only "bad request".
+    const HttpReply header = rawHttp(port(), httpRequest("GET", "/state", port(), {{"X-Pad", std::string(9000, 'x')}}));
+    EXPECT_EQ(header.status, 400);
+    EXPECT_EQ(Json::parse(header.body)["error"],
+              "bad request: a malformed request line or header, or a header line over 8192 bytes");
+    const HttpReply uri = rawHttp(port(), httpRequest("GET", "/state?" + std::string(9000, 'x'), port()));
+    EXPECT_EQ(uri.status, 414);
+    EXPECT_EQ(Json::parse(uri.body)["error"], "request line too long: at most 8192 bytes");
 }
 
 TEST_F(PreviewServer, SlowClientsLeaveThreadsForOthers) {

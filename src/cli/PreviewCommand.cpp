@@ -174,10 +174,14 @@ private:
         post("/save/image", [this](const std::string& body, httplib::Response& res) { saveImage(body, res); });
         server_.set_error_handler([](const httplib::Request&, httplib::Response& res) {
             if (!res.body.empty()) return;
+            // httplib's own limits on the request line and on each header line (8 KiB).
+            const std::string lineLimit = std::to_string(CPPHTTPLIB_HEADER_MAX_LENGTH) + " bytes";
             sendError(res,
                       res.status == 404   ? "not found"
                       : res.status == 413 ? tooLarge()
-                                          : "bad request",
+                      : res.status == 414
+                          ? "request line too long: at most " + lineLimit
+                          : "bad request: a malformed request line or header, or a header line over " + lineLimit,
                       res.status);
         });
         server_.set_exception_handler([](const httplib::Request&, httplib::Response& res, std::exception_ptr e) {
