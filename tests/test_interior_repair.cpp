@@ -102,22 +102,37 @@ TEST(InteriorRepair, PunchedHolesLoseAtMostTheirCap) {
     }
 }
 
-// A unit sphere of `rings` latitude bands, `sides` around, with the bands within `open` of each
-// pole left out: a barrel whose two rims are flat regular polygons.
-TriangleMesh barrel(int rings, int sides, int open) {
+// A unit sphere of `rings` latitude bands, `sides` around, without the `north` bands nearest its
+// north pole and the `south` nearest its south pole (a pole left in is one vertex): a barrel or a
+// bowl whose rims are flat regular polygons.
+TriangleMesh openSphere(int rings, int sides, int north, int south) {
     TriangleMesh m;
-    for (int i = 0; i <= rings; ++i)
+    m.positions.push_back({0, 0, 1});
+    for (int i = 1; i < rings; ++i)
         for (int k = 0; k < sides; ++k) {
             const double theta = M_PI * i / rings, phi = 2 * M_PI * k / sides;
             m.positions.push_back({std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)});
         }
-    const auto at = [&](int i, int k) { return uint32_t(i * sides + k % sides); };
-    for (int i = open; i < rings - open; ++i)
+    m.positions.push_back({0, 0, -1});
+    const auto at = [&](int i, int k) {
+        return i == 0 ? 0u : i == rings ? uint32_t(m.positions.size() - 1) : uint32_t(1 + (i - 1) * sides + k % sides);
+    };
+    for (int i = north; i < rings - south; ++i)
         for (int k = 0; k < sides; ++k) {
-            m.triangles.push_back({at(i, k), at(i + 1, k), at(i + 1, k + 1)});
-            m.triangles.push_back({at(i, k), at(i + 1, k + 1), at(i, k + 1)});
+            if (i + 1 < rings) m.triangles.push_back({at(i, k), at(i + 1, k), at(i + 1, k + 1)});
+            if (i > 0) m.triangles.push_back({at(i, k), at(i + 1, k + 1), at(i, k + 1)});
         }
     return m;
+}
+
+// The rim of openSphere's band `ring` closed by a fan from its centre, facing away from the band.
+void closeRim(TriangleMesh& m, int rings, int sides, int ring, bool north) {
+    m.positions.push_back({0, 0, std::cos(M_PI * ring / rings)});
+    const uint32_t c = uint32_t(m.positions.size() - 1);
+    for (int k = 0; k < sides; ++k) {
+        const uint32_t a = uint32_t(1 + (ring - 1) * sides + k), b = uint32_t(1 + (ring - 1) * sides + (k + 1) % sides);
+        m.triangles.push_back(north ? std::array{c, a, b} : std::array{c, b, a});
+    }
 }
 
 // The band within 30 degrees of the equator: its winding number is 1/2 at the centre and just
@@ -128,18 +143,12 @@ TriangleMesh barrel(int rings, int sides, int open) {
 // itself bows in to the centre.
 TEST(InteriorRepair, MinimumCutSeparatesTheSpanningSurfaces) {
     const int rings = 12, sides = 32, open = 4;
-    const TriangleMesh holed = barrel(rings, sides, open);
+    const TriangleMesh holed = openSphere(rings, sides, open, open);
     TriangleMesh closed = holed;
     double polygons = 0;
-    for (int ring : {open, rings - open}) {  // each rim closed by a fan from its centre
-        const double theta = M_PI * ring / rings;
-        closed.positions.push_back({0, 0, std::cos(theta)});
-        const uint32_t c = uint32_t(closed.positions.size() - 1);
-        for (int k = 0; k < sides; ++k) {
-            const uint32_t a = uint32_t(ring * sides + k), b = uint32_t(ring * sides + (k + 1) % sides);
-            closed.triangles.push_back(ring == open ? std::array{c, a, b} : std::array{c, b, a});
-        }
-        polygons += 0.5 * sides * std::pow(std::sin(theta), 2) * std::sin(2 * M_PI / sides);
+    for (int ring : {open, rings - open}) {
+        closeRim(closed, rings, sides, ring, ring == open);
+        polygons += 0.5 * sides * std::pow(std::sin(M_PI * ring / rings), 2) * std::sin(2 * M_PI / sides);
     }
     ValidationReport report;
     const TetMesh mesh = tets(holed, &report);
@@ -154,42 +163,15 @@ TEST(InteriorRepair, MinimumCutSeparatesTheSpanningSurfaces) {
     EXPECT_EQ(mesh.surface.size(), holed.triangles.size() + report.repair.spannedTriangles.size());
 }
 
-// A unit sphere of `rings` latitude bands (one vertex at each pole), `sides` around, without its
-// top `open` bands (at least one): a bowl whose rim is a flat regular polygon.
-TriangleMesh bowl(int rings, int sides, int open) {
-    TriangleMesh m;
-    m.positions.push_back({0, 0, 1});
-    for (int i = 1; i < rings; ++i)
-        for (int k = 0; k < sides; ++k) {
-            const double theta = M_PI * i / rings, phi = 2 * M_PI * k / sides;
-            m.positions.push_back({std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)});
-        }
-    m.positions.push_back({0, 0, -1});
-    const uint32_t south = uint32_t(m.positions.size() - 1);
-    const auto at = [&](int i, int k) {
-        return i == 0 ? 0u : i == rings ? south : uint32_t(1 + (i - 1) * sides + k % sides);
-    };
-    for (int i = open; i < rings; ++i)  // open >= 1: the north pole is left out
-        for (int k = 0; k < sides; ++k) {
-            if (i + 1 < rings) m.triangles.push_back({at(i, k), at(i + 1, k), at(i + 1, k + 1)});
-            m.triangles.push_back({at(i, k), at(i + 1, k + 1), at(i, k + 1)});
-        }
-    return m;
-}
-
 // TetGen 1.5 failed an assertion (flip41) on the lattice around this bowl's rim, and the mesh was
 // refused as "TetGen crashed ... nearly touching or intersecting faces". The repair moves the
 // lattice and tries again: the bowl's inside comes out, closed by a surface across its rim
 // within 1% of the bowl closed by the rim's polygon.
 TEST(InteriorRepair, LatticeTetGenFailsOnIsMoved) {
     const int rings = 8, sides = 64, open = 3;
-    const TriangleMesh holed = bowl(rings, sides, open);
+    const TriangleMesh holed = openSphere(rings, sides, open, 0);
     TriangleMesh closed = holed;
-    closed.positions.push_back({0, 0, std::cos(M_PI * open / rings)});
-    const uint32_t c = uint32_t(closed.positions.size() - 1);
-    for (int k = 0; k < sides; ++k)
-        closed.triangles.push_back(
-            {c, uint32_t(1 + (open - 1) * sides + k), uint32_t(1 + (open - 1) * sides + (k + 1) % sides)});
+    closeRim(closed, rings, sides, open, true);
     ValidationReport report;
     const TetMesh mesh = tets(holed, &report);
     EXPECT_NEAR(mesh.volume(), signedVolume(closed), 0.01 * signedVolume(closed));
@@ -200,7 +182,7 @@ TEST(InteriorRepair, LatticeTetGenFailsOnIsMoved) {
 // The minimum cut over uncertain labels (InsideLabels.h) gives the same tets on every run and
 // at any thread count (the winding numbers are computed in parallel).
 TEST(InteriorRepair, SameTetsTwice) {
-    const TriangleMesh holed = barrel(12, 32, 4);
+    const TriangleMesh holed = openSphere(12, 32, 4, 4);
     const TetMesh first = tets(holed);
     const tbb::global_control oneThread(tbb::global_control::max_allowed_parallelism, 1);
     const TetMesh second = tets(holed);
