@@ -13,8 +13,8 @@ namespace tetglow {
 struct RawTets {
     std::vector<double> points;
     std::vector<int> tets, neighbours;
-    std::vector<double>
-        attributes;  // per tet, with -A: the region of the inside point it holds + 1, or TetGen's own number
+    // Per tet, with -A: the region of the inside point its cell holds + 1, or TetGen's own number.
+    std::vector<double> attributes;
 };
 
 // The bounds of a child process that meshes a surface of `triangles` (TetGen, CGAL's
