@@ -1,7 +1,5 @@
 #include "render/NoiseEstimate.h"
 
-#include <algorithm>
-
 namespace tetglow {
 
 // A pixel's n samples split into nE and nO = n - nE, each of variance s^2 and independent. The
@@ -10,13 +8,11 @@ namespace tetglow {
 // when the halves are equal, and then without bias whatever the samples' distribution when the
 // halves are independent (RenderOptions::independentHalves). One stratified sequence over all
 // passes makes the full image better than its halves predict: the estimate is then conservative.
-// The converged value in the denominator is the pixel's mean, except where one half's mean is
-// more than kFireflyRatio times the other's: there a rare bright path dominates the mean, which
-// would hide that pixel's error (its relative error would read as about 1), and the smaller
-// half's mean is the better guess. Without this the estimate read 1.4 to 2.1 times low on the
-// blue cloud (docs/RESULTS.md, --noise); a ratio as large as 7 is very unlikely from ordinary noise.
-static constexpr double kFireflyRatio = 7;
-
+// The converged value in the denominator is the pixel's mean. A scene lit by rare bright paths
+// (the blue cloud at 20 to 50 passes) then reads low: such a path raises the mean and hides its
+// pixel's error. Taking the smaller half there instead fixed the cloud but made the estimate 20
+// times the error on the photon-mapped fish, whose caustic pixels see sparse kernel hits
+// (docs/notes/2026-12-04-noise-estimate.md).
 std::optional<double> estimateRelMse(const Film& all, const Film& half) {
     double sum = 0;
     size_t terms = 0;
@@ -28,9 +24,7 @@ std::optional<double> estimateRelMse(const Film& all, const Film& half) {
             const double sumE = double(half.sum(i)[c]) / kFixedUnit, sumAll = double(all.sum(i)[c]) / kFixedUnit;
             const double meanE = sumE / nE, meanO = (sumAll - sumE) / nO, mean = sumAll / n;
             const double d = meanE - meanO;
-            const double low = std::min(meanE, meanO), high = std::max(meanE, meanO);
-            const double converged = high > kFireflyRatio * low ? low : mean;
-            sum += d * d * factor / (converged * converged + kRelMseFloor);
+            sum += d * d * factor / (mean * mean + kRelMseFloor);
             ++terms;
         }
     }
