@@ -42,12 +42,19 @@ void RegionMedia::setRegions(std::vector<RegionMedium> regions) {
     if (regions.size() != std::max<size_t>(1, m.regionCount()))
         throw std::invalid_argument("RegionMedia: one medium per region expected");
     regions_.clear();
+    tetChord_.clear();
     emissive_ = scatters_ = false;
     bool varying = false;
     for (const RegionMedium& r : regions) {
         if (!r.vertexDensity.empty() && r.vertexDensity.size() != m.vertices.size())
             throw std::invalid_argument("RegionMedia: one density per tet vertex expected");
         regions_.emplace_back(r.params);
+        // A regular tet's mean chord (4 V / S) is 0.55 times the cube root of its volume.
+        const int32_t index = int32_t(regions_.size()) - 1;
+        const double tets = m.regionCount() ? double(m.regionTets[size_t(index) + 1] - m.regionTets[size_t(index)])
+                                            : double(m.tets.size());
+        const double volume = m.regionCount() ? m.regionVolume(index) : m.volume();
+        tetChord_.push_back(r.vertexDensity.empty() && tets > 0 ? 0.55 * std::cbrt(volume / tets) : 0.0);
         emissive_ |= maxComponent(r.params.emission) > 0;
         scatters_ |= maxComponent(r.params.sigmaS) > 0;
         varying |= !r.vertexDensity.empty();
@@ -89,7 +96,18 @@ FreeFlight RegionMedia::sampleFlight(const Ray& ray, WalkStart start, double tMa
     const double target = -std::log1p(-u);
     RGB depth(0);  // optical depth so far
     FreeFlight flight;
-    const TetWalk walk = this->walk(ray, start, [&](const WalkSegment& s) {
+    // A stretch without an interaction.
+    auto pass = [&](const RegionOptics& optics, double piece) {
+        if (isBlack(optics.sigmaT) && maxComponent(optics.params.emission) > 0) {
+            // The transmittance is constant here: the emission integrates exactly, weighted
+            // like a path that passed the stretch (SpectralPath::pass) against its pdf ratios.
+            const RGB tr = exp(-depth);
+            flight.glow += optics.params.emission * piece * tr / average(ratios * tr);
+        }
+        depth += optics.sigmaT * piece;
+        return true;
+    };
+    auto visit = [&](const WalkSegment& s) {
         const double tIn = std::max(s.tIn, 0.0), tOut = std::min(s.tOut, tMax);
         if (tOut <= tIn) return s.tIn < tMax;
         const RegionOptics& optics = at(s.tet);
@@ -103,17 +121,15 @@ FreeFlight RegionMedia::sampleFlight(const Ray& ray, WalkStart start, double tMa
             depth += optics.sigmaT * need;
             return false;
         }
-        if (isBlack(optics.sigmaT) && maxComponent(optics.params.emission) > 0) {
-            // The transmittance is constant here: the emission integrates exactly, weighted
-            // like a path that passed the stretch (SpectralPath::pass) against its pdf ratios.
-            const RGB tr = exp(-depth);
-            flight.glow += optics.params.emission * piece * tr / average(ratios * tr);
-        }
-        depth += optics.sigmaT * piece;
+        pass(optics, piece);
         return s.tOut < tMax;
-    });
+    };
+    // With no interaction possible (u = 1: transmittance), the walk may end in one exit query.
+    const WalkExit exit =
+        std::isinf(target) ? walkToExit(ray, start, tMax, visit, pass, [](const RegionOptics&, double) { return true; })
+                           : WalkExit::of(this->walk(ray, start, visit), tMax);
     flight.transmittance = exp(-depth);
-    if (!flight.scattered) flight.exit = WalkExit::of(walk, tMax);
+    if (!flight.scattered) flight.exit = exit;
     return flight;
 }
 
@@ -127,10 +143,8 @@ FreeFlight RegionMedia::shadowFlight(const Ray& ray, WalkStart start, double tMa
     // Roulette once every channel's depth passes rouletteAt: where weight * exp(-depth) < 1/20.
     double rouletteAt = std::log(20.0), weight = 1;
     bool stopped = false;
-    const TetWalk walk = this->walk(ray, start, [&](const WalkSegment& s) {
-        const double tIn = std::max(s.tIn, 0.0), tOut = std::min(s.tOut, tMax);
-        if (tOut <= tIn) return s.tIn < tMax;
-        depth += at(s.tet).sigmaT * densityIntegral(s.tet, ray, tIn, tOut);
+    auto pass = [&](const RegionOptics& optics, double length) {
+        depth += optics.sigmaT * length;
         while (std::min({depth.x, depth.y, depth.z}) > rouletteAt) {
             if (rng.uniform() >= kSurvive) {
                 stopped = true;
@@ -139,11 +153,26 @@ FreeFlight RegionMedia::shadowFlight(const Ray& ray, WalkStart start, double tMa
             weight /= kSurvive;
             rouletteAt -= std::log(kSurvive);
         }
-        return s.tOut < tMax;
-    });
+        return true;
+    };
+    // An exit query costs about as much as kQuerySteps tet steps: where roulette will likely end
+    // the ray sooner (the next test comes within that many mean steps), walking is cheaper.
+    constexpr double kQuerySteps = 8;
+    auto worthAsking = [&](const RegionOptics& optics, double meanStep) {
+        const double sigma = std::min({optics.sigmaT.x, optics.sigmaT.y, optics.sigmaT.z});
+        return rouletteAt - std::min({depth.x, depth.y, depth.z}) > sigma * kQuerySteps * meanStep;
+    };
+    const WalkExit exit = walkToExit(
+        ray, start, tMax,
+        [&](const WalkSegment& s) {
+            const double tIn = std::max(s.tIn, 0.0), tOut = std::min(s.tOut, tMax);
+            if (tOut <= tIn) return s.tIn < tMax;
+            return pass(at(s.tet), densityIntegral(s.tet, ray, tIn, tOut)) && s.tOut < tMax;
+        },
+        pass, worthAsking);
     FreeFlight flight;
     flight.transmittance = stopped ? RGB(0) : exp(-depth) * weight;
-    if (!stopped) flight.exit = WalkExit::of(walk, tMax);
+    if (!stopped) flight.exit = exit;
     return flight;
 }
 

@@ -4,6 +4,7 @@
 // each tet, so every segment of a ray walk integrates in closed form, region by region, and
 // free-flight distances are sampled by inverting that integral.
 #pragma once
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -12,6 +13,7 @@
 #include "base/Spectrum.h"
 #include "media/PhaseFunction.h"
 #include "sampling/Rng.h"
+#include "tet/RegionExit.h"
 #include "tet/TetVolume.h"
 
 namespace tetglow {
@@ -83,6 +85,10 @@ public:
     // and cross the others, index-matched, inside the walk. By default they cross every one.
     void setStops(std::vector<bool> stops) { stops_ = std::move(stops); }
     bool stopsAt(uint32_t triangle) const { return !stops_.empty() && stops_[triangle]; }
+    // Transmittance and shadow rays walk this many tets of a region of constant density, then
+    // find its exit with one query of the surface BVH (regionExit), where the tets between carry no
+    // news; 0: walk every tet.
+    void setExitQueryAfter(size_t steps) { exitQueryAfter_ = steps; }
 
     const TetVolume& volume() const { return volume_; }
     const TetMesh& mesh() const { return volume_.mesh(); }
@@ -104,6 +110,9 @@ public:
     // where the ray left the medium or stopped at an interface.
     template <class Visit>
     TetWalk walk(const Ray& ray, WalkStart start, Visit&& visit) const;
+    // The same, going on with a walk begun (or stopped by its visitor) before; false where visit stopped it.
+    template <class Visit>
+    bool walkOn(TetWalk& walk, Visit&& visit) const;
 
     // Free flight along `ray` (unit direction) from `start` up to tMax, the distance sampled
     // exactly for the hero channel's extinction (see SpectralPath). `ratios` are the path's
@@ -121,21 +130,68 @@ public:
     FreeFlight shadowFlight(const Ray& ray, WalkStart start, double tMax, Rng& rng) const;
 
 private:
+    // walk() for a stretch that needs only the optical depth: once exitQueryAfter_ segments are
+    // walked, the walk is inside a region of constant density and worthAsking(optics, the region's
+    // mean chord of a tet) says so, the rest of the way to the region's exit (or tMax) goes to
+    // pass(optics, length) at once (false: stop), unless that exit is an interface the walk
+    // crosses or too close to call. Returns where the ray left.
+    template <class Visit, class Pass, class Worth>
+    WalkExit walkToExit(const Ray& ray, WalkStart start, double tMax, Visit&& visit, Pass&& pass,
+                        Worth&& worthAsking) const;
+
     std::vector<RegionOptics> regions_;
+    std::vector<double> tetChord_;  // per region: its tets' mean chord, 0 where its density varies
     bool emissive_ = false, scatters_ = false;
     TetVolume volume_;
     std::vector<glm::dvec4> densityPlane_;  // per tet: density(p) = w + dot(xyz, p)
     std::vector<bool> stops_;               // per surface triangle, or empty: none
+    size_t exitQueryAfter_ = 1;
 };
 
 template <class Visit>
 TetWalk RegionMedia::walk(const Ray& ray, WalkStart start, Visit&& visit) const {
     TetWalk w = beginWalk(ray, start);
+    walkOn(w, visit);
+    return w;
+}
+
+template <class Visit>
+bool RegionMedia::walkOn(TetWalk& w, Visit&& visit) const {
     do {
         for (WalkSegment s; w.next(s);)
-            if (!visit(s)) return w;
+            if (!visit(s)) return false;
     } while (w.exited() && !stopsAt(w.exitTriangle()) && w.crossInterface());
-    return w;
+    return true;
+}
+
+template <class Visit, class Pass, class Worth>
+WalkExit RegionMedia::walkToExit(const Ray& ray, WalkStart start, double tMax, Visit&& visit, Pass&& pass,
+                                 Worth&& worthAsking) const {
+    TetWalk w = beginWalk(ray, start);
+    size_t steps = 0;
+    uint32_t tet = 0;
+    double tNow = 0;
+    bool ask = false;
+    walkOn(w, [&](const WalkSegment& s) {
+        if (!visit(s)) return false;
+        tet = s.tet;
+        tNow = s.tOut;
+        if (++steps != exitQueryAfter_ || w.exited()) return true;  // asked once: after that, the walk
+        const size_t r = size_t(mesh().region(tet));
+        ask = tetChord_[r] > 0 && worthAsking(regions_[r], tetChord_[r]);
+        return !ask;
+    });
+    if (!ask) return WalkExit::of(w, tMax);
+    const RegionExit e = regionExit(volume_, ray, mesh().region(tet), tNow, tMax);
+    const bool crosses =
+        e.kind == RegionExit::Kind::Exit && mesh().surfaceFaceFront[e.triangle] != UINT32_MAX && !stopsAt(e.triangle);
+    if (e.kind == RegionExit::Kind::Unsure || crosses) {  // the walk goes on from where it was
+        walkOn(w, visit);
+        return WalkExit::of(w, tMax);
+    }
+    const bool exits = e.kind == RegionExit::Kind::Exit;
+    if (!pass(at(tet), (exits ? e.t : tMax) - std::max(tNow, 0.0))) return {};
+    return exits ? WalkExit{true, e.triangle, e.tet, e.t} : WalkExit{};
 }
 
 }  // namespace tetglow

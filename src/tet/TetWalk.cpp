@@ -13,28 +13,6 @@ namespace {
 // The magnitude side() returns for a sign decided by simulation of simplicity.
 constexpr double kTie = 1e-300;
 
-// Calls visit(t) for the surface triangles sharing a corner with s, turning around each corner
-// through the tets, until it returns true.
-template <class Visit>
-bool anyAround(const TetMesh& mesh, uint32_t s, Visit&& visit) {
-    for (int k = 0; k < 3; ++k) {
-        const uint32_t v = mesh.surface[s][k];
-        uint32_t around = s, from = mesh.surface[s][(k + 1) % 3];
-        for (int guard = 0; guard < 1024; ++guard) {
-            around = mesh.surfaceAcross(around, v, from);
-            if (around == s) break;
-            if (visit(around)) return true;
-            const auto& t = mesh.surface[around];  // continue across the other edge at v
-            for (int i = 0; i < 3; ++i)
-                if (t[i] != v && t[i] != from) {
-                    from = t[i];
-                    break;
-                }
-        }
-    }
-    return false;
-}
-
 }  // namespace
 
 double sideExact(uint32_t ia, const glm::dvec2& a, uint32_t ib, const glm::dvec2& b) {
@@ -60,10 +38,7 @@ TetWalk::TetWalk(const TetMesh& mesh, const Ray& ray)
 
 inline double TetWalk::faceT(const Vertex& e, const Vertex& x, const Vertex& y, double sEX, double sXY,
                              double sYE) const {
-    // Barycentric coordinates of the origin in the projected face are the three sides.
-    const double we = std::max(sXY, 0.0), wx = std::max(sYE, 0.0), wy = std::max(sEX, 0.0), sum = we + wx + wy;
-    if (!(sum > 0)) return (e.t + x.t + y.t) / 3.0;
-    return (we * e.t + wx * x.t + wy * y.t) / sum;
+    return crossingT(e.t, x.t, y.t, sEX, sXY, sYE);
 }
 
 inline void TetWalk::setFace(uint32_t tet, int apex, Vertex a, Vertex b, Vertex c, double ab, double bc, double ca) {
@@ -100,7 +75,7 @@ bool TetWalk::tryEnter(uint32_t s, bool* exits) {
 
 TetWalk TetWalk::enter(const TetMesh& mesh, const Ray& ray, uint32_t s) {
     TetWalk w(mesh, ray);
-    if (w.tryEnter(s) || anyAround(mesh, s, [&](uint32_t t) { return w.tryEnter(t); })) return w;
+    if (w.tryEnter(s) || anySurfaceAround(mesh, s, [&](uint32_t t) { return w.tryEnter(t); })) return w;
     // The exact tests say the ray only touches the surface here: an empty walk, which ends
     // past the triangle's corners, where the ray surely goes on outside.
     const auto [a, b, c] = w.projectSurface(s);
@@ -115,7 +90,7 @@ void TetWalk::entriesNear(const TetMesh& mesh, const Ray& ray, uint32_t s, std::
     bool exits = false;
     if (w.tryEnter(s, &exits)) return entries.push_back(w);
     if (exits) return;  // through s's interior the other way: no entry can be near
-    anyAround(mesh, s, [&](uint32_t t) {
+    anySurfaceAround(mesh, s, [&](uint32_t t) {
         if (w.tryEnter(t)) entries.push_back(w);
         return false;
     });

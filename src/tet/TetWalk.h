@@ -7,6 +7,7 @@
 // to zero are computed exactly (Shewchuk's orient2d); exact zeros (rays through vertices and
 // edges) are broken by simulation of simplicity, as if the ray were moved by (eps, eps^2).
 #pragma once
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -57,6 +58,36 @@ inline double side(uint32_t ia, const glm::dvec2& a, uint32_t ib, const glm::dve
     const double bound = kErrBound * (std::abs(l) + std::abs(r));
     if (det > bound || -det > bound) return det;
     return sideExact(ia, a, ib, b);
+}
+
+// Where the ray crosses the projected triangle (a, b, c), from its vertices' ray parameters and
+// the sides of its edges: those are the barycentric coordinates of the origin.
+inline double crossingT(double ta, double tb, double tc, double sAB, double sBC, double sCA) {
+    const double wa = std::max(sBC, 0.0), wb = std::max(sCA, 0.0), wc = std::max(sAB, 0.0), sum = wa + wb + wc;
+    if (!(sum > 0)) return (ta + tb + tc) / 3.0;
+    return (wa * ta + wb * tb + wc * tc) / sum;
+}
+
+// Calls visit(t) for the surface triangles sharing a corner with s, turning around each corner
+// through the tets, until it returns true.
+template <class Visit>
+bool anySurfaceAround(const TetMesh& mesh, uint32_t s, Visit&& visit) {
+    for (int k = 0; k < 3; ++k) {
+        const uint32_t v = mesh.surface[s][k];
+        uint32_t around = s, from = mesh.surface[s][(k + 1) % 3];
+        for (int guard = 0; guard < 1024; ++guard) {
+            around = mesh.surfaceAcross(around, v, from);
+            if (around == s) break;
+            if (visit(around)) return true;
+            const auto& t = mesh.surface[around];  // continue across the other edge at v
+            for (int i = 0; i < 3; ++i)
+                if (t[i] != v && t[i] != from) {
+                    from = t[i];
+                    break;
+                }
+        }
+    }
+    return false;
 }
 
 class TetWalk {

@@ -1,0 +1,98 @@
+// Kernels of shadow rays from interior points of a homogeneous medium: the transmittance to the
+// boundary, and shadowFlight (with Russian roulette) in a dense medium. The argument is the
+// number of tets walked before the region's exit is asked of the surface BVH (0: walk every tet,
+// the behaviour before the exit query), so one run measures before and after. Mesh:
+// TETGLOW_SHADOW_MESH, else blub (../shared/meshes), else the demo fish.
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <memory>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <benchmark/benchmark.h>
+#include <glm/geometric.hpp>
+
+#include "media/RegionMedia.h"
+#include "scene/MeshFile.h"
+#include "tet/Tetrahedralizer.h"
+
+namespace tetglow {
+namespace {
+
+struct ShadowFixture {
+    std::unique_ptr<RegionMedia> medium;
+    double diagonal = 0;
+    std::vector<Ray> rays;       // from located interior points, unit directions
+    std::vector<uint32_t> tets;  // holding each ray's origin
+};
+
+std::string shadowMesh() {
+    if (const char* path = std::getenv("TETGLOW_SHADOW_MESH")) return path;
+    const std::string blub = std::string(TETGLOW_SOURCE_DIR) + "/../shared/meshes/blub.obj";
+    return std::filesystem::exists(blub) ? blub : std::string(TETGLOW_SOURCE_DIR) + "/scenes/meshes/fish.obj";
+}
+
+ShadowFixture& shadowFixture() {
+    static ShadowFixture f = [] {
+        ShadowFixture f;
+        f.medium = std::make_unique<RegionMedia>(MediumParams{}, tetrahedralize(readMesh(shadowMesh())));
+        const Bounds3& box = f.medium->volume().bounds();
+        f.diagonal = box.diagonal();
+        std::mt19937_64 rng(1);
+        std::uniform_real_distribution<double> u(0, 1);
+        std::normal_distribution<double> n;
+        while (f.rays.size() < 4096) {
+            const glm::dvec3 p = box.lo + (box.hi - box.lo) * glm::dvec3(u(rng), u(rng), u(rng));
+            const int64_t t = f.medium->volume().locate(p);
+            if (t < 0) continue;
+            const glm::dvec3 d(n(rng), n(rng), n(rng));
+            f.rays.push_back({p, d / glm::length(d)});
+            f.tets.push_back(uint32_t(t));
+        }
+        return f;
+    }();
+    return f;
+}
+
+// Scattering only, sigma_t = 1 / (mean free path).
+void setMeanFreePath(ShadowFixture& f, double path) {
+    MediumParams p;
+    p.sigmaS = RGB(1 / path);
+    f.medium->setRegions(
+        std::vector<RegionMedium>(std::max<size_t>(1, f.medium->mesh().regionCount()), RegionMedium{p, {}}));
+}
+
+// Transmittance to the boundary (RegionMedia::transmittance), mean free path the box's diagonal.
+void BM_ShadowExit(benchmark::State& state) {
+    ShadowFixture& f = shadowFixture();
+    setMeanFreePath(f, f.diagonal);
+    f.medium->setExitQueryAfter(size_t(state.range(0)));
+    size_t rays = 0;
+    for (auto _ : state) {
+        const size_t i = rays++ % f.rays.size();
+        benchmark::DoNotOptimize(f.medium->transmittance(f.rays[i], WalkStart::inside(f.tets[i]), INFINITY));
+    }
+    state.counters["rays/s"] = benchmark::Counter(double(rays), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_ShadowExit)->Arg(0)->Arg(1)->Arg(2)->Arg(4)->Arg(8);
+
+// shadowFlight in a dense medium (mean free path 1% of the diagonal, as jade): roulette ends
+// most rays after a few tets, where one query may cost more than the steps it saves.
+void BM_DenseShadowExit(benchmark::State& state) {
+    ShadowFixture& f = shadowFixture();
+    setMeanFreePath(f, 0.01 * f.diagonal);
+    f.medium->setExitQueryAfter(size_t(state.range(0)));
+    Rng rng(1, 2);
+    size_t rays = 0;
+    for (auto _ : state) {
+        const size_t i = rays++ % f.rays.size();
+        benchmark::DoNotOptimize(f.medium->shadowFlight(f.rays[i], WalkStart::inside(f.tets[i]), INFINITY, rng));
+    }
+    state.counters["rays/s"] = benchmark::Counter(double(rays), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_DenseShadowExit)->Arg(0)->Arg(1)->Arg(2)->Arg(4)->Arg(8);
+
+}  // namespace
+}  // namespace tetglow

@@ -1,0 +1,277 @@
+// A region's exit in one surface-BVH query: the same triangle, tet and t as the walk's exit, for
+// random rays and for rays constructed through vertices and edges of the boundary; and the
+// transmittance and shadow rays built on it equal the closed form and the walk.
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "TestMeshes.h"
+#include "media/RegionMedia.h"
+#include "scene/MeshFile.h"
+#include "tet/Predicates.h"
+#include "tet/RegionExit.h"
+#include "tet/TetVolume.h"
+
+namespace tetglow {
+namespace {
+
+glm::dvec3 direction(std::mt19937_64& rng) {
+    std::normal_distribution<double> n;
+    const glm::dvec3 d(n(rng), n(rng), n(rng));
+    return d / glm::length(d);
+}
+
+struct ExitCounts {
+    size_t compared = 0, unsure = 0, walkLost = 0, illPosed = 0;
+};
+
+// A tet with an edge exactly parallel to the ray (its ends project to one point) or a face in a
+// plane with the ray (its corners project onto a line through the origin): the walk's signs
+// there are fixed choices, not those of a perturbed line, and the walk may leave through a face
+// the line does not cross, or at a t off the surface.
+bool degenerateAlongRay(const TetMesh& mesh, uint32_t tet, const Ray& ray) {
+    const RayProjection project(ray);
+    const auto& v = mesh.tets[tet];
+    glm::dvec2 p[4];
+    for (int i = 0; i < 4; ++i) p[i] = project(mesh.vertices[v[i]]).uv;
+    for (int i = 0; i < 4; ++i)
+        for (int j = i + 1; j < 4; ++j)
+            if (glm::cross(mesh.vertices[v[j]] - mesh.vertices[v[i]], ray.d) == glm::dvec3(0)) return true;
+    for (const auto& f : kInwardFace)
+        if (orient2d(p[f[0]], p[f[1]], {0, 0}) == 0 && orient2d(p[f[1]], p[f[2]], {0, 0}) == 0 &&
+            orient2d(p[f[2]], p[f[0]], {0, 0}) == 0)
+            return true;
+    return false;
+}
+
+// Walks `steps` segments of the ray from `tet` (holding its origin), asks regionExit from there
+// and compares it with the rest of the walk, to the region's first exit.
+void compareExit(const TetVolume& volume, const Ray& ray, uint32_t tet, int steps, ExitCounts& counts) {
+    const TetMesh& mesh = volume.mesh();
+    TetWalk walk = TetWalk::start(mesh, ray, tet, 0);
+    WalkSegment s{};
+    bool illPosed = false;
+    for (int k = 0; k < steps; ++k) {
+        if (!walk.next(s)) return;
+        // A first segment that ends where it starts: an origin on a tet face the perturbed ray
+        // does not go into from this tet, where the walk's own start is undefined.
+        illPosed |= (k == 0 && !(s.tOut > s.tIn)) || degenerateAlongRay(mesh, s.tet, ray);
+    }
+    if (walk.exited()) return;
+    const RegionExit e = regionExit(volume, ray, mesh.region(s.tet), s.tOut, INFINITY);
+    for (WalkSegment rest; walk.next(rest);) illPosed |= degenerateAlongRay(mesh, rest.tet, ray);
+    if (illPosed) {
+        ++counts.illPosed;
+        return;
+    }
+    if (walk.lost()) {  // the walk's own failure: nothing to compare
+        ++counts.walkLost;
+        return;
+    }
+    if (e.kind == RegionExit::Kind::Unsure) {
+        ++counts.unsure;
+        return;
+    }
+    ASSERT_EQ(int(e.kind), int(RegionExit::Kind::Exit));
+    ASSERT_EQ(e.triangle, walk.exitTriangle())
+        << "ray " << ray.o.x << " " << ray.o.y << " " << ray.o.z << " d " << ray.d.x << " " << ray.d.y << " " << ray.d.z
+        << " t " << e.t << " walk " << walk.exitT() << " from " << s.tOut << " steps " << steps;
+    ASSERT_EQ(e.tet, walk.exitTet());
+    ASSERT_NEAR(e.t, walk.exitT(), 1e-12 * std::max(1.0, std::abs(e.t)));
+    ++counts.compared;
+}
+
+ExitCounts compareExits(const TetVolume& volume, uint64_t seed) {
+    const TetMesh& mesh = volume.mesh();
+    const Bounds3& box = volume.bounds();
+    const double diagonal = box.diagonal();
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(0, 1);
+    ExitCounts counts;
+    auto inside = [&](glm::dvec3& p) {
+        for (;;) {
+            p = box.lo + (box.hi - box.lo) * glm::dvec3(u(rng), u(rng), u(rng));
+            if (const int64_t t = volume.locate(p); t >= 0) return uint32_t(t);
+        }
+    };
+    for (int i = 0; i < 3000; ++i) {
+        glm::dvec3 p;
+        const uint32_t tet = inside(p);
+        const int steps = 1 + i % 4;
+        // Random directions; aimed at a surface vertex; aimed at the midpoint of a surface edge.
+        compareExit(volume, {p, direction(rng)}, tet, steps, counts);
+        const auto& tri = mesh.surface[size_t(u(rng) * double(mesh.surface.size())) % mesh.surface.size()];
+        compareExit(volume, {p, mesh.vertices[tri[0]] - p}, tet, steps, counts);
+        compareExit(volume, {p, 0.5 * (mesh.vertices[tri[1]] + mesh.vertices[tri[2]]) - p}, tet, steps, counts);
+    }
+    for (int i = 0; i < 1000; ++i) {
+        // Axis-parallel through a surface vertex: its projection is exactly the origin, and
+        // simulation of simplicity decides.
+        const uint32_t v = uint32_t(u(rng) * double(mesh.surfaceVertexCount)) % uint32_t(mesh.surfaceVertexCount);
+        const int axis = i % 3;
+        for (const double sign : {1.0, -1.0}) {
+            glm::dvec3 d(0);
+            d[axis] = sign;
+            glm::dvec3 p = mesh.vertices[v];
+            p[axis] -= sign * (0.01 + 0.2 * u(rng)) * diagonal;
+            if (const int64_t t = volume.locate(p); t >= 0) compareExit(volume, {p, d}, uint32_t(t), 1 + i % 3, counts);
+        }
+        // From a vertex of the tets, and from the centre of a tet face (as a shadow ray from a
+        // scattering event there), in the tet the ray goes into: one holding the origin and a
+        // point just along the ray.
+        const uint32_t w = uint32_t(u(rng) * double(mesh.vertices.size())) % uint32_t(mesh.vertices.size());
+        const auto& tv = mesh.tets[uint32_t(u(rng) * double(mesh.tets.size())) % uint32_t(mesh.tets.size())];
+        for (const glm::dvec3& p :
+             {mesh.vertices[w], (mesh.vertices[tv[0]] + mesh.vertices[tv[1]] + mesh.vertices[tv[2]]) / 3.0}) {
+            const glm::dvec3 d = direction(rng);
+            const int64_t t = volume.locate(p + 1e-9 * diagonal * d);
+            if (t >= 0 && volume.contains(uint32_t(t), p)) compareExit(volume, {p, d}, uint32_t(t), 1 + i % 3, counts);
+        }
+    }
+    return counts;
+}
+
+void expectMostCompared(const ExitCounts& counts, const std::string& name) {
+    // Unsure (two crossings closer than the walk's rounding): the caller walks; it must stay rare.
+    EXPECT_GT(counts.compared, 9000u) << name;
+    EXPECT_LT(counts.unsure, counts.compared / 20) << name;
+    printf(
+        "%s: %zu exits equal to the walk's, %zu left to the walk, %zu where the walk was lost, %zu ill-posed starts\n",
+        name.c_str(), counts.compared, counts.unsure, counts.walkLost, counts.illPosed);
+}
+
+TEST(RegionExit, IsTheWalksExitInTheUnitIcosphere) {
+    const TetVolume volume(tetrahedralize(icosphere(3), test::noCache()));
+    expectMostCompared(compareExits(volume, 1), "icosphere");
+}
+
+TEST(RegionExit, IsTheWalksExitInReferenceMeshes) {
+    for (const test::NamedMesh& m : test::referenceMeshes()) {
+        if (m.path.empty()) {
+            printf("%s.obj not tested: ../shared/meshes not found\n", m.name.c_str());
+            continue;
+        }
+        const TetVolume volume(tetrahedralize(readMesh(m.path), test::noCache()));
+        expectMostCompared(compareExits(volume, 2), m.name);
+    }
+}
+
+TEST(RegionExit, IsTheWalksExitAtInterfacesOfNestedSpheres) {
+    // Region by region: the exit from the inner sphere's region is the interface, and from the
+    // shell it is the interface or the outer surface.
+    TetOptions o;
+    o.useCache = false;
+    const TetVolume volume(
+        tetrahedralize({icosphere(3, 1.0), icosphere(2, 0.5, {0.1, 0.05, 0})}, {"shell", "core"}, o));
+    ASSERT_EQ(volume.mesh().regionCount(), 2u);
+    expectMostCompared(compareExits(volume, 3), "nested spheres");
+}
+
+// A homogeneous absorbing sphere.
+std::unique_ptr<RegionMedia> absorbingSphere(double sigma) {
+    MediumParams p;
+    p.sigmaA = RGB(sigma);
+    p.sigmaS = RGB(0);
+    return std::make_unique<RegionMedia>(p, tetrahedralize(icosphere(3), test::noCache()));
+}
+
+TEST(RegionMediaExit, TransmittanceAlongAChordIsTheClosedForm) {
+    const double sigma = 1.7;
+    const auto medium = absorbingSphere(sigma);
+    const TriangleMesh sphere = icosphere(3);
+    std::mt19937_64 rng(4);
+    std::uniform_real_distribution<double> u(-1, 1);
+    const uint64_t queries = surfaceQueries();
+    for (int i = 0; i < 2000; ++i) {
+        const glm::dvec3 p(0.9 * u(rng), 0.9 * u(rng), 0.9 * u(rng));
+        const int64_t tet = medium->volume().locate(p);
+        if (tet < 0) continue;
+        const Ray ray{p, direction(rng)};
+        const double chord = test::convexChord(sphere, ray);
+        // To the boundary, and up to a distance inside (the jump ends there): the closed form
+        // (to the float rounding of the tets' vertices) and the walk's (to the last bits).
+        for (const double end : {double(INFINITY), 0.5 * chord}) {
+            medium->setExitQueryAfter(0);
+            const RGB walked = medium->transmittance(ray, WalkStart::inside(uint32_t(tet)), end);
+            medium->setExitQueryAfter(1 + size_t(i % 4));
+            const RGB tr = medium->transmittance(ray, WalkStart::inside(uint32_t(tet)), end);
+            ASSERT_NEAR(tr.x, std::exp(-sigma * std::min(chord, end)), 1e-6);
+            ASSERT_NEAR(tr.x, walked.x, 1e-12);
+        }
+    }
+    // The exits were found by the surface BVH (a walk makes no query).
+    EXPECT_GT(surfaceQueries() - queries, 1000u);
+}
+
+// shadowFlight and transmittance with the exit query and with the walk of every tet agree:
+// the same exit (triangle, tet, t), the same transmittance.
+void expectSameAsTheWalk(RegionMedia& medium, uint64_t seed) {
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(-1, 1);
+    size_t left = 0;
+    for (int i = 0; i < 2000; ++i) {
+        const glm::dvec3 p(0.9 * u(rng), 0.9 * u(rng), 0.9 * u(rng));
+        const int64_t tet = medium.volume().locate(p);
+        if (tet < 0) continue;
+        const Ray ray{p, direction(rng)};
+        const WalkStart start = WalkStart::inside(uint32_t(tet));
+        FreeFlight flights[2], shadows[2];
+        for (const size_t k : {0, 1}) {
+            medium.setExitQueryAfter(k == 0 ? 0 : 1 + size_t(i % 3));
+            Rng r(7, uint64_t(i));
+            shadows[k] = medium.shadowFlight(ray, start, INFINITY, r);
+            flights[k] = medium.sampleFlight(ray, start, INFINITY, 0, 1.0);
+        }
+        for (const FreeFlight* f : {flights, shadows}) {
+            ASSERT_EQ(f[1].exit.left, f[0].exit.left);
+            ASSERT_EQ(f[1].exit.triangle, f[0].exit.triangle);
+            ASSERT_EQ(f[1].exit.tet, f[0].exit.tet);
+            ASSERT_NEAR(f[1].exit.t, f[0].exit.t, 1e-12);
+            for (int c = 0; c < 3; ++c) ASSERT_NEAR(f[1].transmittance[c], f[0].transmittance[c], 1e-12);
+        }
+        left += flights[0].exit.left;
+    }
+    EXPECT_GT(left, 1000u);
+}
+
+TEST(RegionMediaExit, ShadowRaysLeaveWhereTheWalkLeaves) {
+    // Thin enough that roulette never starts (optical depth below ln 20).
+    const auto medium = absorbingSphere(0.5);
+    expectSameAsTheWalk(*medium, 5);
+}
+
+TEST(RegionMediaExit, NestedRegionsCrossOrStopAtInterfacesLikeTheWalk) {
+    TetOptions o;
+    o.useCache = false;
+    TetMesh mesh = tetrahedralize({icosphere(3, 1.0), icosphere(2, 0.5, {0.1, 0.05, 0})}, {"shell", "core"}, o);
+    MediumParams shell, core;
+    shell.sigmaA = RGB(0.4, 0.5, 0.6);
+    core.sigmaA = RGB(0.9, 0.2, 0.1);
+    shell.sigmaS = core.sigmaS = RGB(0);
+    RegionMedia medium(std::move(mesh), {RegionMedium{shell, {}}, RegionMedium{core, {}}});
+    expectSameAsTheWalk(medium, 6);  // crossing the interface: the walk goes on there
+    std::vector<bool> stops(medium.mesh().surface.size());
+    for (size_t s = 0; s < stops.size(); ++s) stops[s] = medium.mesh().surfaceFaceFront[s] != UINT32_MAX;
+    medium.setStops(stops);
+    expectSameAsTheWalk(medium, 7);  // stopping there: the exit is the interface
+}
+
+TEST(RegionMediaExit, VaryingDensityKeepsTheWalk) {
+    MediumParams p;
+    p.sigmaA = RGB(1);
+    TetMesh mesh = tetrahedralize(icosphere(2), test::noCache());
+    std::vector<double> density(mesh.vertices.size());
+    for (size_t v = 0; v < density.size(); ++v) density[v] = 1 + mesh.vertices[v].x;
+    const RegionMedia medium(p, std::move(mesh), density);
+    const uint64_t queries = surfaceQueries();
+    const int64_t tet = medium.volume().locate(glm::dvec3(0.1, 0.2, 0.3));
+    ASSERT_GE(tet, 0);
+    medium.transmittance({{0.1, 0.2, 0.3}, {1, 0, 0}}, WalkStart::inside(uint32_t(tet)), INFINITY);
+    EXPECT_EQ(surfaceQueries(), queries);
+}
+
+}  // namespace
+}  // namespace tetglow
