@@ -1,8 +1,11 @@
 // Kernels of shadow rays from interior points of a homogeneous medium: the transmittance to the
 // boundary, and shadowFlight (with Russian roulette) in a dense medium. The argument is the
 // number of tets walked before the region's exit is asked of the surface BVH (0: walk every tet,
-// the behaviour before the exit query), so one run measures before and after. Mesh:
+// the behaviour before the exit query), so one run measures before and after. Each reports its
+// rays per second, the tet steps a ray takes and skips (against the walk to the boundary), and
+// the steps per second that rate stands for. Mesh:
 // TETGLOW_SHADOW_MESH, else blub (../shared/meshes), else the demo fish.
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -26,6 +29,7 @@ struct ShadowFixture {
     double diagonal = 0;
     std::vector<Ray> rays;       // from located interior points, unit directions
     std::vector<uint32_t> tets;  // holding each ray's origin
+    std::vector<size_t> steps;   // each ray's tet steps to the boundary
 };
 
 std::string shadowMesh() {
@@ -50,10 +54,31 @@ ShadowFixture& shadowFixture() {
             const glm::dvec3 d(n(rng), n(rng), n(rng));
             f.rays.push_back({p, d / glm::length(d)});
             f.tets.push_back(uint32_t(t));
+            size_t steps = 0;
+            f.medium->walk(f.rays.back(), WalkStart::inside(uint32_t(t)), [&](const WalkSegment&) { return ++steps; });
+            f.steps.push_back(steps);
         }
         return f;
     }();
     return f;
+}
+
+// The steps the rays take with the exit asked after `after` steps: all of them where no query
+// was made (surfaceQueries), `after` where one was. A walk that goes on after an unsure query
+// counts as skipping: those are about 1 in 500.
+void countSteps(benchmark::State& state, ShadowFixture& f, size_t after, size_t rays, const auto& trace) {
+    double walked = 0, taken = 0;
+    for (size_t i = 0; i < f.rays.size(); ++i) {
+        const uint64_t queries = surfaceQueries();
+        trace(i);
+        walked += double(f.steps[i]);
+        taken += double(surfaceQueries() > queries ? std::min(after, f.steps[i]) : f.steps[i]);
+    }
+    const double n = double(f.rays.size());
+    state.counters["walk steps/ray"] = walked / n;
+    state.counters["steps/ray"] = taken / n;
+    state.counters["skipped/ray"] = (walked - taken) / n;
+    state.counters["steps/s"] = benchmark::Counter(double(rays) * taken / n, benchmark::Counter::kIsRate);
 }
 
 // Scattering only, sigma_t = 1 / (mean free path).
@@ -75,6 +100,9 @@ void BM_ShadowExit(benchmark::State& state) {
         benchmark::DoNotOptimize(f.medium->transmittance(f.rays[i], WalkStart::inside(f.tets[i]), INFINITY));
     }
     state.counters["rays/s"] = benchmark::Counter(double(rays), benchmark::Counter::kIsRate);
+    countSteps(state, f, size_t(state.range(0)), rays, [&](size_t i) {
+        benchmark::DoNotOptimize(f.medium->transmittance(f.rays[i], WalkStart::inside(f.tets[i]), INFINITY));
+    });
 }
 BENCHMARK(BM_ShadowExit)->Arg(0)->Arg(1)->Arg(2)->Arg(4)->Arg(8);
 
