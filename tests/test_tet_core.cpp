@@ -3,10 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <optional>
 #include <random>
 #include <set>
-#include <utility>
 
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>
@@ -297,59 +295,6 @@ TEST_P(TetCore, DegenerateRayChordsMatchEmbreeOrExactChord) {
         GetParam().name.c_str(), rays, ambiguous, lost, longWalks, off);
     EXPECT_GT(rays, 3000);
     EXPECT_EQ(lost + longWalks + off, 0);  // each counted on the line above
-}
-
-// The first entry from the candidates near the nearest one is the full search's, to the bit:
-// rays through vertices (axis-aligned), along tet edges and through edge midpoints, random rays,
-// and windows [tnear, tfar] that start past an entry or end just before or at one.
-TEST_P(TetCore, FirstEntryIsTheFullSearchs) {
-    const auto& m = mesh();
-    std::mt19937_64 rng(9);
-    std::uniform_real_distribution<double> u(0, 1);
-    int rays = 0, entries = 0, differ = 0;
-    auto same = [](const std::optional<TetWalk>& a, const std::optional<TetWalk>& b) {
-        return a.has_value() == b.has_value() &&
-               (!a || (a->entryTriangle() == b->entryTriangle() && a->exitT() == b->exitT()));
-    };
-    auto check = [&](const Ray& ray) {
-        ++rays;
-        const auto full = volume_->firstEntryOfAll(ray, 0, INFINITY);
-        entries += full.has_value();
-        differ += !same(volume_->firstEntry(ray, 0, INFINITY), full);
-        if (!full) return;
-        const double t = full->exitT();
-        // Past this entry (the next one), and ending just short of it or exactly at it.
-        for (const auto& [lo, hi] :
-             {std::pair{std::nextafter(t, INFINITY), double(INFINITY)}, std::pair{0.0, std::nextafter(t, 0.0)},
-              std::pair{0.0, t}, std::pair{0.0, t + 1e-3 * diag_}})
-            differ += !same(volume_->firstEntry(ray, lo, hi), volume_->firstEntryOfAll(ray, lo, hi));
-    };
-    const size_t vstride = std::max<size_t>(1, m.vertices.size() / 2000);
-    for (size_t v = 0; v < m.vertices.size(); v += vstride)
-        for (int axis = 0; axis < 3; ++axis) {
-            glm::dvec3 d(0);
-            d[axis] = 1;  // the line passes exactly through the vertex
-            check({m.vertices[v] - d * (2 * diag_), d});
-        }
-    for (size_t t = 0; t < m.tets.size(); t += std::max<size_t>(1, m.tets.size() / 2000)) {
-        const int i = int(rng() % 4), j = (i + 1 + int(rng() % 3)) % 4;
-        const glm::dvec3 a = m.vertices[m.tets[t][i]], b = m.vertices[m.tets[t][j]];
-        const glm::dvec3 d = b - a;  // exact for float vertices: the line holds a and b exactly
-        const double back = std::ldexp(1.0, int(std::ceil(std::log2(2 * diag_ / glm::length(d)))));
-        check({a - d * back, d});
-        glm::dvec3 axis(0);
-        axis[int(rng() % 3)] = 1;
-        check({(a + b) * 0.5 - axis * (2 * diag_), axis});
-    }
-    for (int k = 0; k < 4000; ++k) {
-        const glm::dvec3 target = bounds_.lo + (bounds_.hi - bounds_.lo) * glm::dvec3(u(rng), u(rng), u(rng));
-        const glm::dvec3 d = uniformDirection(rng);
-        check({target - d * diag_, d});
-    }
-    std::printf("first entries on %s: %d rays, %d entering, %d differing from the full search\n",
-                GetParam().name.c_str(), rays, entries, differ);
-    EXPECT_GT(entries, 3000);
-    EXPECT_EQ(differ, 0);
 }
 
 TEST_P(TetCore, WalkFromInsideMatchesWalkFromOutside) {

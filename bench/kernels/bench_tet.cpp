@@ -146,21 +146,6 @@ void BM_EmbreeEntryExit(benchmark::State& state) {
 }
 BENCHMARK(BM_EmbreeEntryExit);
 
-void BM_FirstEntry(benchmark::State& state) {
-    // The exact first entry of rays from outside: Arg 0 asks every candidate along the ray
-    // (firstEntryOfAll), 1 only those near Embree's nearest one where no triangle grazes the ray.
-    const Fixture& f = fixture();
-    const bool near = state.range(0) == 1;
-    size_t i = 0;
-    for (auto _ : state) {
-        const Ray& ray = f.rays[i++ % f.rays.size()];
-        benchmark::DoNotOptimize(near ? f.volume->firstEntry(ray, 0, INFINITY)
-                                      : f.volume->firstEntryOfAll(ray, 0, INFINITY));
-    }
-    state.counters["rays/s"] = benchmark::Counter(double(state.iterations()), benchmark::Counter::kIsRate);
-}
-BENCHMARK(BM_FirstEntry)->Arg(0)->Arg(1);
-
 void BM_LocateAlongPath(benchmark::State& state) {
     // The march's inside test with tets, as the single-scattering integrator does it: walk the
     // ray once through the box and give each sample the tet of the segment holding it (-1

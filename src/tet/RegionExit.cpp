@@ -40,26 +40,12 @@ RegionExit regionExit(const TetVolume& volume, const Ray& ray, int32_t region, d
         }
         return true;
     };
-    bool grazing = false;
-    auto decideAll = [&](double from, double to) {
-        first = {RegionExit::Kind::None, 0, 0, INFINITY};
-        second = INFINITY;
-        for (const SurfaceHit& candidate : volume.bvh().candidates(ray, from, to, &grazing))
-            if (!decide(candidate.triangle))
-                anySurfaceAround(mesh, candidate.triangle, [&](uint32_t s) {
-                    decide(s);
-                    return false;
-                });
-    };
-    // As in TetVolume::firstEntry: unless a triangle grazes the ray, the candidates near the
-    // nearest one decide an exit (with its tie band) found a margin short of their end.
-    const double from = tFrom - tolerance, to = tTo + tolerance;
-    const auto nearest = volume.bvh().nearestCandidate(ray, from, to, grazing);
-    if (nearest || grazing) {
-        const double margin = volume.bvh().margin(ray), end = nearest ? nearest->t + 2 * margin : INFINITY;
-        if (!grazing && end < to) decideAll(std::max(from, nearest->t - margin), end);
-        if (grazing || !(end < to) || first.t + tolerance > end - margin) decideAll(from, to);
-    }
+    for (const SurfaceHit& candidate : volume.bvh().candidates(ray, tFrom - tolerance, tTo + tolerance))
+        if (!decide(candidate.triangle))
+            anySurfaceAround(mesh, candidate.triangle, [&](uint32_t s) {
+                decide(s);
+                return false;
+            });
     // A closed region has an exit along every ray: none found is not as expected.
     if (first.kind == RegionExit::Kind::None) return std::isinf(tTo) ? RegionExit{} : first;
     if (first.t <= tFrom + tolerance || second - first.t <= tolerance || std::abs(first.t - tTo) <= tolerance)

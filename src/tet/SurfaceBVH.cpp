@@ -111,7 +111,6 @@ struct QueryContext {
     Facing facing;
     std::vector<SurfaceHit>* collect;  // when set: record and reject every hit
     int* count;                        // when set: count and reject every hit
-    bool grazing = false;              // a hit was nearly parallel to the ray (see SurfaceBVH::candidates)
 };
 
 void filter(const RTCFilterFunctionNArguments* args) {
@@ -124,11 +123,7 @@ void filter(const RTCFilterFunctionNArguments* args) {
     const uint32_t prim = RTCHitN_primID(args->hit, args->N, 0);
     // Embree's window is widened for float rounding; the exact window applies to the refined t.
     const double t = ctx->bvh->refine(ctx->ray, prim, float(ctx->shift + RTCRayN_tfar(args->ray, args->N, 0)));
-    const glm::dvec3& n = ctx->bvh->normal(prim);
-    const double cosine = glm::dot(ctx->ray.d, n);
-    const bool entering = cosine < 0;
-    // Below a cosine of 1/20 Embree's float t may be off by more than the margin.
-    ctx->grazing |= 400 * cosine * cosine < glm::dot(ctx->ray.d, ctx->ray.d) * glm::dot(n, n);
+    const bool entering = glm::dot(ctx->ray.d, ctx->bvh->normal(prim)) < 0;
     if (ctx->collect) {
         if (t >= ctx->tnear) ctx->collect->push_back({t, prim, entering});
         args->valid[0] = 0;
@@ -193,40 +188,22 @@ int SurfaceBVH::crossings(const Ray& ray) const {
     return count;
 }
 
-bool SurfaceBVH::grownQuery(const Ray& ray, double tnear, double tfar, std::vector<SurfaceHit>* collect,
-                            SurfaceHit& nearest, bool* grazing) const {
+std::vector<SurfaceHit> SurfaceBVH::candidates(const Ray& ray, double tnear, double tfar) const {
     // Embree's ray starts where the ray enters the bounds, a margin early, and ends a margin
     // late: its float rounding is then relative to the mesh, however far away the ray's own
     // origin is, and no crossing within [tnear, tfar] is cut off.
-    const double margin = this->margin(ray);
+    const double margin = margin_ / glm::length(ray.d);
     double t0 = tnear, t1 = tfar + margin;
-    if (grazing) *grazing = false;
-    if (!clip(grownBounds_, ray, t0, t1)) return false;
+    std::vector<SurfaceHit> hits;
+    if (!clip(grownBounds_, ray, t0, t1)) return hits;
     const double shift = t0 - margin;
-    QueryContext ctx{{}, this, ray, shift, tnear, Facing::Any, collect, nullptr};
+    QueryContext ctx{{}, this, ray, shift, tnear, Facing::Any, &hits, nullptr};
     rtcInitIntersectContext(&ctx.base);
     ctx.base.filter = filter;
     RTCRayHit rh = makeRay(ray, shift, t1 + margin, shift);
     ++tQueries;
     rtcIntersect1(grown_, &ctx.base, &rh);
-    if (grazing) *grazing = ctx.grazing;
-    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
-    const uint32_t prim = rh.hit.primID;
-    nearest = {refine(ray, prim, float(shift + rh.ray.tfar)), prim, glm::dot(ray.d, normals_[prim]) < 0};
-    return true;
-}
-
-std::vector<SurfaceHit> SurfaceBVH::candidates(const Ray& ray, double tnear, double tfar, bool* grazing) const {
-    std::vector<SurfaceHit> hits;
-    SurfaceHit unused;
-    grownQuery(ray, tnear, tfar, &hits, unused, grazing);
     return hits;
-}
-
-std::optional<SurfaceHit> SurfaceBVH::nearestCandidate(const Ray& ray, double tnear, double tfar, bool& grazing) const {
-    SurfaceHit nearest;
-    if (!grownQuery(ray, tnear, tfar, nullptr, nearest, &grazing)) return std::nullopt;
-    return nearest;
 }
 
 }  // namespace tetglow

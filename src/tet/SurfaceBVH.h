@@ -8,7 +8,6 @@
 #include <vector>
 
 #include <embree3/rtcore.h>
-#include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
 #include "base/Ray.h"
@@ -41,28 +40,13 @@ public:
     // for exact tests to decide (the caller orders what they accept): Embree over the triangles grown in their planes
     // by a margin far above its float error, so that a crossing exactly through an edge or a vertex, which Embree can
     // miss on the triangles themselves, is never left out.
-    // grazing (when given) is set where a triangle Embree met was nearly parallel to the ray: its t
-    // may then be off by more than margin(ray).
-    std::vector<SurfaceHit> candidates(const Ray& ray, double tnear = 0, double tfar = INFINITY,
-                                       bool* grazing = nullptr) const;
-    // The nearest of those candidates, in one culling traversal. A crossing at t through a triangle
-    // that is not grazing has its candidate within margin(ray) of t (a grown triangle lies in its
-    // triangle's plane), so unless `grazing` is set, no such crossing lies before this
-    // candidate's t less that margin.
-    std::optional<SurfaceHit> nearestCandidate(const Ray& ray, double tnear, double tfar, bool& grazing) const;
-    // Above the difference between a candidate's refined t and Embree's float one.
-    double margin(const Ray& ray) const { return margin_ / glm::length(ray.d); }
+    std::vector<SurfaceHit> candidates(const Ray& ray, double tnear = 0, double tfar = INFINITY) const;
 
     const glm::dvec3& normal(uint32_t triangle) const { return normals_[triangle]; }  // outward, not unit
     // The ray parameter of the triangle's plane, in double precision.
     double refine(const Ray& ray, uint32_t triangle, float embreeT) const;
 
 private:
-    // Embree over the grown triangles for [tnear, tfar]: with `collect`, every hit is recorded and
-    // rejected; without, the nearest is kept. False where nothing was kept.
-    bool grownQuery(const Ray& ray, double tnear, double tfar, std::vector<SurfaceHit>* collect, SurfaceHit& nearest,
-                    bool* grazing) const;
-
     RTCScene scene_ = nullptr, grown_ = nullptr;
     std::vector<glm::dvec3> normals_, corners_;
     Bounds3 grownBounds_;

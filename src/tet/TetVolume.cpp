@@ -125,10 +125,9 @@ int64_t TetVolume::lineLocate(uint32_t from, const glm::dvec3& p) const {
     return found;
 }
 
-std::vector<TetWalk> TetVolume::entriesAlong(const Ray& ray, double tnear, double tfar, bool* grazing) const {
+std::vector<TetWalk> TetVolume::entriesAlong(const Ray& ray, double tnear, double tfar) const {
     std::vector<TetWalk> entries;
-    for (const SurfaceHit& c : bvh_.candidates(ray, tnear, tfar, grazing))
-        TetWalk::entriesNear(mesh_, ray, c.triangle, entries);
+    for (const SurfaceHit& c : bvh_.candidates(ray, tnear, tfar)) TetWalk::entriesNear(mesh_, ray, c.triangle, entries);
     // Around neighbouring candidates, and from a candidate Embree reports twice, the same entry is
     // found twice, with the same t: ordered by (t, triangle), the copies are adjacent.
     std::sort(entries.begin(), entries.end(), [](const TetWalk& a, const TetWalk& b) {
@@ -141,34 +140,12 @@ std::vector<TetWalk> TetVolume::entriesAlong(const Ray& ray, double tnear, doubl
     return entries;
 }
 
-std::optional<TetWalk> TetVolume::firstEntryOfAll(const Ray& ray, double tnear, double tfar) const {
+std::optional<TetWalk> TetVolume::firstEntry(const Ray& ray, double tnear, double tfar) const {
     for (const TetWalk& w : entriesAlong(ray, tnear, tfar)) {
         if (w.exitT() > tfar) break;
         if (w.exitT() >= tnear) return w;
     }
     return std::nullopt;
-}
-
-std::optional<TetWalk> TetVolume::firstEntry(const Ray& ray, double tnear, double tfar) const {
-    // No crossing lies before the nearest candidate less a margin (unless a triangle on the way
-    // grazes the ray): the exact tests need only the candidates near it. An entry found a margin
-    // short of their end is the first of all; where none is (the nearest candidate passes beside
-    // its triangle), or a triangle grazes the ray, every candidate is asked.
-    bool grazing = false;
-    const auto nearest = bvh_.nearestCandidate(ray, tnear, tfar, grazing);
-    if (!nearest) return grazing ? firstEntryOfAll(ray, tnear, tfar) : std::nullopt;
-    const double margin = bvh_.margin(ray), end = nearest->t + 2 * margin;
-    if (!grazing && end < tfar) {
-        const double from = std::max(tnear, nearest->t - margin);
-        std::optional<TetWalk> entry;
-        for (const TetWalk& w : entriesAlong(ray, from, end, &grazing))
-            if (w.exitT() >= tnear) {
-                entry = w;
-                break;
-            }
-        if (!grazing && entry && entry->exitT() <= end - margin) return entry;
-    }
-    return firstEntryOfAll(ray, tnear, tfar);
 }
 
 namespace {

@@ -45,8 +45,6 @@ public:
     // The ray's first entry into the medium with tnear <= t <= tfar, by the exact tests (as
     // traverse() finds entries: Embree only proposes triangles); its exitT() is the entry's t.
     std::optional<TetWalk> firstEntry(const Ray& ray, double tnear, double tfar) const;
-    // The same from every candidate in [tnear, tfar]: what firstEntry falls back on.
-    std::optional<TetWalk> firstEntryOfAll(const Ray& ray, double tnear, double tfar) const;
 
 private:
     uint32_t gridTet(const glm::dvec3& p) const;
@@ -57,8 +55,7 @@ private:
     int64_t lineLocate(uint32_t from, const glm::dvec3& p) const;
     // The ray's entries into the medium for t >= tnear (up to about tfar), in order, each through its own triangle:
     // those the exact tests find among Embree's candidates and around the candidates they reject.
-    std::vector<TetWalk> entriesAlong(const Ray& ray, double tnear, double tfar = INFINITY,
-                                      bool* grazing = nullptr) const;
+    std::vector<TetWalk> entriesAlong(const Ray& ray, double tnear, double tfar = INFINITY) const;
 
     TetMesh mesh_;
     SurfaceBVH bvh_;
