@@ -71,18 +71,23 @@ TEST(FuzzFindings, OffFaceSizeBeyondTheFile) {
 
 // fuzz_scene_mesh: a character that is not a digit in a Collada index list (<p>0 2\xdf3 ...) makes
 // Assimp's parser stop advancing and append indices without end: the import ran, and grew, until
-// something killed the process. It is refused within the import's time limit, in bounded memory.
-TEST(FuzzFindings, ColladaIndexListThatNeverEndsRunsOutOfTime) {
+// something killed the process. It is refused at the import's limit for a file this small, 2 GB
+// (where the machine allocates fast) or 10 s (where it is busy), not at half the machine's
+// memory: on a quiet machine the child reached 2.35 GB in its 10 s under that limit.
+TEST(FuzzFindings, ColladaIndexListThatNeverEndsStopsAtTheImportsLimits) {
     const std::string path = TETGLOW_SOURCE_DIR "/fuzz/corpus/scene_mesh/index-list-never-ends.dae";
     try {
         readMesh(path);
         ADD_FAILURE() << "no error";
     } catch (const InputError& e) {
-        EXPECT_EQ(std::string(e.what()), path + ": the dae importer (Assimp) ran past its time limit of 10 s");
+        const std::string importer = path + ": the dae importer (Assimp) ";
+        EXPECT_TRUE(e.what() == importer + "ran past its time limit of 10 s" ||
+                    e.what() == importer + "ran out of memory (its limit is 2 GB)")
+            << e.what();
     }
     rusage children{};
     ::getrusage(RUSAGE_CHILDREN, &children);
-    EXPECT_LT(double(children.ru_maxrss) * 1024, 2e9) << "the fuzzer's memory limit";
+    EXPECT_LT(double(children.ru_maxrss) * 1024, 2.2e9) << "the limit, and the test's own memory at the fork";
 }
 
 }  // namespace

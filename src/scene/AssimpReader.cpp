@@ -266,10 +266,14 @@ Imported import(std::string data, const std::string& path, SceneMeshFormat forma
 // advances): the import runs in a child process under a memory and a time limit, and its
 // crash or its limit is an error here. The time grows with the file: a 36 MB GLB of 2 million
 // triangles takes 1.5 s a MB on a busy machine (import, placing, welding and the answer), and
-// a file's buffers read in the child are not counted, so 5 s a MB leaves a wide margin.
+// a file's buffers read in the child are not counted, so 5 s a MB leaves a wide margin. Memory
+// grows with the file too (that GLB's import peaks at 0.3 GB, 8 bytes a byte of file): 2 GB
+// and 100 bytes a byte leave room for external buffers, and a small hostile file that makes
+// Assimp allocate without end is stopped there, not at half the machine.
 TriangleMesh parseSceneMeshes(std::string data, const std::string& path, SceneMeshFormat format,
                               const std::string& node, std::vector<std::string>* warnings) {
-    const ChildLimits limits{defaultChildMemory(), 10 + 5 * double(data.size()) / 1e6};
+    const double size = double(data.size());
+    const ChildLimits limits{std::min(defaultChildMemory(), 2e9 + 100 * size), 10 + 5 * size / 1e6};
     const std::string importer = std::string("the ") + extension(format) + " importer (Assimp)";
     std::string answer;
     try {
