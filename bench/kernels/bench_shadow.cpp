@@ -30,6 +30,7 @@ struct ShadowFixture {
     std::vector<Ray> rays;       // from located interior points, unit directions
     std::vector<uint32_t> tets;  // holding each ray's origin
     std::vector<size_t> steps;   // each ray's tet steps to the boundary
+    double stepsPerLength = 0;   // the walk's steps over the distance they cover, all rays together
 };
 
 std::string shadowMesh() {
@@ -47,6 +48,7 @@ ShadowFixture& shadowFixture() {
         std::mt19937_64 rng(1);
         std::uniform_real_distribution<double> u(0, 1);
         std::normal_distribution<double> n;
+        double length = 0;
         while (f.rays.size() < 4096) {
             const glm::dvec3 p = box.lo + (box.hi - box.lo) * glm::dvec3(u(rng), u(rng), u(rng));
             const int64_t t = f.medium->volume().locate(p);
@@ -55,9 +57,17 @@ ShadowFixture& shadowFixture() {
             f.rays.push_back({p, d / glm::length(d)});
             f.tets.push_back(uint32_t(t));
             size_t steps = 0;
-            f.medium->walk(f.rays.back(), WalkStart::inside(uint32_t(t)), [&](const WalkSegment&) { return ++steps; });
+            double end = 0;
+            f.medium->walk(f.rays.back(), WalkStart::inside(uint32_t(t)), [&](const WalkSegment& s) {
+                end = s.tOut;
+                return ++steps;
+            });
             f.steps.push_back(steps);
+            length += end;
         }
+        size_t steps = 0;
+        for (size_t s : f.steps) steps += s;
+        f.stepsPerLength = double(steps) / length;
         return f;
     }();
     return f;
@@ -76,6 +86,7 @@ void countSteps(benchmark::State& state, ShadowFixture& f, size_t after, size_t 
     }
     const double n = double(f.rays.size());
     state.counters["walk steps/ray"] = walked / n;
+    state.counters["walk steps/length"] = f.stepsPerLength;  // per unit of the mesh's length
     state.counters["steps/ray"] = taken / n;
     state.counters["skipped/ray"] = (walked - taken) / n;
     state.counters["steps/s"] = benchmark::Counter(double(rays) * taken / n, benchmark::Counter::kIsRate);
