@@ -3,6 +3,7 @@
 // transmittance and shadow rays built on it equal the closed form and the walk.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <memory>
 #include <random>
 
@@ -257,6 +258,86 @@ TEST(RegionMediaExit, NestedRegionsCrossOrStopAtInterfacesLikeTheWalk) {
     for (size_t s = 0; s < stops.size(); ++s) stops[s] = medium.mesh().surfaceFaceFront[s] != UINT32_MAX;
     medium.setStops(stops);
     expectSameAsTheWalk(medium, 7);  // stopping there: the exit is the interface
+}
+
+// Flights that jump (sampleFlight with jump: one exit query, the interaction placed directly)
+// against the walk of every tet, from the tet of the origin and from another tet of its region
+// (WalkStart::inRegion): the same interaction or exit, the same transmittance, to the last bits.
+// Shadow rays and transmittance from a point in a region agree with those from its tet.
+void expectJumpsAsTheWalk(RegionMedia& medium, uint64_t seed) {
+    const TetMesh& mesh = medium.mesh();
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(-1, 1), u01(0, 1);
+    size_t jumped = 0, left = 0, flights = 0;
+    for (int i = 0; i < 2000; ++i) {
+        const glm::dvec3 p(0.9 * u(rng), 0.9 * u(rng), 0.9 * u(rng));
+        const int64_t tet = medium.volume().locate(p);
+        if (tet < 0) continue;
+        uint32_t hint = uint32_t(rng() % mesh.tets.size());
+        while (mesh.region(hint) != mesh.region(uint32_t(tet))) hint = uint32_t(rng() % mesh.tets.size());
+        const Ray ray{p, direction(rng)};
+        const double v = u01(rng);
+        const int hero = int(rng() % 3);
+        medium.setExitQueryAfter(0);
+        const FreeFlight walked = medium.sampleFlight(ray, WalkStart::inside(uint32_t(tet)), INFINITY, hero, v);
+        for (const WalkStart start : {WalkStart::inside(uint32_t(tet)), WalkStart::inRegion(hint)}) {
+            ++flights;
+            const FreeFlight f = medium.sampleFlight(ray, start, INFINITY, hero, v, RGB(1), true);
+            ASSERT_EQ(f.scattered, walked.scattered);
+            for (int c = 0; c < 3; ++c) ASSERT_NEAR(f.transmittance[c], walked.transmittance[c], 1e-12);
+            if (f.scattered) {
+                ASSERT_NEAR(f.t, walked.t, 1e-12);
+                ASSERT_EQ(mesh.region(f.tet), mesh.region(walked.tet));
+                if (f.located) ASSERT_EQ(f.tet, walked.tet);
+                jumped += !f.located;
+            } else {
+                ASSERT_EQ(f.exit.left, walked.exit.left);
+                ASSERT_EQ(f.exit.triangle, walked.exit.triangle);
+                ASSERT_EQ(f.exit.tet, walked.exit.tet);
+                ASSERT_NEAR(f.exit.t, walked.exit.t, 1e-12);
+                left += f.exit.left;
+            }
+        }
+        medium.setExitQueryAfter(1);
+        Rng r0(7, uint64_t(i)), r1(7, uint64_t(i));
+        const FreeFlight fromTet = medium.shadowFlight(ray, WalkStart::inside(uint32_t(tet)), INFINITY, r0);
+        const FreeFlight fromRegion = medium.shadowFlight(ray, WalkStart::inRegion(hint), INFINITY, r1);
+        ASSERT_EQ(fromRegion.exit.triangle, fromTet.exit.triangle);
+        ASSERT_NEAR(fromRegion.exit.t, fromTet.exit.t, 1e-12);
+        for (int c = 0; c < 3; ++c) ASSERT_NEAR(fromRegion.transmittance[c], fromTet.transmittance[c], 1e-12);
+        const RGB tr = medium.transmittance(ray, WalkStart::inRegion(hint), INFINITY),
+                  trTet = medium.transmittance(ray, WalkStart::inside(uint32_t(tet)), INFINITY);
+        for (int c = 0; c < 3; ++c) ASSERT_NEAR(tr[c], trTet[c], 1e-12);
+    }
+    std::printf("%zu flights: %zu jumped to an interaction, %zu left the medium\n", flights, jumped, left);
+    EXPECT_GT(jumped, flights / 5);
+    EXPECT_GT(left, flights / 10);
+}
+
+TEST(RegionMediaExit, FlightsThatJumpLandWhereTheWalkLands) {
+    // Thin enough that flights jump: a mean free path of more than 16 mean tet chords.
+    MediumParams p;
+    p.sigmaA = RGB(0.1, 0.15, 0.2);
+    p.sigmaS = RGB(0.35, 0.3, 0.25);
+    auto medium = std::make_unique<RegionMedia>(p, tetrahedralize(icosphere(3), test::noCache()));
+    expectJumpsAsTheWalk(*medium, 8);
+}
+
+TEST(RegionMediaExit, FlightsThatJumpCrossOrStopAtInterfacesLikeTheWalk) {
+    TetOptions o;
+    o.useCache = false;
+    TetMesh mesh = tetrahedralize({icosphere(3, 1.0), icosphere(2, 0.5, {0.1, 0.05, 0})}, {"shell", "core"}, o);
+    MediumParams shell, core;
+    shell.sigmaA = RGB(0.1, 0.15, 0.2);
+    shell.sigmaS = RGB(0.3);
+    core.sigmaA = RGB(0.2, 0.05, 0.1);
+    core.sigmaS = RGB(0.4);
+    RegionMedia medium(std::move(mesh), {RegionMedium{shell, {}}, RegionMedium{core, {}}});
+    expectJumpsAsTheWalk(medium, 9);
+    std::vector<bool> stops(medium.mesh().surface.size());
+    for (size_t s = 0; s < stops.size(); ++s) stops[s] = medium.mesh().surfaceFaceFront[s] != UINT32_MAX;
+    medium.setStops(stops);
+    expectJumpsAsTheWalk(medium, 10);
 }
 
 TEST(RegionMediaExit, VaryingDensityKeepsTheWalk) {

@@ -54,7 +54,7 @@ RGB VolPathIntegrator::continuePath(const Ray& start, VolumeState state, int dep
                 path.beta *= flight.transmittance;
                 if (!path.alive()) break;
             } else {
-                flight = medium.sampleFlight(ray, state.start, tMax, path.hero, rng.uniform(), path.r);
+                flight = medium.sampleFlight(ray, state.start, tMax, path.hero, rng.uniform(), path.r, true);
                 // Regions without extinction glow along the whole stretch they hold, exactly.
                 L += path.beta * flight.glow;
                 if (!flight.scattered) {
@@ -66,7 +66,8 @@ RGB VolPathIntegrator::continuePath(const Ray& start, VolumeState state, int dep
                     path.beta *= flight.density * optics.params.sigmaS;
                     if (++depth >= maxDepth_) break;
                     const glm::dvec3 p = ray.at(flight.t);
-                    const VolumeState here{state.volume, WalkStart::inside(flight.tet)};
+                    const VolumeState here{
+                        state.volume, flight.located ? WalkStart::inside(flight.tet) : WalkStart::inRegion(flight.tet)};
                     if (!scene_.sealed(state.volume))
                         L += path.weight() *
                              sampleDirect(scene_, p, rng, true, phaseScattering(optics.phase, ray.d), visibility(here));

@@ -86,12 +86,19 @@ double RegionMedia::columnDistance(uint32_t tet, const Ray& ray, double tIn, dou
 }
 
 TetWalk RegionMedia::beginWalk(const Ray& ray, WalkStart start) const {
-    return start.throughSurface ? TetWalk::enter(mesh(), ray, start.index)
-                                : TetWalk::start(mesh(), ray, start.index, 0);
+    if (start.throughSurface) return TetWalk::enter(mesh(), ray, start.index);
+    if (!start.located) {
+        // The exact tet of the origin, found from the region's tet near it. An origin that
+        // rounding put outside the region (it lies inside by more than the exit query's
+        // tolerance along the ray that placed it) keeps that tet.
+        const int64_t tet = volume_.locate(ray.o, start.index);
+        if (tet >= 0 && mesh().region(uint32_t(tet)) == mesh().region(start.index)) start.index = uint32_t(tet);
+    }
+    return TetWalk::start(mesh(), ray, start.index, 0);
 }
 
 FreeFlight RegionMedia::sampleFlight(const Ray& ray, WalkStart start, double tMax, int hero, double u,
-                                     const RGB& ratios) const {
+                                     const RGB& ratios, bool jump) const {
     // The distance solves the hero channel's optical depth = -ln(1 - u), region by region.
     const double target = -std::log1p(-u);
     RGB depth(0);  // optical depth so far
@@ -125,9 +132,41 @@ FreeFlight RegionMedia::sampleFlight(const Ray& ray, WalkStart start, double tMa
         return s.tOut < tMax;
     };
     // With no interaction possible (u = 1: transmittance), the walk may end in one exit query.
-    const WalkExit exit =
-        std::isinf(target) ? walkToExit(ray, start, tMax, visit, pass, [](const RegionOptics&, double) { return true; })
-                           : WalkExit::of(this->walk(ray, start, visit), tMax);
+    if (std::isinf(target)) {
+        flight.exit = walkToExit(ray, start, tMax, visit, pass, [](const RegionOptics&, double) { return true; });
+        flight.transmittance = exp(-depth);
+        return flight;
+    }
+    // An exit query costs about 14 tet steps (bench_shadow): a flight asks it where it would
+    // walk more than kFlightSteps tets on average (its mean free path over the mean chord).
+    constexpr double kFlightSteps = 16;
+    const int32_t region = start.throughSurface ? -1 : mesh().region(start.index);
+    if (jump && region >= 0 && tetChord_[size_t(region)] * kFlightSteps * regions_[size_t(region)].sigmaT[hero] < 1 &&
+        tetChord_[size_t(region)] > 0) {
+        // From a point in a region of constant density: its exit by one query, and the
+        // interaction, where it comes first, at the distance that solves the optical depth.
+        const RegionOptics& optics = regions_[size_t(region)];
+        const RegionExit e = regionExit(volume_, ray, region, 0, tMax);
+        const double end = e.kind == RegionExit::Kind::Exit ? e.t : tMax, sigma = optics.sigmaT[hero];
+        const double t = sigma > 0 ? target / sigma : INFINITY;
+        // Too close to the exit to call, or past an interface the walk crosses: the walk decides.
+        const bool clear = t < end - 1e-9 * (1 + end) || (t > end && !crossesAt(e));
+        if (e.kind != RegionExit::Kind::Unsure && clear) {
+            if (t < end) {
+                flight.scattered = true;
+                flight.t = t;
+                flight.tet = start.index;
+                flight.located = false;
+                flight.transmittance = exp(-optics.sigmaT * t);
+                return flight;
+            }
+            pass(optics, end);
+            flight.transmittance = exp(-depth);
+            if (e.kind == RegionExit::Kind::Exit) flight.exit = {true, e.triangle, e.tet, e.t};
+            return flight;
+        }
+    }
+    const WalkExit exit = WalkExit::of(this->walk(ray, start, visit), tMax);
     flight.transmittance = exp(-depth);
     if (!flight.scattered) flight.exit = exit;
     return flight;

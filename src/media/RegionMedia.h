@@ -6,6 +6,7 @@
 #pragma once
 #include <algorithm>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include <glm/vec4.hpp>
@@ -28,8 +29,12 @@ struct MediumParams {
 struct WalkStart {
     uint32_t index = 0;           // a surface triangle, or a tet
     bool throughSurface = false;  // true: the ray enters through that triangle; false: starts inside that tet
-    static WalkStart surface(uint32_t triangle) { return {triangle, true}; }
-    static WalkStart inside(uint32_t tet) { return {tet, false}; }
+    bool located = true;          // false: the origin lies in the region of that tet, in a tet not known
+    static WalkStart surface(uint32_t triangle) { return {triangle, true, true}; }
+    static WalkStart inside(uint32_t tet) { return {tet, false, true}; }
+    // In the region of `tet` (one of constant density), near it: flights and shadow rays from
+    // here ask the region's exit first and locate their tet only where they must.
+    static WalkStart inRegion(uint32_t tet) { return {tet, false, false}; }
 };
 
 // One region's medium: its coefficients and what follows from them.
@@ -58,6 +63,7 @@ struct FreeFlight {
     bool scattered = false;  // an interaction at t (in tet); otherwise the ray passed tMax or left the medium
     double t = 0;
     uint32_t tet = 0;
+    bool located = true;   // false: tet is a tet of the interaction's region only (WalkStart::inRegion)
     double density = 1;    // at the interaction
     RGB transmittance{1};  // from the start to the interaction, or to where the flight ended
     // Emission collected exactly on the way, in the regions without extinction (where the
@@ -117,8 +123,10 @@ public:
     // Free flight along `ray` (unit direction) from `start` up to tMax, the distance sampled
     // exactly for the hero channel's extinction (see SpectralPath). `ratios` are the path's
     // pdf ratios (SpectralPath::r), for the spectral MIS weight of FreeFlight::glow.
+    // With `jump`, a flight in a region of constant density may find the region's exit by one
+    // query of the surface BVH and jump to its interaction, whose tet it then leaves unlocated.
     FreeFlight sampleFlight(const Ray& ray, WalkStart start, double tMax, int hero, double u,
-                            const RGB& ratios = RGB(1)) const;
+                            const RGB& ratios = RGB(1), bool jump = false) const;
     // exp(-optical depth) from `start` to tMax or to where the ray leaves the medium (or
     // stops at an interface).
     RGB transmittance(const Ray& ray, WalkStart start, double tMax) const;
@@ -138,6 +146,12 @@ private:
     template <class Visit, class Pass, class Worth>
     WalkExit walkToExit(const Ray& ray, WalkStart start, double tMax, Visit&& visit, Pass&& pass,
                         Worth&& worthAsking) const;
+
+    // An exit through an interface that flights cross, index-matched, inside the walk.
+    bool crossesAt(const RegionExit& e) const {
+        return e.kind == RegionExit::Kind::Exit && mesh().surfaceFaceFront[e.triangle] != UINT32_MAX &&
+               !stopsAt(e.triangle);
+    }
 
     std::vector<RegionOptics> regions_;
     std::vector<double> tetChord_;  // per region: its tets' mean chord, 0 where its density varies
@@ -167,6 +181,21 @@ bool RegionMedia::walkOn(TetWalk& w, Visit&& visit) const {
 template <class Visit, class Pass, class Worth>
 WalkExit RegionMedia::walkToExit(const Ray& ray, WalkStart start, double tMax, Visit&& visit, Pass&& pass,
                                  Worth&& worthAsking) const {
+    // The rest of the way from tNow in tet's region, by one exit query; nothing where the walk
+    // must decide (a near-tie, or an interface it crosses).
+    auto leave = [&](uint32_t tet, double tNow) -> std::optional<WalkExit> {
+        const RegionExit e = regionExit(volume_, ray, mesh().region(tet), tNow, tMax);
+        if (e.kind == RegionExit::Kind::Unsure || crossesAt(e)) return std::nullopt;
+        const bool exits = e.kind == RegionExit::Kind::Exit;
+        if (!pass(at(tet), (exits ? e.t : tMax) - std::max(tNow, 0.0))) return WalkExit{};
+        return exits ? WalkExit{true, e.triangle, e.tet, e.t} : WalkExit{};
+    };
+    auto worth = [&](uint32_t tet) {
+        const size_t r = size_t(mesh().region(tet));
+        return tetChord_[r] > 0 && worthAsking(regions_[r], tetChord_[r]);
+    };
+    if (!start.located && worth(start.index))  // no tet to walk from: ask at once
+        if (const auto exit = leave(start.index, 0)) return *exit;
     TetWalk w = beginWalk(ray, start);
     size_t steps = 0;
     uint32_t tet = 0;
@@ -177,21 +206,13 @@ WalkExit RegionMedia::walkToExit(const Ray& ray, WalkStart start, double tMax, V
         tet = s.tet;
         tNow = s.tOut;
         if (++steps != exitQueryAfter_ || w.exited()) return true;  // asked once: after that, the walk
-        const size_t r = size_t(mesh().region(tet));
-        ask = tetChord_[r] > 0 && worthAsking(regions_[r], tetChord_[r]);
+        ask = worth(tet);
         return !ask;
     });
     if (!ask) return WalkExit::of(w, tMax);
-    const RegionExit e = regionExit(volume_, ray, mesh().region(tet), tNow, tMax);
-    const bool crosses =
-        e.kind == RegionExit::Kind::Exit && mesh().surfaceFaceFront[e.triangle] != UINT32_MAX && !stopsAt(e.triangle);
-    if (e.kind == RegionExit::Kind::Unsure || crosses) {  // the walk goes on from where it was
-        walkOn(w, visit);
-        return WalkExit::of(w, tMax);
-    }
-    const bool exits = e.kind == RegionExit::Kind::Exit;
-    if (!pass(at(tet), (exits ? e.t : tMax) - std::max(tNow, 0.0))) return {};
-    return exits ? WalkExit{true, e.triangle, e.tet, e.t} : WalkExit{};
+    if (const auto exit = leave(tet, tNow)) return *exit;
+    walkOn(w, visit);  // the walk goes on from where it was
+    return WalkExit::of(w, tMax);
 }
 
 }  // namespace tetglow
