@@ -310,7 +310,7 @@ void expectJumpsAsTheWalk(RegionMedia& medium, uint64_t seed) {
         for (int c = 0; c < 3; ++c) ASSERT_NEAR(tr[c], trTet[c], 1e-12);
     }
     std::printf("%zu flights: %zu jumped to an interaction, %zu left the medium\n", flights, jumped, left);
-    EXPECT_GT(jumped, flights / 5);
+    EXPECT_GT(jumped, flights / 8);
     EXPECT_GT(left, flights / 10);
 }
 

@@ -1,5 +1,6 @@
 #include "tet/RegionExit.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace tetglow {
@@ -40,16 +41,23 @@ RegionExit regionExit(const TetVolume& volume, const Ray& ray, int32_t region, d
         }
         return true;
     };
-    for (const SurfaceHit& candidate : volume.bvh().candidates(ray, tFrom - tolerance, tTo + tolerance))
+    double ahead = INFINITY;  // the nearest candidate past tFrom
+    for (const SurfaceHit& candidate : volume.bvh().candidates(ray, tFrom - tolerance, tTo + tolerance)) {
+        if (candidate.t > tFrom + tolerance) ahead = std::min(ahead, candidate.t);
         if (!decide(candidate.triangle))
             anySurfaceAround(mesh, candidate.triangle, [&](uint32_t s) {
                 decide(s);
                 return false;
             });
+    }
     // A closed region has an exit along every ray: none found is not as expected.
     if (first.kind == RegionExit::Kind::None) return std::isinf(tTo) ? RegionExit{} : first;
     if (first.t <= tFrom + tolerance || second - first.t <= tolerance || std::abs(first.t - tTo) <= tolerance)
         return {};
+    // A candidate well before the exit found that decided nothing there: where the ray passes a
+    // vertex along triangles nearly parallel to it, the exit the walk takes may be one no
+    // candidate proposed.
+    if (ahead < std::min(first.t, tTo) - 1e-4 * (1 + std::abs(first.t))) return {};
     if (first.t > tTo) return {RegionExit::Kind::None};
     return first;
 }
