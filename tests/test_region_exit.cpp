@@ -244,19 +244,29 @@ TEST(RegionMediaExit, ShadowRaysLeaveWhereTheWalkLeaves) {
     expectSameAsTheWalk(*medium, 5);
 }
 
-TEST(RegionMediaExit, NestedRegionsCrossOrStopAtInterfacesLikeTheWalk) {
+// A unit sphere (the shell) holding an off-centre sphere of radius 0.5 (the core), index-matched.
+RegionMedia nestedSpheres(const MediumParams& shell, const MediumParams& core) {
     TetOptions o;
     o.useCache = false;
     TetMesh mesh = tetrahedralize({icosphere(3, 1.0), icosphere(2, 0.5, {0.1, 0.05, 0})}, {"shell", "core"}, o);
+    return RegionMedia(std::move(mesh), {RegionMedium{shell, {}}, RegionMedium{core, {}}});
+}
+
+// Flights stop at the interface between the two (a dielectric there).
+void stopAtInterfaces(RegionMedia& medium) {
+    std::vector<bool> stops(medium.mesh().surface.size());
+    for (size_t s = 0; s < stops.size(); ++s) stops[s] = medium.mesh().surfaceFaceFront[s] != UINT32_MAX;
+    medium.setStops(stops);
+}
+
+TEST(RegionMediaExit, NestedRegionsCrossOrStopAtInterfacesLikeTheWalk) {
     MediumParams shell, core;
     shell.sigmaA = RGB(0.4, 0.5, 0.6);
     core.sigmaA = RGB(0.9, 0.2, 0.1);
     shell.sigmaS = core.sigmaS = RGB(0);
-    RegionMedia medium(std::move(mesh), {RegionMedium{shell, {}}, RegionMedium{core, {}}});
+    RegionMedia medium = nestedSpheres(shell, core);
     expectSameAsTheWalk(medium, 6);  // crossing the interface: the walk goes on there
-    std::vector<bool> stops(medium.mesh().surface.size());
-    for (size_t s = 0; s < stops.size(); ++s) stops[s] = medium.mesh().surfaceFaceFront[s] != UINT32_MAX;
-    medium.setStops(stops);
+    stopAtInterfaces(medium);
     expectSameAsTheWalk(medium, 7);  // stopping there: the exit is the interface
 }
 
@@ -324,19 +334,14 @@ TEST(RegionMediaExit, FlightsThatJumpLandWhereTheWalkLands) {
 }
 
 TEST(RegionMediaExit, FlightsThatJumpCrossOrStopAtInterfacesLikeTheWalk) {
-    TetOptions o;
-    o.useCache = false;
-    TetMesh mesh = tetrahedralize({icosphere(3, 1.0), icosphere(2, 0.5, {0.1, 0.05, 0})}, {"shell", "core"}, o);
     MediumParams shell, core;
     shell.sigmaA = RGB(0.1, 0.15, 0.2);
     shell.sigmaS = RGB(0.3);
     core.sigmaA = RGB(0.2, 0.05, 0.1);
     core.sigmaS = RGB(0.4);
-    RegionMedia medium(std::move(mesh), {RegionMedium{shell, {}}, RegionMedium{core, {}}});
+    RegionMedia medium = nestedSpheres(shell, core);
     expectJumpsAsTheWalk(medium, 9);
-    std::vector<bool> stops(medium.mesh().surface.size());
-    for (size_t s = 0; s < stops.size(); ++s) stops[s] = medium.mesh().surfaceFaceFront[s] != UINT32_MAX;
-    medium.setStops(stops);
+    stopAtInterfaces(medium);
     expectJumpsAsTheWalk(medium, 10);
 }
 
