@@ -75,7 +75,7 @@ ShadowFixture& shadowFixture() {
 
 // The steps the rays take with the exit asked after `after` steps: all of them where no query
 // was made (surfaceQueries), `after` where one was. A walk that goes on after an unsure query
-// counts as skipping: those are about 1 in 500.
+// counts as skipping: those are about 1 in 200 on blub (RegionExit.IsTheWalksExitInReferenceMeshes).
 void countSteps(benchmark::State& state, ShadowFixture& f, size_t after, size_t rays, const auto& trace) {
     double walked = 0, taken = 0;
     for (size_t i = 0; i < f.rays.size(); ++i) {
