@@ -146,6 +146,16 @@ void BM_EmbreeEntryExit(benchmark::State& state) {
 }
 BENCHMARK(BM_EmbreeEntryExit);
 
+void BM_FirstEntry(benchmark::State& state) {
+    // The exact first entry of rays from outside, each crossing the medium: the grown-triangle
+    // candidates of the whole ray, then the walk's exact tests.
+    const Fixture& f = fixture();
+    size_t i = 0;
+    for (auto _ : state) benchmark::DoNotOptimize(f.volume->firstEntry(f.rays[i++ % f.rays.size()], 0, INFINITY));
+    state.counters["rays/s"] = benchmark::Counter(double(state.iterations()), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_FirstEntry);
+
 void BM_LocateAlongPath(benchmark::State& state) {
     // The march's inside test with tets, as the single-scattering integrator does it: walk the
     // ray once through the box and give each sample the tet of the segment holding it (-1

@@ -146,9 +146,13 @@ FreeFlight RegionMedia::sampleFlight(const Ray& ray, WalkStart start, double tMa
         // From a point in a region of constant density: its exit by one query, and the
         // interaction, where it comes first, at the distance that solves the optical depth.
         const RegionOptics& optics = regions_[size_t(region)];
-        const RegionExit e = regionExit(volume_, ray, region, 0, tMax);
-        const double end = e.kind == RegionExit::Kind::Exit ? e.t : tMax, sigma = optics.sigmaT[hero];
-        const double t = sigma > 0 ? target / sigma : INFINITY;
+        const double sigma = optics.sigmaT[hero], t = sigma > 0 ? target / sigma : INFINITY;
+        // Only an exit before the interaction matters: the query looks that far (an eighth beyond,
+        // where Embree's float t of a triangle nearly parallel to the ray may land), not across
+        // the whole medium, and finds and decides fewer candidates.
+        const double reach = std::min(tMax, 1.125 * t);
+        const RegionExit e = regionExit(volume_, ray, region, 0, reach);
+        const double end = e.kind == RegionExit::Kind::Exit ? e.t : reach;
         // Too close to the exit to call, or past an interface the walk crosses: the walk decides.
         const bool clear = t < end - 1e-9 * (1 + end) || (t > end && !crossesAt(e));
         if (e.kind != RegionExit::Kind::Unsure && clear) {
