@@ -278,7 +278,7 @@ void expectJumpsAsTheWalk(RegionMedia& medium, uint64_t seed) {
     const TetMesh& mesh = medium.mesh();
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> u(-1, 1), u01(0, 1);
-    size_t jumped = 0, left = 0, flights = 0;
+    size_t jumped = 0, left = 0, flights = 0, entering = 0, enteredAndJumped = 0;
     for (int i = 0; i < 2000; ++i) {
         const glm::dvec3 p(0.9 * u(rng), 0.9 * u(rng), 0.9 * u(rng));
         const int64_t tet = medium.volume().locate(p);
@@ -298,7 +298,9 @@ void expectJumpsAsTheWalk(RegionMedia& medium, uint64_t seed) {
             if (f.scattered) {
                 ASSERT_NEAR(f.t, walked.t, 1e-12);
                 ASSERT_EQ(mesh.region(f.tet), mesh.region(walked.tet));
-                if (f.located) ASSERT_EQ(f.tet, walked.tet);
+                if (f.located) {
+                    ASSERT_EQ(f.tet, walked.tet);
+                }
                 jumped += !f.located;
             } else {
                 ASSERT_EQ(f.exit.left, walked.exit.left);
@@ -306,6 +308,24 @@ void expectJumpsAsTheWalk(RegionMedia& medium, uint64_t seed) {
                 ASSERT_EQ(f.exit.tet, walked.exit.tet);
                 ASSERT_NEAR(f.exit.t, walked.exit.t, 1e-12);
                 left += f.exit.left;
+            }
+        }
+        // The same flight from outside, entering through the surface on the way to p.
+        const Ray from{p - 3.0 * ray.d, ray.d};
+        if (const auto entry = medium.volume().firstEntry(from, 0, INFINITY)) {
+            const WalkStart surface = WalkStart::surface(entry->entryTriangle());
+            const FreeFlight w = medium.sampleFlight(from, surface, INFINITY, hero, v);
+            const FreeFlight f = medium.sampleFlight(from, surface, INFINITY, hero, v, RGB(1), true);
+            ++entering;
+            ASSERT_EQ(f.scattered, w.scattered);
+            for (int c = 0; c < 3; ++c) ASSERT_NEAR(f.transmittance[c], w.transmittance[c], 1e-12);
+            if (f.scattered) {
+                ASSERT_NEAR(f.t, w.t, 1e-12);
+                ASSERT_EQ(mesh.region(f.tet), mesh.region(w.tet));
+                enteredAndJumped += !f.located;
+            } else {
+                ASSERT_EQ(f.exit.triangle, w.exit.triangle);
+                ASSERT_NEAR(f.exit.t, w.exit.t, 1e-12);
             }
         }
         medium.setExitQueryAfter(1);
@@ -319,9 +339,11 @@ void expectJumpsAsTheWalk(RegionMedia& medium, uint64_t seed) {
                   trTet = medium.transmittance(ray, WalkStart::inside(uint32_t(tet)), INFINITY);
         for (int c = 0; c < 3; ++c) ASSERT_NEAR(tr[c], trTet[c], 1e-12);
     }
-    std::printf("%zu flights: %zu jumped to an interaction, %zu left the medium\n", flights, jumped, left);
+    std::printf("%zu flights: %zu jumped to an interaction, %zu left the medium; %zu entering, %zu of them jumped\n",
+                flights, jumped, left, entering, enteredAndJumped);
     EXPECT_GT(jumped, flights / 8);
     EXPECT_GT(left, flights / 10);
+    EXPECT_GT(enteredAndJumped, entering / 8);
 }
 
 TEST(RegionMediaExit, FlightsThatJumpLandWhereTheWalkLands) {

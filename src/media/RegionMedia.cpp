@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 
 #include <glm/geometric.hpp>
@@ -140,18 +141,31 @@ FreeFlight RegionMedia::sampleFlight(const Ray& ray, WalkStart start, double tMa
     // An exit query costs about 14 tet steps (bench_shadow): a flight asks it where it would
     // walk more than kFlightSteps tets on average (its mean free path over the mean chord).
     constexpr double kFlightSteps = 16;
-    const int32_t region = start.throughSurface ? -1 : mesh().region(start.index);
+    // Entering through the surface, the walk's first tet and the entry's t come at once.
+    std::optional<TetWalk> entered;
+    int32_t region = -1;
+    double t0 = 0;  // where the flight is in the region
+    if (!start.throughSurface) {
+        region = mesh().region(start.index);
+    } else if (jump) {
+        entered = beginWalk(ray, start);
+        if (!entered->exited()) {  // not a touch
+            region = mesh().region(entered->exitTet());
+            t0 = entered->exitT();
+        }
+    }
     if (jump && region >= 0 && tetChord_[size_t(region)] > 0 &&
         tetChord_[size_t(region)] * kFlightSteps * regions_[size_t(region)].sigmaT[hero] < 1) {
-        // From a point in a region of constant density: its exit by one query, and the
-        // interaction, where it comes first, at the distance that solves the optical depth.
+        // From a point in a region of constant density (or its entry into one): its exit by one
+        // query, and the interaction, where it comes first, at the distance that solves the
+        // optical depth.
         const RegionOptics& optics = regions_[size_t(region)];
-        const double sigma = optics.sigmaT[hero], t = sigma > 0 ? target / sigma : INFINITY;
+        const double sigma = optics.sigmaT[hero], t = sigma > 0 ? t0 + target / sigma : INFINITY;
         // Only an exit before the interaction matters: the query looks that far (an eighth beyond,
         // where Embree's float t of a triangle nearly parallel to the ray may land), not across
         // the whole medium, and finds and decides fewer candidates.
-        const double reach = std::min(tMax, 1.125 * t);
-        const RegionExit e = regionExit(volume_, ray, region, 0, reach);
+        const double reach = std::min(tMax, t0 + 1.125 * (t - t0));
+        const RegionExit e = regionExit(volume_, ray, region, t0, reach);
         const double end = e.kind == RegionExit::Kind::Exit ? e.t : reach;
         // Too close to the exit to call, or past an interface the walk crosses: the walk decides.
         const bool clear = t < end - 1e-9 * (1 + end) || (t > end && !crossesAt(e));
@@ -159,18 +173,20 @@ FreeFlight RegionMedia::sampleFlight(const Ray& ray, WalkStart start, double tMa
             if (t < end) {
                 flight.scattered = true;
                 flight.t = t;
-                flight.tet = start.index;
+                flight.tet = entered ? entered->exitTet() : start.index;
                 flight.located = false;
-                flight.transmittance = exp(-optics.sigmaT * t);
+                flight.transmittance = exp(-optics.sigmaT * (t - t0));
                 return flight;
             }
-            pass(optics, end);
+            pass(optics, end - t0);
             flight.transmittance = exp(-depth);
             if (e.kind == RegionExit::Kind::Exit) flight.exit = {true, e.triangle, e.tet, e.t};
             return flight;
         }
     }
-    const WalkExit exit = WalkExit::of(this->walk(ray, start, visit), tMax);
+    TetWalk w = entered ? *entered : beginWalk(ray, start);
+    walkOn(w, visit);
+    const WalkExit exit = WalkExit::of(w, tMax);
     flight.transmittance = exp(-depth);
     if (!flight.scattered) flight.exit = exit;
     return flight;
