@@ -1,9 +1,10 @@
-// Kernels of shadow rays from interior points of a homogeneous medium: the transmittance to the
-// boundary, and shadowFlight (with Russian roulette) in a dense medium. The argument is the
-// number of tets walked before the region's exit is asked of the surface BVH (0: walk every tet,
-// the behaviour before the exit query), so one run measures before and after. Each reports its
-// rays per second, the tet steps a ray takes and skips (against the walk to the boundary), and
-// the steps per second that rate stands for. Mesh:
+// Kernels of shadow rays and free flights from interior points of a homogeneous medium: the
+// transmittance to the boundary, shadowFlight (with Russian roulette) in a dense medium, and
+// sampleFlight walked or jumping to its interaction. For shadow rays the argument is the number
+// of tets walked before the region's exit is asked of the surface BVH (0: walk every tet, the
+// behaviour before the exit query), so one run measures before and after. Each reports its rays
+// per second, the tet steps a ray takes and skips (against the walk), and the steps per second
+// that rate stands for. Mesh:
 // TETGLOW_SHADOW_MESH, else blub (../shared/meshes), else the demo fish.
 #include <algorithm>
 #include <cmath>
@@ -132,6 +133,52 @@ void BM_DenseShadowExit(benchmark::State& state) {
     state.counters["rays/s"] = benchmark::Counter(double(rays), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_DenseShadowExit)->Arg(0)->Arg(1)->Arg(2)->Arg(4)->Arg(8);
+
+// Free flights (sampleFlight, the volpath integrator's), first argument 0: walked tet by tet, 1:
+// jumping to the interaction where the region's exit query is worth it. Second argument: the mean
+// free path in mean tet steps (blub's is about 30, the sphere scene's 12, jade's 1).
+void BM_FreeFlight(benchmark::State& state) {
+    ShadowFixture& f = shadowFixture();
+    setMeanFreePath(f, double(state.range(1)) / f.stepsPerLength);
+    const bool jump = state.range(0) == 1;
+    std::mt19937_64 rng(3);
+    std::uniform_real_distribution<double> u01(0, 1);
+    std::vector<double> u(f.rays.size());
+    for (double& x : u) x = u01(rng);
+    auto flight = [&](size_t i) {
+        return f.medium->sampleFlight(f.rays[i], WalkStart::inside(f.tets[i]), INFINITY, 0, u[i], RGB(1), jump);
+    };
+    size_t flights = 0;
+    for (auto _ : state) {
+        const size_t i = flights++ % f.rays.size();
+        benchmark::DoNotOptimize(flight(i));
+    }
+    state.counters["flights/s"] = benchmark::Counter(double(flights), benchmark::Counter::kIsRate);
+    // Steps: those of the walk to the interaction (or the boundary), none where a query decided
+    // (a walk after an unsure query, about 1 in 200, counts as skipping).
+    double walked = 0, taken = 0;
+    for (size_t i = 0; i < f.rays.size(); ++i) {
+        const uint64_t queries = surfaceQueries();
+        const FreeFlight fl = flight(i);
+        const bool asked = surfaceQueries() > queries;
+        const double end = fl.scattered ? fl.t : INFINITY;
+        size_t steps = 0;
+        f.medium->walk(f.rays[i], WalkStart::inside(f.tets[i]), [&](const WalkSegment& s) {
+            ++steps;
+            return s.tOut < end;
+        });
+        walked += double(steps);
+        taken += asked && !fl.located ? 0.0 : asked && !fl.scattered ? 0.0 : double(steps);
+    }
+    const double n = double(f.rays.size());
+    state.counters["walk steps/flight"] = walked / n;
+    state.counters["steps/flight"] = taken / n;
+    state.counters["skipped/flight"] = (walked - taken) / n;
+    state.counters["steps/s"] = benchmark::Counter(double(flights) * taken / n, benchmark::Counter::kIsRate);
+    // The walk's steps the flights cover per second, taken or skipped: the walk's own rate for comparison.
+    state.counters["covered/s"] = benchmark::Counter(double(flights) * walked / n, benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_FreeFlight)->ArgsProduct({{0, 1}, {1, 12, 30}});
 
 }  // namespace
 }  // namespace tetglow
