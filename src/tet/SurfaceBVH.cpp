@@ -76,7 +76,9 @@ SurfaceBVH::SurfaceBVH(const std::vector<glm::dvec3>& positions,
     }
     for (const auto& p : grown) grownBounds_.extend(p);
     grown_ = rtcNewScene(device);
-    rtcSetSceneFlags(grown_, RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
+    // Not robust mode: the margin, not watertight tests, keeps a crossing at an edge from being
+    // lost, and Embree's fast tests are about 10% quicker (bench_tet's BM_FirstEntry).
+    rtcSetSceneFlags(grown_, RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
     attachTriangles(grown_, grown, separate);
     rtcCommitScene(grown_);
 }
