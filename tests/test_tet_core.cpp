@@ -297,6 +297,97 @@ TEST_P(TetCore, DegenerateRayChordsMatchEmbreeOrExactChord) {
     EXPECT_EQ(lost + longWalks + off, 0);  // each counted on the line above
 }
 
+// visitCandidates stops Embree's search past the t its visitor names: every candidate before it
+// must still be visited, whenever Embree finds them. The visitor names a t midway along the
+// candidates from its first call on.
+TEST_P(TetCore, VisitedCandidatesHoldEveryOneBeforeTheLimit) {
+    std::mt19937_64 rng(23);
+    std::uniform_real_distribution<double> u(0, 1);
+    size_t checked = 0, skipped = 0;
+    for (int i = 0; i < 3000; ++i) {
+        const glm::dvec3 target = bounds_.lo + (bounds_.hi - bounds_.lo) * glm::dvec3(u(rng), u(rng), u(rng));
+        const glm::dvec3 d = uniformDirection(rng);
+        const Ray ray{target - d * diag_, d};
+        std::vector<SurfaceHit> all = volume_->bvh().candidates(ray);
+        if (all.size() < 2) continue;
+        std::sort(all.begin(), all.end(), [](const SurfaceHit& a, const SurfaceHit& b) { return a.t < b.t; });
+        const double limit = all[all.size() / 2 - 1].t;
+        std::set<uint32_t> visited;
+        volume_->bvh().visitCandidates(ray, 0, INFINITY, [&](const SurfaceHit& c) {
+            visited.insert(c.triangle);
+            return limit;
+        });
+        for (const SurfaceHit& c : all) {
+            if (c.t <= limit) {
+                ASSERT_TRUE(visited.count(c.triangle)) << "ray " << i << ": candidate at t " << c.t << " missed";
+            }
+        }
+        checked += all.size();
+        skipped += all.size() - visited.size();
+    }
+    std::printf("%s: %zu candidates, %zu past the limit not searched\n", GetParam().name.c_str(), checked, skipped);
+    EXPECT_GT(skipped, checked / 10);  // Embree stops at the limit its filter set
+}
+
+// firstEntry stops searching past the first entry it finds; traverse() asks every candidate
+// along the ray. Both must begin at the same entry, in the same tet, from outside and from past
+// the end of each chord (where the ray may enter again), on random rays and on rays through
+// vertices along the axes, where Embree's float tests are least sure.
+TEST_P(TetCore, FirstEntryIsTheFirstOfAllEntries) {
+    const auto& m = mesh();
+    std::mt19937_64 rng(17);
+    std::uniform_real_distribution<double> u(0, 1);
+    std::vector<Ray> rays;
+    for (int i = 0; i < 3000; ++i) {
+        const glm::dvec3 target = bounds_.lo + (bounds_.hi - bounds_.lo) * glm::dvec3(u(rng), u(rng), u(rng));
+        const glm::dvec3 d = uniformDirection(rng);
+        rays.push_back({target - d * diag_, d});
+    }
+    for (size_t v = 0; v < m.surfaceVertexCount; v += std::max<size_t>(1, m.surfaceVertexCount / 1000)) {
+        glm::dvec3 d(0);
+        d[int(v % 3)] = 1;
+        rays.push_back({m.vertices[v] - d * (2 * diag_), d});
+    }
+    // An entry whose walk leaves at once (the ray touches the medium at a vertex or an edge)
+    // gives traverse() no segment.
+    auto leadsStraightOut = [](TetWalk w) {
+        for (WalkSegment s; w.next(s);)
+            if (s.tOut > s.tIn) return false;
+        return true;
+    };
+    int entries = 0, reentries = 0;
+    for (const Ray& ray : rays) {
+        // The chords traverse() walks from outside, each from its first segment to its end.
+        std::vector<std::pair<WalkSegment, double>> chords;
+        volume_->traverse(
+            ray, 0, INFINITY,
+            [&](const WalkSegment& s) {
+                if (chords.empty() || s.tIn != chords.back().second)
+                    chords.push_back({s, s.tOut});
+                else
+                    chords.back().second = s.tOut;
+                return true;
+            },
+            TetVolume::kOutside);
+        double tnear = 0;
+        for (const auto& [start, end] : chords) {
+            auto first = volume_->firstEntry(ray, tnear, INFINITY);
+            while (first && first->exitT() < start.tIn && leadsStraightOut(*first))
+                first = volume_->firstEntry(ray, std::nextafter(first->exitT(), INFINITY), INFINITY);
+            ASSERT_TRUE(first.has_value()) << "no entry found for the chord from t " << start.tIn;
+            ASSERT_EQ(first->exitT(), start.tIn);
+            if (!leadsStraightOut(*first)) {
+                ASSERT_EQ(first->exitTet(), start.tet);
+            }
+            ++(tnear == 0 ? entries : reentries);
+            tnear = end;
+        }
+    }
+    std::printf("%s: %zu rays, %d entries and %d re-entries the same\n", GetParam().name.c_str(), rays.size(), entries,
+                reentries);
+    EXPECT_GT(entries, 1000);
+}
+
 TEST_P(TetCore, WalkFromInsideMatchesWalkFromOutside) {
     // Starting at a located interior point gives the same exit as entering from outside.
     std::mt19937_64 rng(3);

@@ -42,14 +42,16 @@ RegionExit regionExit(const TetVolume& volume, const Ray& ray, int32_t region, d
         return true;
     };
     double ahead = INFINITY;  // the nearest candidate past tFrom
-    for (const SurfaceHit& candidate : volume.bvh().candidates(ray, tFrom - tolerance, tTo + tolerance)) {
+    // Past the first exit found (and the tolerance of a tie with it) no candidate can change the answer.
+    volume.bvh().visitCandidates(ray, tFrom - tolerance, tTo + tolerance, [&](const SurfaceHit& candidate) {
         if (candidate.t > tFrom + tolerance) ahead = std::min(ahead, candidate.t);
         if (!decide(candidate.triangle))
             anySurfaceAround(mesh, candidate.triangle, [&](uint32_t s) {
                 decide(s);
                 return false;
             });
-    }
+        return first.kind == RegionExit::Kind::Exit ? first.t + tolerance : INFINITY;
+    });
     // A closed region has an exit along every ray: none found is not as expected.
     if (first.kind == RegionExit::Kind::None) return std::isinf(tTo) ? RegionExit{} : first;
     if (first.t <= tFrom + tolerance || second - first.t <= tolerance || std::abs(first.t - tTo) <= tolerance)

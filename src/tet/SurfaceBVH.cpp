@@ -111,8 +111,12 @@ struct QueryContext {
     double shift;  // Embree's ray starts at ray.at(shift)
     double tnear;
     Facing facing;
-    std::vector<SurfaceHit>* collect;  // when set: record and reject every hit
-    int* count;                        // when set: count and reject every hit
+    int* count = nullptr;  // when set: count and reject every hit
+    // When set: pass every hit to visit, and reject it unless visit's answer shortens Embree's ray.
+    void* visit = nullptr;
+    double (*call)(void*, const SurfaceHit&) = nullptr;
+    double margin = 0;      // how far past visit's answer Embree's ray ends
+    float tfar = INFINITY;  // Embree's ray ends here
 };
 
 void filter(const RTCFilterFunctionNArguments* args) {
@@ -126,8 +130,17 @@ void filter(const RTCFilterFunctionNArguments* args) {
     // Embree's window is widened for float rounding; the exact window applies to the refined t.
     const double t = ctx->bvh->refine(ctx->ray, prim, float(ctx->shift + RTCRayN_tfar(args->ray, args->N, 0)));
     const bool entering = glm::dot(ctx->ray.d, ctx->bvh->normal(prim)) < 0;
-    if (ctx->collect) {
-        if (t >= ctx->tnear) ctx->collect->push_back({t, prim, entering});
+    if (ctx->visit) {
+        if (t >= ctx->tnear) {
+            const double until = ctx->call(ctx->visit, {t, prim, entering});
+            const double reach = until + ctx->margin + (until - ctx->tnear) / 8 - ctx->shift;
+            // Only a hit Embree accepts keeps the tfar its filter sets (then it searches no further).
+            if (const float end = std::nextafter(float(reach), INFINITY); end < ctx->tfar) {
+                ctx->tfar = end;
+                RTCRayN_tfar(args->ray, args->N, 0) = end;
+                return;
+            }
+        }
         args->valid[0] = 0;
         return;
     }
@@ -156,7 +169,7 @@ RTCRayHit makeRay(const Ray& ray, double tnear, double tfar, double shift = 0) {
 }  // namespace
 
 std::optional<SurfaceHit> SurfaceBVH::intersect(const Ray& ray, double tnear, double tfar, Facing facing) const {
-    QueryContext ctx{{}, this, ray, 0, tnear, facing, nullptr, nullptr};
+    QueryContext ctx{{}, this, ray, 0, tnear, facing};
     rtcInitIntersectContext(&ctx.base);
     ctx.base.filter = filter;
     RTCRayHit rh = makeRay(ray, tnear, tfar);
@@ -169,7 +182,13 @@ std::optional<SurfaceHit> SurfaceBVH::intersect(const Ray& ray, double tnear, do
 
 std::vector<SurfaceHit> SurfaceBVH::allHits(const Ray& ray, double tnear) const {
     std::vector<SurfaceHit> hits;
-    QueryContext ctx{{}, this, ray, 0, tnear, Facing::Any, &hits, nullptr};
+    auto collect = [&](const SurfaceHit& hit) {
+        hits.push_back(hit);
+        return INFINITY;
+    };
+    QueryContext ctx{{}, this, ray, 0, tnear, Facing::Any};
+    ctx.visit = &collect;
+    ctx.call = [](void* c, const SurfaceHit& hit) -> double { return (*static_cast<decltype(collect)*>(c))(hit); };
     rtcInitIntersectContext(&ctx.base);
     ctx.base.filter = filter;
     RTCRayHit rh = makeRay(ray, tnear, INFINITY);
@@ -181,7 +200,7 @@ std::vector<SurfaceHit> SurfaceBVH::allHits(const Ray& ray, double tnear) const 
 
 int SurfaceBVH::crossings(const Ray& ray) const {
     int count = 0;
-    QueryContext ctx{{}, this, ray, 0, 0, Facing::Any, nullptr, &count};
+    QueryContext ctx{{}, this, ray, 0, 0, Facing::Any, &count};
     rtcInitIntersectContext(&ctx.base);
     ctx.base.filter = filter;
     RTCRayHit rh = makeRay(ray, 0, INFINITY);
@@ -191,21 +210,32 @@ int SurfaceBVH::crossings(const Ray& ray) const {
 }
 
 std::vector<SurfaceHit> SurfaceBVH::candidates(const Ray& ray, double tnear, double tfar) const {
+    std::vector<SurfaceHit> hits;
+    visitCandidates(ray, tnear, tfar, [&](const SurfaceHit& hit) {
+        hits.push_back(hit);
+        return INFINITY;
+    });
+    return hits;
+}
+
+void SurfaceBVH::visitCandidates(const Ray& ray, double tnear, double tfar, void* visit, CandidateVisit call) const {
     // Embree's ray starts where the ray enters the bounds, a margin early, and ends a margin
     // late: its float rounding is then relative to the mesh, however far away the ray's own
     // origin is, and no crossing within [tnear, tfar] is cut off.
     const double margin = margin_ / glm::length(ray.d);
     double t0 = tnear, t1 = tfar + margin;
-    std::vector<SurfaceHit> hits;
-    if (!clip(grownBounds_, ray, t0, t1)) return hits;
+    if (!clip(grownBounds_, ray, t0, t1)) return;
     const double shift = t0 - margin;
-    QueryContext ctx{{}, this, ray, shift, tnear, Facing::Any, &hits, nullptr};
+    QueryContext ctx{{}, this, ray, shift, tnear, Facing::Any};
+    ctx.visit = visit;
+    ctx.call = call;
+    ctx.margin = margin;
     rtcInitIntersectContext(&ctx.base);
     ctx.base.filter = filter;
     RTCRayHit rh = makeRay(ray, shift, t1 + margin, shift);
+    ctx.tfar = rh.ray.tfar;
     ++tQueries;
     rtcIntersect1(grown_, &ctx.base, &rh);
-    return hits;
 }
 
 }  // namespace tetglow

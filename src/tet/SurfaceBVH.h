@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <optional>
+#include <type_traits>
 #include <vector>
 
 #include <embree3/rtcore.h>
@@ -41,12 +42,25 @@ public:
     // by a margin far above its float error, so that a crossing exactly through an edge or a vertex, which Embree can
     // miss on the triangles themselves, is never left out.
     std::vector<SurfaceHit> candidates(const Ray& ray, double tnear = 0, double tfar = INFINITY) const;
+    // The same candidates, each passed to visit(hit) as Embree finds it, in no order; visit returns the t past
+    // which it needs none (INFINITY: it needs all), and the traversal stops looking a margin beyond that, and an
+    // eighth of the way from tnear further (where Embree's float t of a triangle nearly parallel to the ray may
+    // land): every triangle crossed before it is still seen, and the rest of the ray is not searched.
+    template <class Visit>
+    void visitCandidates(const Ray& ray, double tnear, double tfar, Visit&& visit) const {
+        using V = std::remove_reference_t<Visit>;
+        visitCandidates(ray, tnear, tfar, &visit,
+                        [](void* v, const SurfaceHit& hit) -> double { return (*static_cast<V*>(v))(hit); });
+    }
 
     const glm::dvec3& normal(uint32_t triangle) const { return normals_[triangle]; }  // outward, not unit
     // The ray parameter of the triangle's plane, in double precision.
     double refine(const Ray& ray, uint32_t triangle, float embreeT) const;
 
 private:
+    using CandidateVisit = double (*)(void* visit, const SurfaceHit& hit);
+    void visitCandidates(const Ray& ray, double tnear, double tfar, void* visit, CandidateVisit call) const;
+
     RTCScene scene_ = nullptr, grown_ = nullptr;
     std::vector<glm::dvec3> normals_, corners_;
     Bounds3 grownBounds_;

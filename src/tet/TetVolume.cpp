@@ -141,11 +141,20 @@ std::vector<TetWalk> TetVolume::entriesAlong(const Ray& ray, double tnear, doubl
 }
 
 std::optional<TetWalk> TetVolume::firstEntry(const Ray& ray, double tnear, double tfar) const {
-    for (const TetWalk& w : entriesAlong(ray, tnear, tfar)) {
-        if (w.exitT() > tfar) break;
-        if (w.exitT() >= tnear) return w;
-    }
-    return std::nullopt;
+    // The first by (t, triangle), as entriesAlong orders them; the search ends past it.
+    std::optional<TetWalk> first;
+    std::vector<TetWalk> near;
+    bvh_.visitCandidates(ray, tnear, tfar, [&](const SurfaceHit& c) {
+        near.clear();
+        TetWalk::entriesNear(mesh_, ray, c.triangle, near);
+        for (const TetWalk& w : near)
+            if (w.exitT() >= tnear && w.exitT() <= tfar &&
+                (!first || w.exitT() < first->exitT() ||
+                 (w.exitT() == first->exitT() && w.entryTriangle() < first->entryTriangle())))
+                first = w;
+        return first ? first->exitT() : INFINITY;
+    });
+    return first;
 }
 
 namespace {
