@@ -26,16 +26,17 @@ SphericalRectangle::SphericalRectangle(const glm::dvec3& o, const glm::dvec3& co
     x1_ = x0_ + exl;
     y1_ = y0_ + eyl;
     // The normals of the four great circles through o and the edges, and the internal angles
-    // between them: the solid angle is their sum less 2 pi (Girard's theorem).
-    const glm::dvec3 v00(x0_, y0_, z0_), v01(x0_, y1_, z0_), v10(x1_, y0_, z0_), v11(x1_, y1_, z0_);
-    const glm::dvec3 n0 = glm::normalize(glm::cross(v00, v10)), n1 = glm::normalize(glm::cross(v10, v11));
-    const glm::dvec3 n2 = glm::normalize(glm::cross(v11, v01)), n3 = glm::normalize(glm::cross(v01, v00));
-    auto angle = [](const glm::dvec3& a, const glm::dvec3& b) {
-        return std::acos(std::clamp(-glm::dot(a, b), -1.0, 1.0));
-    };
-    const double g0 = angle(n0, n1), g1 = angle(n1, n2), g2 = angle(n2, n3), g3 = angle(n3, n0);
-    b0_ = n0.z;
-    b1_ = n2.z;
+    // between them: the solid angle is their sum less 2 pi (Girard's theorem). In R each normal
+    // has a zero component (the paper's closed forms: n0 = (0, z0, -y0) / |.|, n1 = (-z0, 0, x1)
+    // / |.|, n2 = (0, -z0, y1) / |.|, n3 = (z0, 0, -x0) / |.|), so the angles' cosines are
+    // products of corner coordinates over the normals' lengths.
+    const double zz = z0_ * z0_, r0 = std::sqrt(zz + y0_ * y0_), r1 = std::sqrt(zz + x1_ * x1_),
+                 r2 = std::sqrt(zz + y1_ * y1_), r3 = std::sqrt(zz + x0_ * x0_);
+    auto angle = [](double cosine) { return std::acos(std::clamp(cosine, -1.0, 1.0)); };
+    const double g0 = angle(y0_ * x1_ / (r0 * r1)), g1 = angle(-x1_ * y1_ / (r1 * r2)),
+                 g2 = angle(y1_ * x0_ / (r2 * r3)), g3 = angle(-x0_ * y0_ / (r3 * r0));
+    b0_ = -y0_ / r0;
+    b1_ = y1_ / r2;
     k_ = 2 * std::numbers::pi - g2 - g3;
     solidAngle_ = g0 + g1 - k_;
 }
