@@ -10,7 +10,10 @@
 #include <gtest/gtest.h>
 
 #include "TestMeshes.h"
+#include "TestScenes.h"
+#include "integrators/PathStep.h"
 #include "media/RegionMedia.h"
+#include "render/Scene.h"
 #include "scene/MeshFile.h"
 #include "tet/Predicates.h"
 #include "tet/RegionExit.h"
@@ -379,6 +382,31 @@ TEST(RegionMediaExit, VaryingDensityKeepsTheWalk) {
     ASSERT_GE(tet, 0);
     medium.transmittance({{0.1, 0.2, 0.3}, {1, 0, 0}}, WalkStart::inside(uint32_t(tet)), INFINITY);
     EXPECT_EQ(surfaceQueries(), queries);
+}
+
+// A path that leaves a convex medium cannot meet it again: the scene asks no surface query for
+// it (FrontExtent), where without the triangle it left through it searches the rest of the ray.
+TEST(RegionMediaExit, APathLeavingAConvexMediumAsksNoQueryToMeetItAgain) {
+    const Scene scene(test::sceneWith(test::sphereMedium(RGB(0.1), RGB(0.5)), 8));
+    std::mt19937_64 rng(41);
+    int left = 0;
+    for (int i = 0; i < 200; ++i) {
+        const glm::dvec3 p(0.3, -0.2, 0.1);
+        Ray ray{p, direction(rng)};
+        VolumeState state = scene.mediumAt(p);
+        ASSERT_TRUE(state.inside());
+        std::optional<Intersection> hit = scene.intersect(ray, state);
+        const FreeFlight flight = scene.volumes()[0].media->sampleFlight(ray, state.start, INFINITY, 0, 1.0);
+        ASSERT_EQ(endStretch(scene, hit, flight.exit, ray, state), StretchEnd::Crossed);
+        ASSERT_FALSE(state.inside());
+        ++left;
+        const uint64_t queries = surfaceQueries();
+        EXPECT_FALSE(scene.intersect(ray, state).has_value());
+        EXPECT_EQ(surfaceQueries(), queries) << "ray " << i;
+        EXPECT_FALSE(scene.intersect(ray, VolumeState{}).has_value());
+        EXPECT_GT(surfaceQueries(), queries) << "ray " << i << ": the search without the bound";
+    }
+    EXPECT_EQ(left, 200);
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 
 #include "TestMeshes.h"
 #include "scene/MeshFile.h"
+#include "tet/FrontExtent.h"
 #include "tet/Predicates.h"
 #include "tet/Shapes.h"
 #include "tet/TetVolume.h"
@@ -295,6 +296,55 @@ TEST_P(TetCore, DegenerateRayChordsMatchEmbreeOrExactChord) {
         GetParam().name.c_str(), rays, ambiguous, lost, longWalks, off);
     EXPECT_GT(rays, 3000);
     EXPECT_EQ(lost + longWalks + off, 0);  // each counted on the line above
+}
+
+// A ray leaving through a surface triangle meets the medium again, if at all, before the
+// triangle's FrontExtent bound: rays from random points of random triangles in random outward
+// directions, the first re-entry by the exact search along the whole ray.
+TEST_P(TetCore, NoReentryBeyondTheFrontExtent) {
+    const auto& m = mesh();
+    const FrontExtent front(m);
+    std::mt19937_64 rng(29);
+    std::uniform_real_distribution<double> u(0, 1);
+    int reentries = 0, bounded = 0, none = 0;
+    for (int i = 0; i < 4000; ++i) {
+        const uint32_t s = uint32_t(rng() % m.surface.size());
+        const auto& f = m.surface[s];
+        double a = u(rng), b = u(rng);
+        if (a + b > 1) a = 1 - a, b = 1 - b;
+        const glm::dvec3 p0 = m.vertices[f[0]], p1 = m.vertices[f[1]], p2 = m.vertices[f[2]];
+        const glm::dvec3 n = glm::normalize(glm::cross(p1 - p0, p2 - p0));
+        glm::dvec3 d = uniformDirection(rng);
+        if (glm::dot(d, n) < 0) d = -d;
+        const Ray ray{p0 + a * (p1 - p0) + b * (p2 - p0), d};
+        const double bound = front.reentryBefore(s, ray);
+        bounded += std::isfinite(bound);
+        none += bound < 1e-6 * diag_;
+        if (const auto entry = volume_->firstEntry(ray, 1e-9 * diag_, INFINITY)) {
+            ++reentries;
+            ASSERT_LE(entry->exitT(), bound) << "triangle " << s << " ray " << i;
+        }
+    }
+    std::printf("%s: %d re-entries, all before the bound; %d of 4000 bounded, %d with no re-entry possible\n",
+                GetParam().name.c_str(), reentries, bounded, none);
+    EXPECT_GT(reentries, 100);
+    EXPECT_GT(bounded, 3000);
+}
+
+TEST(FrontExtent, NothingLiesInFrontOfAConvexSurface) {
+    const TetMesh mesh = tetrahedralize(icosphere(3), test::noCache());
+    const FrontExtent front(mesh);
+    std::mt19937_64 rng(31);
+    for (uint32_t s = 0; s < mesh.surface.size(); ++s) {
+        const auto& f = mesh.surface[s];
+        const glm::dvec3 c = (mesh.vertices[f[0]] + mesh.vertices[f[1]] + mesh.vertices[f[2]]) / 3.0;
+        glm::dvec3 d = uniformDirection(rng);
+        if (glm::dot(d, c) < 0) d = -d;  // outward, near enough: the sphere's normal is c's direction
+        const double bound = front.reentryBefore(s, Ray{c, d});
+        if (glm::dot(d, glm::normalize(c)) > 0.1) {
+            ASSERT_LT(bound, 1e-6) << "triangle " << s;
+        }
+    }
 }
 
 // visitCandidates stops Embree's search past the t its visitor names: every candidate before it

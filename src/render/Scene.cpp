@@ -131,7 +131,10 @@ Scene::Scene(const SceneDesc& desc) : desc_(desc), camera_(desc.camera) {
     if (lightsAlone_) geometry_.extend(desc.camera.position);
     makeLights();
 
-    for (SceneVolume& v : volumes_) v.normals = unitNormals(v.media->mesh().vertices, v.media->mesh().surface);
+    for (SceneVolume& v : volumes_) {
+        v.normals = unitNormals(v.media->mesh().vertices, v.media->mesh().surface);
+        v.front = FrontExtent(v.media->mesh());
+    }
     surfaces_ = rtcNewScene(embreeDevice());
     all_ = rtcNewScene(embreeDevice());
     for (RTCScene s : {surfaces_, all_}) rtcSetSceneFlags(s, RTC_SCENE_FLAG_ROBUST);
@@ -272,19 +275,24 @@ std::optional<Intersection> Scene::intersect(RTCScene scene, const std::vector<G
 }
 
 std::optional<Intersection> Scene::intersect(const Ray& ray, double tMax) const {
+    return intersect(ray, VolumeState{}, tMax);
+}
+
+std::optional<Intersection> Scene::intersect(const Ray& ray, const VolumeState& state, double tMax) const {
+    if (state.inside())
+        return surfacesWithin_[size_t(state.volume)] ? intersect(surfaces_, surfaceGeometries_, ray, tMax)
+                                                     : std::nullopt;
     auto hit = intersect(surfaces_, surfaceGeometries_, ray, tMax);
     for (size_t v = 0; v < volumes_.size(); ++v) {
-        const auto entry = volumes_[v].media->volume().firstEntry(ray, epsilon_, hit ? hit->t : tMax);
+        double tFar = hit ? hit->t : tMax;
+        if (state.left == int(v)) tFar = std::min(tFar, volumes_[v].front.reentryBefore(state.leftThrough, ray));
+        if (!(tFar >= epsilon_)) continue;  // it cannot meet the volume again
+        const auto entry = volumes_[v].media->volume().firstEntry(ray, epsilon_, tFar);
         if (!entry) continue;
         hit = Intersection{entry->exitT(),         ray.at(entry->exitT()),  volumes_[v].normals[entry->entryTriangle()],
                            entry->entryTriangle(), HitKind::MediumBoundary, uint32_t(v)};
     }
     return hit;
-}
-
-std::optional<Intersection> Scene::intersect(const Ray& ray, const VolumeState& state, double tMax) const {
-    if (!state.inside()) return intersect(ray, tMax);
-    return surfacesWithin_[size_t(state.volume)] ? intersect(surfaces_, surfaceGeometries_, ray, tMax) : std::nullopt;
 }
 
 Intersection Scene::boundaryHit(int v, const Ray& ray, const WalkExit& exit) const {
@@ -318,7 +326,8 @@ VolumeState Scene::afterHit(const Intersection& hit, const glm::dvec3& d, const 
     if (hit.kind == HitKind::MediumBoundary) {
         const TetMesh& mesh = volumes_[hit.index].media->mesh();
         const bool behind = glm::dot(d, hit.n) < 0;
-        if (mesh.surfaceRegions[hit.triangle][behind ? 0 : 1] < 0) return {};
+        if (mesh.surfaceRegions[hit.triangle][behind ? 0 : 1] < 0)
+            return behind ? VolumeState{} : VolumeState{-1, {}, int(hit.index), hit.triangle};
         // From outside, the walk enters through the triangle by its exact tests; from a walk's
         // exit face, it starts in the tet on the chosen side.
         if (!before.inside() && mesh.surfaceRegions[hit.triangle][1] < 0)

@@ -15,6 +15,7 @@
 #include "render/Camera.h"
 #include "render/Light.h"
 #include "scene/SceneDescription.h"
+#include "tet/FrontExtent.h"
 
 namespace tetglow {
 
@@ -33,6 +34,11 @@ struct Intersection {
 struct VolumeState {
     int volume = -1;  // -1: outside every medium
     WalkStart start;
+    // Outside, just past surface triangle `leftThrough` of volume `left` (-1: none), which the
+    // path crossed on its way out: that volume lies behind the triangle, and a ray meets it again
+    // only within the triangle's FrontExtent.
+    int left = -1;
+    uint32_t leftThrough = 0;
     bool inside() const { return volume >= 0; }
 };
 
@@ -56,6 +62,7 @@ struct SceneVolume {
     std::vector<uint32_t> triangleMaterial;  // into materials
     std::vector<MaterialDesc> materials;
     std::vector<glm::dvec3> normals;  // per surface triangle, unit
+    FrontExtent front;                // how far the volume reaches in front of each surface triangle
 };
 
 class Scene {
@@ -87,8 +94,9 @@ public:
     // Closest hit with t in (rayEpsilon, tMax), a medium's entry exact; the ray's direction is
     // unit length.
     std::optional<Intersection> intersect(const Ray& ray, double tMax = INFINITY) const;
-    // The closest hit for a path in `state`: outside the media every surface; inside a volume
-    // only the surfaces and lights, as the walk finds its boundary and interfaces exactly.
+    // The closest hit for a path in `state`: outside the media every surface (a volume just left
+    // searched only as far as it reaches); inside a volume only the surfaces and lights, as the
+    // walk finds its boundary and interfaces exactly.
     std::optional<Intersection> intersect(const Ray& ray, const VolumeState& state, double tMax = INFINITY) const;
     // Where a walk through volume v left it or stopped at an interface: the point, normal and
     // triangle of the walk's exit face, not a float hit.

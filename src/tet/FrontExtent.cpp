@@ -1,0 +1,59 @@
+#include "tet/FrontExtent.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/convex_hull_3.h>
+#include <tbb/parallel_for.h>
+#include <glm/geometric.hpp>
+
+namespace tetglow {
+
+FrontExtent::FrontExtent(const TetMesh& mesh) : mesh_(&mesh) {
+    // The farthest any point of the medium reaches along a direction is at a vertex of its
+    // convex hull: only those are scanned.
+    using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+    std::vector<Kernel::Point_3> points;
+    points.reserve(mesh.surfaceVertexCount);
+    for (size_t v = 0; v < mesh.surfaceVertexCount; ++v)
+        points.emplace_back(mesh.vertices[v].x, mesh.vertices[v].y, mesh.vertices[v].z);
+    if (points.size() < 4) return;
+    CGAL::Surface_mesh<Kernel::Point_3> hull;
+    CGAL::convex_hull_3(points.begin(), points.end(), hull);
+    std::vector<glm::dvec3> corners;
+    for (const auto v : hull.vertices()) {
+        const auto& p = hull.point(v);
+        corners.emplace_back(p.x(), p.y(), p.z());
+    }
+    if (double(corners.size()) * double(mesh.surface.size()) > 2e8) return;
+    double size = 0;
+    for (const glm::dvec3& c : corners) size = std::max(size, glm::length(c));
+    // Far above the dot products' rounding (about 1e-16 of the size).
+    const double slack = 1e-9 * size;
+    normals_.resize(mesh.surface.size());
+    extent_.resize(mesh.surface.size());
+    tbb::parallel_for(size_t(0), mesh.surface.size(), [&](size_t s) {
+        const auto& f = mesh.surface[s];
+        const glm::dvec3 a = mesh.vertices[f[0]];
+        const glm::dvec3 n = glm::cross(mesh.vertices[f[1]] - a, mesh.vertices[f[2]] - a);
+        const double length = glm::length(n);
+        normals_[s] = length > 0 ? n / length : glm::dvec3(0);
+        double reach = 0;
+        for (const glm::dvec3& c : corners) reach = std::max(reach, glm::dot(normals_[s], c - a));
+        extent_[s] = length > 0 ? reach + slack : INFINITY;
+    });
+}
+
+double FrontExtent::reentryBefore(uint32_t s, const Ray& ray) const {
+    if (extent_.empty()) return INFINITY;
+    const glm::dvec3& n = normals_[s];
+    const double heading = glm::dot(n, ray.d);
+    if (!(heading > 0)) return INFINITY;
+    // The ray's height above the plane grows by `heading` per unit t, from the origin's (about 0).
+    const double height = glm::dot(n, ray.o - mesh_->vertices[mesh_->surface[s][0]]);
+    return (extent_[s] - height) / heading;
+}
+
+}  // namespace tetglow

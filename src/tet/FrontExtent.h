@@ -1,0 +1,28 @@
+// How far a closed surface reaches in front of each of its triangles: a ray that leaves the
+// medium through a triangle, heading out, can meet the medium again only that far in front of
+// the triangle's plane. Where nothing lies in front (a face of the convex hull), it cannot.
+#pragma once
+#include <vector>
+
+#include "base/Ray.h"
+#include "tet/TetMesh.h"
+
+namespace tetglow {
+
+class FrontExtent {
+public:
+    FrontExtent() = default;  // no bound
+    // Empty (no bound: every ray may re-enter anywhere) where the surface is too large for the
+    // scan, more than about 2e8 triangle-vertex pairs of its convex hull.
+    explicit FrontExtent(const TetMesh& mesh);
+    // The t beyond which a ray from a point of surface triangle s (heading out through it) meets
+    // no part of the medium; INFINITY where no bound is known or the ray does not head out.
+    double reentryBefore(uint32_t s, const Ray& ray) const;
+
+private:
+    const TetMesh* mesh_ = nullptr;
+    std::vector<glm::dvec3> normals_;  // unit, outward
+    std::vector<double> extent_;       // per surface triangle, rounded up; empty: none
+};
+
+}  // namespace tetglow
