@@ -125,23 +125,23 @@ public:
     }
 
     LightSample sample(const glm::dvec3& p, const glm::dvec2& u) const override {
+        // The spherical rectangle (four arccosines) is built once, for the point and its pdf.
+        const auto r = sphericalRectangle(p);
         uint32_t tri = 0;
         glm::dvec3 q;
-        if (const auto r = sphericalRectangle(p))
+        if (r)
             q = r->sample(u);
         else
             std::tie(tri, q) = samplePoint(u);
         LightSample s = towards(p, q, RGB(0));
         s.delta = false;
-        s.pdf = pdf(p, s.wi, q, tri);
+        s.pdf = r ? 1 / r->solidAngle() : areaPdf(p, s.wi, q, tri);
         s.L = s.pdf > 0 ? emitted(s.wi, tri) : RGB(0);
         return s;
     }
     double pdf(const glm::dvec3& p, const glm::dvec3& wi, const glm::dvec3& point, uint32_t triangle) const override {
         if (const auto r = sphericalRectangle(p)) return 1 / r->solidAngle();
-        const double cosLight = std::abs(glm::dot(wi, normals_[triangle]));
-        const glm::dvec3 v = point - p;
-        return cosLight > 0 ? glm::dot(v, v) / (cosLight * area_) : 0;
+        return areaPdf(p, wi, point, triangle);
     }
     RGB emitted(const glm::dvec3& wi, uint32_t triangle) const override {
         const double cosLight = -glm::dot(wi, normals_[triangle]);  // > 0 on the front
@@ -191,6 +191,12 @@ private:
         const SphericalRectangle r(p, rectangle_->corner, rectangle_->ex, rectangle_->ey);
         if (!(r.solidAngle() >= 1e-5)) return std::nullopt;
         return r;
+    }
+    // The solid-angle pdf of area sampling.
+    double areaPdf(const glm::dvec3& p, const glm::dvec3& wi, const glm::dvec3& point, uint32_t triangle) const {
+        const double cosLight = std::abs(glm::dot(wi, normals_[triangle]));
+        const glm::dvec3 v = point - p;
+        return cosLight > 0 ? glm::dot(v, v) / (cosLight * area_) : 0;
     }
     // A triangle chosen by area with u.x, then a uniform point on it (what is left of u.x is
     // reused).
