@@ -14,12 +14,12 @@ namespace tetglow {
 FrontExtent::FrontExtent(const TetMesh& mesh) : mesh_(&mesh) {
     // The farthest any point of the medium reaches along a direction is at a vertex of its
     // convex hull: only those are scanned.
+    if (mesh.surfaceVertexCount < 4 || mesh.surfaceVertexCount > 50000) return;
     using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
     std::vector<Kernel::Point_3> points;
     points.reserve(mesh.surfaceVertexCount);
     for (size_t v = 0; v < mesh.surfaceVertexCount; ++v)
         points.emplace_back(mesh.vertices[v].x, mesh.vertices[v].y, mesh.vertices[v].z);
-    if (points.size() < 4) return;
     CGAL::Surface_mesh<Kernel::Point_3> hull;
     CGAL::convex_hull_3(points.begin(), points.end(), hull);
     std::vector<glm::dvec3> corners;
