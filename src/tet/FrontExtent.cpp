@@ -11,7 +11,7 @@
 
 namespace tetglow {
 
-FrontExtent::FrontExtent(const TetMesh& mesh) : mesh_(&mesh) {
+FrontExtent::FrontExtent(const TetMesh& mesh) {
     // The farthest any point of the medium reaches along a direction is at a vertex of its
     // convex hull: only those are scanned.
     if (mesh.surfaceVertexCount < 4 || mesh.surfaceVertexCount > 50000) return;
@@ -30,30 +30,32 @@ FrontExtent::FrontExtent(const TetMesh& mesh) : mesh_(&mesh) {
     if (double(corners.size()) * double(mesh.surface.size()) > 2e8) return;
     double size = 0;
     for (const glm::dvec3& c : corners) size = std::max(size, glm::length(c));
-    // Far above the dot products' rounding (about 1e-16 of the size).
+    // Far above the dot products' rounding (about 1e-16 of the size), here and in reentryBefore.
     const double slack = 1e-9 * size;
-    normals_.resize(mesh.surface.size());
-    extent_.resize(mesh.surface.size());
+    bound_.resize(mesh.surface.size());
     tbb::parallel_for(size_t(0), mesh.surface.size(), [&](size_t s) {
         const auto& f = mesh.surface[s];
         const glm::dvec3 a = mesh.vertices[f[0]];
         const glm::dvec3 n = glm::cross(mesh.vertices[f[1]] - a, mesh.vertices[f[2]] - a);
         const double length = glm::length(n);
-        normals_[s] = length > 0 ? n / length : glm::dvec3(0);
-        double reach = 0;
-        for (const glm::dvec3& c : corners) reach = std::max(reach, glm::dot(normals_[s], c - a));
-        extent_[s] = length > 0 ? reach + slack : INFINITY;
+        if (!(length > 0)) {
+            bound_[s] = glm::dvec4(0, 0, 0, INFINITY);  // no direction to bound along
+            return;
+        }
+        const glm::dvec3 unit = n / length;
+        double reach = -INFINITY;
+        for (const glm::dvec3& c : corners) reach = std::max(reach, glm::dot(unit, c));
+        bound_[s] = glm::dvec4(unit, reach + slack);
     });
 }
 
 double FrontExtent::reentryBefore(uint32_t s, const Ray& ray) const {
-    if (extent_.empty()) return INFINITY;
-    const glm::dvec3& n = normals_[s];
+    if (bound_.empty()) return INFINITY;
+    const glm::dvec3 n(bound_[s]);
     const double heading = glm::dot(n, ray.d);
     if (!(heading > 0)) return INFINITY;
-    // The ray's height above the plane grows by `heading` per unit t, from the origin's (about 0).
-    const double height = glm::dot(n, ray.o - mesh_->vertices[mesh_->surface[s][0]]);
-    return (extent_[s] - height) / heading;
+    // The ray passes the bounding plane where dot(n, o + t d) = w.
+    return (bound_[s].w - glm::dot(n, ray.o)) / heading;
 }
 
 }  // namespace tetglow

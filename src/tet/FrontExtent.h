@@ -4,6 +4,8 @@
 #pragma once
 #include <vector>
 
+#include <glm/vec4.hpp>
+
 #include "base/Ray.h"
 #include "tet/TetMesh.h"
 
@@ -16,14 +18,15 @@ public:
     // worth the start-up: more than 50,000 vertices (CGAL's hull of 50,000 points, half of them
     // on it, took 0.3 s; of 200,000, 1.6 s) or 2e8 pairs of a triangle and a hull vertex.
     explicit FrontExtent(const TetMesh& mesh);
-    // The t beyond which a ray from a point of surface triangle s (heading out through it) meets
-    // no part of the medium; INFINITY where no bound is known or the ray does not head out.
+    // The t beyond which the ray meets no part of the medium, having passed the plane that bounds
+    // it in front of surface triangle s (whatever the ray's origin); INFINITY where no bound is
+    // known or the ray does not head out of that plane.
     double reentryBefore(uint32_t s, const Ray& ray) const;
 
 private:
-    const TetMesh* mesh_ = nullptr;
-    std::vector<glm::dvec3> normals_;  // unit, outward
-    std::vector<double> extent_;       // per surface triangle, rounded up; empty: none
+    // Per surface triangle, the plane beyond which nothing of the medium lies: its unit outward
+    // normal n (xyz) and w, rounded up, with dot(n, p) <= w for every point p of the medium; empty: none.
+    std::vector<glm::dvec4> bound_;
 };
 
 }  // namespace tetglow
