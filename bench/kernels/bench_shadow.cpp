@@ -160,7 +160,8 @@ void BM_FreeFlight(benchmark::State& state) {
     for (size_t i = 0; i < f.rays.size(); ++i) {
         const uint64_t queries = surfaceQueries();
         const FreeFlight fl = flight(i);
-        const bool asked = surfaceQueries() > queries;
+        // A query decided the flight unless the walk placed its interaction (a located tet).
+        const bool decided = surfaceQueries() > queries && !(fl.scattered && fl.located);
         const double end = fl.scattered ? fl.t : INFINITY;
         size_t steps = 0;
         f.medium->walk(f.rays[i], WalkStart::inside(f.tets[i]), [&](const WalkSegment& s) {
@@ -168,7 +169,7 @@ void BM_FreeFlight(benchmark::State& state) {
             return s.tOut < end;
         });
         walked += double(steps);
-        taken += asked && !fl.located ? 0.0 : asked && !fl.scattered ? 0.0 : double(steps);
+        taken += decided ? 0.0 : double(steps);
     }
     const double n = double(f.rays.size());
     state.counters["walk steps/flight"] = walked / n;

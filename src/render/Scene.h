@@ -34,9 +34,9 @@ struct Intersection {
 struct VolumeState {
     int volume = -1;  // -1: outside every medium
     WalkStart start;
-    // Outside, just past surface triangle `leftThrough` of volume `left` (-1: none), which the
-    // path crossed on its way out: that volume lies behind the triangle, and a ray meets it again
-    // only within the triangle's FrontExtent.
+    // Outside: the surface triangle `leftThrough` of volume `left` (-1: none) the path last
+    // crossed on its way out of it. A ray meets that volume again only before the plane of the
+    // triangle's FrontExtent, whatever its origin, so the triangle stays after later bounces.
     int left = -1;
     uint32_t leftThrough = 0;
     bool inside() const { return volume >= 0; }

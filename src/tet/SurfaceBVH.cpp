@@ -188,7 +188,7 @@ std::vector<SurfaceHit> SurfaceBVH::allHits(const Ray& ray, double tnear) const 
     };
     QueryContext ctx{{}, this, ray, 0, tnear, Facing::Any};
     ctx.visit = &collect;
-    ctx.call = [](void* c, const SurfaceHit& hit) -> double { return (*static_cast<decltype(collect)*>(c))(hit); };
+    ctx.call = &callVisit<decltype(collect)>;
     rtcInitIntersectContext(&ctx.base);
     ctx.base.filter = filter;
     RTCRayHit rh = makeRay(ray, tnear, INFINITY);

@@ -48,9 +48,7 @@ public:
     // land): every triangle crossed before it is still seen, and the rest of the ray is not searched.
     template <class Visit>
     void visitCandidates(const Ray& ray, double tnear, double tfar, Visit&& visit) const {
-        using V = std::remove_reference_t<Visit>;
-        visitCandidates(ray, tnear, tfar, &visit,
-                        [](void* v, const SurfaceHit& hit) -> double { return (*static_cast<V*>(v))(hit); });
+        visitCandidates(ray, tnear, tfar, &visit, &callVisit<std::remove_reference_t<Visit>>);
     }
 
     const glm::dvec3& normal(uint32_t triangle) const { return normals_[triangle]; }  // outward, not unit
@@ -59,6 +57,11 @@ public:
 
 private:
     using CandidateVisit = double (*)(void* visit, const SurfaceHit& hit);
+    // Calls the visitor of type V behind `visit`: what Embree's filter, a C callback, can hold.
+    template <class V>
+    static double callVisit(void* visit, const SurfaceHit& hit) {
+        return (*static_cast<V*>(visit))(hit);
+    }
     void visitCandidates(const Ray& ray, double tnear, double tfar, void* visit, CandidateVisit call) const;
 
     RTCScene scene_ = nullptr, grown_ = nullptr;
