@@ -1,10 +1,15 @@
 // base/ChildProcess.h: work in a child process ends in its answer or in one distinct error,
 // within its memory and time limits, whatever the work does.
+#include <unistd.h>
+
+#include <chrono>
 #include <csignal>
+#include <filesystem>
 #include <thread>
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <tbb/parallel_for.h>
 
 #include "Sanitizers.h"
 #include "base/ByteMessage.h"
@@ -108,6 +113,26 @@ TEST(ChildProcess, ALargeAnswerArrivesWhole) {
     for (size_t i = 0; i < size; ++i) wrong += answer[i] != byteAt(i);
     EXPECT_EQ(wrong, 0u);
     EXPECT_EQ(runInChild([] { return std::string(); }, {256 * kMiB, 60}), "");
+}
+
+size_t threadsOf(pid_t pid) {
+    const auto tasks = std::filesystem::directory_iterator("/proc/" + std::to_string(pid) + "/task");
+    return size_t(std::distance(begin(tasks), end(tasks)));
+}
+
+// The parent forks with no worker thread of TBB alive: one that is inside the allocator at the
+// fork leaves its lock held in the child, which waits on it for ever (AddressSanitizer's
+// allocator takes no lock around fork(); tests that tetrahedralize hung so in the sanitized
+// suite). The workers start again at the next parallel algorithm.
+TEST(ChildProcess, NoWorkerThreadOfTheParentLivesAtTheFork) {
+    if (std::thread::hardware_concurrency() < 2) GTEST_SKIP() << "one CPU: TBB starts no worker";
+    const pid_t parent = ::getpid();
+    for (int round = 0; round < 2; ++round) {
+        tbb::parallel_for(0, 64, [](int) { std::this_thread::sleep_for(std::chrono::milliseconds(2)); });
+        ASSERT_GT(threadsOf(parent), 1u) << "round " << round << ": no worker started";
+        const std::string threads = runInChild([&] { return std::to_string(threadsOf(parent)); }, {256 * kMiB, 60});
+        EXPECT_EQ(threads, "1") << "round " << round;
+    }
 }
 
 // An empty list reads back as empty (an empty vector's data() may be null: UBSan reported the

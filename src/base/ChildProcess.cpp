@@ -18,6 +18,8 @@
 #include <new>
 #include <vector>
 
+#include <tbb/global_control.h>
+
 #include "base/Error.h"
 #include "base/Memory.h"
 
@@ -129,6 +131,16 @@ ChildFailure killedBy(int sig) {
                         "was killed by " + name + " (" + ::strsignal(sig) + ")");
 }
 
+// A thread inside the allocator at the fork leaves the allocator's lock held in the child for
+// ever. glibc's malloc takes its locks around fork(); AddressSanitizer's (clang 14) does not, and
+// TBB's workers free their task objects after the parallel algorithm has returned. So the
+// workers end before the fork (the next parallel algorithm starts them again). Where another
+// thread is inside a parallel algorithm they cannot end, and the fork goes ahead.
+void endWorkerThreads() {
+    tbb::task_scheduler_handle scheduler{tbb::attach{}};
+    tbb::finalize(scheduler, std::nothrow);
+}
+
 }  // namespace
 
 double defaultChildMemory() { return physicalMemory() / 2; }
@@ -145,6 +157,7 @@ std::string runInChild(const std::function<std::string()>& work, ChildLimits lim
     if (::pipe2(fds, O_CLOEXEC) != 0)
         throw std::runtime_error(std::string("cannot create a pipe: ") + std::strerror(errno));
     std::fflush(nullptr);
+    endWorkerThreads();
     const pid_t parent = ::getpid();
     const double shared = statmBytes(parent, 1);  // the child's resident memory at the fork
     const auto start = std::chrono::steady_clock::now();

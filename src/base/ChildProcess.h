@@ -37,6 +37,7 @@ struct ChildFailure : std::runtime_error {
 // Runs `work` in a forked child under `limits` and returns the bytes it returned. An InputError
 // thrown in the child is thrown here as it was; any other outcome is a ChildFailure: the memory
 // or the time limit (the child is killed), a signal, an exit, another exception's message.
+// TBB's worker threads end before the fork, so that none holds a lock the child needs.
 std::string runInChild(const std::function<std::string()>& work, ChildLimits limits);
 
 }  // namespace tetglow
