@@ -32,6 +32,17 @@ constexpr double kBytesPerStoredPhoton = 160;
 // the medium as volpath does.
 constexpr double kDenseMeanFreePath = 0.02;
 
+// Whether the eye path walks a domain of `volume` instead of reading photons there (opticalSize:
+// the domain's, below). A dense domain, always.
+// So does one that shadow rays from inside can leave (not sealed) and whose longest mean free
+// path is shorter than the largest kernel radius: its light changes within a mean free path, a
+// photon estimate blurs it until the radius has shrunk below that, so its error falls only as
+// the radius does (as t^-0.5 on blub), while the walk's, lit by next-event estimation, falls as
+// 1/t. Behind glass (sealed) the walk finds the light by chance only, and photons stay.
+bool eyeWalks(const Scene& scene, int volume, double opticalSize) {
+    return opticalSize * (scene.sealed(volume) ? kDenseMeanFreePath : kMaxRadiusFraction) > 1;
+}
+
 // The smallest extinction (any channel, any tet) of the domain's media, times its diagonal.
 double opticalSize(const Scene& scene, const std::vector<int>& media, double diagonal) {
     double smallest = INFINITY;
@@ -74,8 +85,8 @@ PhotonIntegrator::PhotonIntegrator(const Scene& scene, const IntegratorDesc& des
         balls_.emplace_back(*regionBoundaries_.back());
         MediumPhotons photons;
         photons.maxRadius = float(kMaxRadiusFraction * box.diagonal());
-        photons.dense = opticalSize(scene, domains_.media[d], box.diagonal()) * kDenseMeanFreePath > 1;
-        if (photons.dense) {  // the eye path walks the domain: a pass stores no photons there
+        photons.walked = eyeWalks(scene, domains_.volume[d], opticalSize(scene, domains_.media[d], box.diagonal()));
+        if (photons.walked) {  // the eye path walks the domain: a pass stores no photons there
             storedMedia_.resize(scene.media().size(), 1);
             for (int m : domains_.media[d]) storedMedia_[size_t(m)] = 0;
         }
@@ -94,7 +105,7 @@ std::vector<std::string> PhotonIntegrator::warnings() const {
     std::vector<bool> named(scene_.volumes().size(), false);
     for (size_t d = 0; d < media_.size(); ++d) {
         const auto v = size_t(domains_.volume[d]);
-        if (!media_[d].dense || !scene_.sealed(int(v)) || !scene_.volumes()[v].media->scatters() || named[v]) continue;
+        if (!media_[d].walked || !scene_.sealed(int(v)) || !scene_.volumes()[v].media->scatters() || named[v]) continue;
         named[v] = true;
         lines.push_back(scene_.volumes()[v].name +
                         " lies inside a dielectric boundary and is optically dense: photon mapping walks it as volpath "
@@ -186,17 +197,18 @@ RGB PhotonIntegrator::radiance(const Ray& cameraRay, Rng& rng) const {
             const double tMax = hit ? hit->t : INFINITY;
             const RegionMedia& media = *scene_.volumes()[state.volume].media;
             const ColumnProfile column(media, ray, state.start, tMax);
-            // A dense domain ahead: estimate up to it, then walk it (and all after) as volpath does.
+            // A walked domain ahead: estimate up to it, then walk it (and all after) as volpath does.
             const auto& pieces = column.pieces();
-            const auto dense = std::find_if(pieces.begin(), pieces.end(),
-                                            [&](const auto& p) { return media_[domainOf(state.volume, p.tet)].dense; });
-            if (dense != pieces.end()) {
-                if (dense != pieces.begin()) {
-                    const ColumnProfile before(media, ray, state.start, dense->tIn);
+            const auto walked = std::find_if(pieces.begin(), pieces.end(), [&](const auto& p) {
+                return media_[domainOf(state.volume, p.tet)].walked;
+            });
+            if (walked != pieces.end()) {
+                if (walked != pieces.begin()) {
+                    const ColumnProfile before(media, ray, state.start, walked->tIn);
                     L += beta * inMedium(state.volume, ray, before, rng);
                     beta *= exp(-before.depth());
-                    state.start = WalkStart::inside(dense->tet);
-                    ray.o = ray.at(dense->tIn);
+                    state.start = WalkStart::inside(walked->tet);
+                    ray.o = ray.at(walked->tIn);
                 }
                 L += beta * walk_.continuePath(ray, state, depth, !gathering, rng);
                 break;

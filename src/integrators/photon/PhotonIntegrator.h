@@ -68,7 +68,7 @@ private:
         std::vector<float> invBallVolume;
         double largestRadius = 0;  // of this pass's photons: how far past a stretch balls reach
         float maxRadius = 0;
-        bool dense = false;  // optically dense: no photons, the eye path walks it (see kDenseMeanFreePath)
+        bool walked = false;  // no photons: the eye path walks it as volpath does (see eyeWalks)
     };
 
     // Light scattered and emitted towards ray.o along the stretch `column` of volume v.
@@ -95,7 +95,7 @@ private:
     VolumeState cameraMedium_;
     PhotonSource source_;
     PhotonDomains domains_;
-    VolPathIntegrator walk_;                                     // the eye path's walk through optically dense domains
+    VolPathIntegrator walk_;                                     // the eye path's walk through the domains it walks
     std::vector<std::unique_ptr<SurfaceBVH>> regionBoundaries_;  // per photon domain: its boundary's triangles
     std::vector<BallVolume> balls_;                              // per photon domain, over its boundary
     std::vector<MediumPhotons> media_;                           // per photon domain
