@@ -32,15 +32,20 @@ constexpr double kBytesPerStoredPhoton = 160;
 // the medium as volpath does.
 constexpr double kDenseMeanFreePath = 0.02;
 
-// Whether the eye path walks a domain of `volume` instead of reading photons there (opticalSize:
-// the domain's, below). A dense domain, always.
-// So does one that shadow rays from inside can leave (not sealed) and whose longest mean free
-// path is shorter than the largest kernel radius: its light changes within a mean free path, a
-// photon estimate blurs it until the radius has shrunk below that, so its error falls only as
-// the radius does (as t^-0.5 on blub), while the walk's, lit by next-event estimation, falls as
-// 1/t. Behind glass (sealed) the walk finds the light by chance only, and photons stay.
-bool eyeWalks(const Scene& scene, int volume, double opticalSize) {
-    return opticalSize * (scene.sealed(volume) ? kDenseMeanFreePath : kMaxRadiusFraction) > 1;
+// Whether the eye path walks a domain of `volume` (its `media`, its opticalSize below) instead of
+// reading photons there. A dense domain, always. So does a scattering one that shadow rays from
+// inside can leave (not sealed) and whose longest mean free path is shorter than the largest
+// kernel radius: its light changes within a mean free path, a photon estimate blurs it until the
+// radius has shrunk below that, so its error falls only as the radius does (as t^-0.5 on blub),
+// while the walk's, lit by next-event estimation, falls as 1/t. Behind glass (sealed) the walk
+// finds the light by chance only, and photons stay; a medium that only absorbs has none to blur.
+bool eyeWalks(const Scene& scene, int volume, const std::vector<int>& media, double opticalSize) {
+    const bool scatters = std::any_of(media.begin(), media.end(), [&](int m) {
+        const SceneRegion& sm = scene.media()[size_t(m)];
+        return !isBlack(scene.volumes()[sm.volume].media->region(sm.region).params.sigmaS);
+    });
+    const bool nextEvent = !scene.sealed(volume) && scatters;
+    return opticalSize * (nextEvent ? kMaxRadiusFraction : kDenseMeanFreePath) > 1;
 }
 
 // The smallest extinction (any channel, any tet) of the domain's media, times its diagonal.
@@ -85,7 +90,8 @@ PhotonIntegrator::PhotonIntegrator(const Scene& scene, const IntegratorDesc& des
         balls_.emplace_back(*regionBoundaries_.back());
         MediumPhotons photons;
         photons.maxRadius = float(kMaxRadiusFraction * box.diagonal());
-        photons.walked = eyeWalks(scene, domains_.volume[d], opticalSize(scene, domains_.media[d], box.diagonal()));
+        photons.walked = eyeWalks(scene, domains_.volume[d], domains_.media[d],
+                                  opticalSize(scene, domains_.media[d], box.diagonal()));
         if (photons.walked) {  // the eye path walks the domain: a pass stores no photons there
             storedMedia_.resize(scene.media().size(), 1);
             for (int m : domains_.media[d]) storedMedia_[size_t(m)] = 0;
