@@ -96,8 +96,8 @@ TEST(DensePhoton, AgreesWithVolpath) {
     }
 }
 
-// A dense core inside a thin medium, index-matched: an eye ray reads the thin medium's photons
-// up to the core and walks the core from where it enters it.
+// A dense core inside a thin medium, index-matched: an eye ray that meets the core walks its
+// stretch as volpath does, the others read the thin medium's photons.
 TEST(DensePhoton, DenseCoreInAThinMediumAgreesWithVolpath) {
     SceneDesc s = denseSphere(24);
     s.media[0].sigmaA = RGB(0.2);

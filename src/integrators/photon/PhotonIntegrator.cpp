@@ -32,20 +32,15 @@ constexpr double kBytesPerStoredPhoton = 160;
 // the medium as volpath does.
 constexpr double kDenseMeanFreePath = 0.02;
 
-// Whether the eye path walks a domain of `volume` (its `media`, its opticalSize below) instead of
-// reading photons there. A dense domain, always. So does a scattering one that shadow rays from
-// inside can leave (not sealed) and whose longest mean free path is shorter than the largest
-// kernel radius: its light changes within a mean free path, a photon estimate blurs it until the
-// radius has shrunk below that, so its error falls only as the radius does (as t^-0.5 on blub),
-// while the walk's, lit by next-event estimation, falls as 1/t. Behind glass (sealed) the walk
-// finds the light by chance only, and photons stay; a medium that only absorbs has none to blur.
-bool eyeWalks(const Scene& scene, int volume, const std::vector<int>& media, double opticalSize) {
-    const bool scatters = std::any_of(media.begin(), media.end(), [&](int m) {
-        const SceneRegion& sm = scene.media()[size_t(m)];
-        return !isBlack(scene.volumes()[sm.volume].media->region(sm.region).params.sigmaS);
-    });
-    const bool nextEvent = !scene.sealed(volume) && scatters;
-    return opticalSize * (nextEvent ? kMaxRadiusFraction : kDenseMeanFreePath) > 1;
+// Whether the eye path walks a domain of `volume` (of the optical size below) instead of reading
+// photons there. A dense domain, always. So does one that shadow rays from inside can leave (not
+// sealed) and whose longest mean free path is shorter than the largest kernel radius: its light
+// changes within a mean free path, a photon estimate blurs it until the radius has shrunk below
+// that, so its error falls only as the radius does (as t^-0.5 on blub), while the walk's, lit by
+// next-event estimation, falls as 1/t. Behind glass (sealed) the walk finds the light by chance
+// only, and photons stay.
+bool eyeWalks(const Scene& scene, int volume, double opticalSize) {
+    return opticalSize * (scene.sealed(volume) ? kDenseMeanFreePath : kMaxRadiusFraction) > 1;
 }
 
 // The smallest extinction (any channel, any tet) of the domain's media, times its diagonal.
@@ -90,8 +85,7 @@ PhotonIntegrator::PhotonIntegrator(const Scene& scene, const IntegratorDesc& des
         balls_.emplace_back(*regionBoundaries_.back());
         MediumPhotons photons;
         photons.maxRadius = float(kMaxRadiusFraction * box.diagonal());
-        photons.walked = eyeWalks(scene, domains_.volume[d], domains_.media[d],
-                                  opticalSize(scene, domains_.media[d], box.diagonal()));
+        photons.walked = eyeWalks(scene, domains_.volume[d], opticalSize(scene, domains_.media[d], box.diagonal()));
         if (photons.walked) {  // the eye path walks the domain: a pass stores no photons there
             storedMedia_.resize(scene.media().size(), 1);
             for (int m : domains_.media[d]) storedMedia_[size_t(m)] = 0;
@@ -203,19 +197,12 @@ RGB PhotonIntegrator::radiance(const Ray& cameraRay, Rng& rng) const {
             const double tMax = hit ? hit->t : INFINITY;
             const RegionMedia& media = *scene_.volumes()[state.volume].media;
             const ColumnProfile column(media, ray, state.start, tMax);
-            // A walked domain ahead: estimate up to it, then walk it (and all after) as volpath does.
+            // A walked domain on the stretch: walk the stretch (and all after) as volpath does, from
+            // its start. Restarted where the domain begins, on a tet's face, the walk would follow
+            // the rounded line from there, which can miss a tet the stretch only touches.
             const auto& pieces = column.pieces();
-            const auto walked = std::find_if(pieces.begin(), pieces.end(), [&](const auto& p) {
-                return media_[domainOf(state.volume, p.tet)].walked;
-            });
-            if (walked != pieces.end()) {
-                if (walked != pieces.begin()) {
-                    const ColumnProfile before(media, ray, state.start, walked->tIn);
-                    L += beta * inMedium(state.volume, ray, before, rng);
-                    beta *= exp(-before.depth());
-                    state.start = WalkStart::inside(walked->tet);
-                    ray.o = ray.at(walked->tIn);
-                }
+            if (std::any_of(pieces.begin(), pieces.end(),
+                            [&](const auto& p) { return media_[domainOf(state.volume, p.tet)].walked; })) {
                 L += beta * walk_.continuePath(ray, state, depth, !gathering, rng);
                 break;
             }
