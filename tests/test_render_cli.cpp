@@ -95,13 +95,15 @@ TEST(RenderCommand, DeltaLightsBehindGlassAreReported) {
     EXPECT_EQ(r.err.find("warning"), std::string::npos) << r.err;
 }
 
-// A dense glowing sphere stores a photon at each of a path's 64 events: 10 million paths would
-// take minutes. Under --time the pass stops starting blocks of paths when the time is up.
+// A dense glowing sphere in glass (photons are traced: the glass makes caustics) takes all 64
+// events of each path: 10 million paths would take minutes. Under --time the pass stops
+// starting blocks of paths when the time is up.
 TEST(RenderCommand, APhotonPassEndsWithItsTimeLimit) {
     const std::string scene =
         writeTemp("dense.json", R"({"camera": {"position": [0, 0, 4], "look_at": [0, 0, 0], "resolution": [1, 1]},
         "integrator": {"type": "photon", "spp": 1, "photons": 10000000},
-        "media": [{"shape": {"type": "sphere", "center": [0, 0, 0], "radius": 1}, "sigma_s": 1000, "emission": 1}]})");
+        "media": [{"shape": {"type": "sphere", "center": [0, 0, 0], "radius": 1}, "sigma_s": 1000, "emission": 1,
+                     "boundary": {"type": "dielectric", "ior": 1.3}}]})");
     const auto r = runTetglow("render " + scene + " --time 0.001 -o " + tempDir() + "/dense.exr");
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const size_t at = r.out.find("photons: ");

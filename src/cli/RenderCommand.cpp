@@ -74,6 +74,7 @@ void run(const Options& o) {
     if (o.tetsOnly) return;
     const auto integrator = makeIntegrator(scene, desc.integrator);
     for (const std::string& w : integrator->warnings()) std::fprintf(stderr, "tetglow: warning: %s\n", w.c_str());
+    const auto* photon = dynamic_cast<const PhotonIntegrator*>(integrator.get());
 
     RenderOptions options;
     options.spp = desc.integrator.spp;
@@ -86,7 +87,7 @@ void run(const Options& o) {
     options.independentHalves = o.noise > 0;
     options.cancel = &interrupted();
     Progress progress("render", {(part.endPass > 0 ? part.endPass : options.spp) - part.firstPass, options.timeLimit,
-                                 options.noiseTarget, desc.integrator.type == IntegratorType::Photon});
+                                 options.noiseTarget, photon && photon->tracesPhotons()});
     options.passDone = [&](const PassReport& r) {
         progress.pass(r);
         if (reference) reference->pass(r);
@@ -124,7 +125,11 @@ void run(const Options& o) {
         std::printf("%s: part of %s frame %d: passes %s of %d, %dx%d\n", output.c_str(), o.args.scene.c_str(),
                     part.frame, o.passRange.c_str(), part.totalPasses, desc.camera.width, desc.camera.height);
     double tracing = 0;
-    if (const auto* photon = dynamic_cast<const PhotonIntegrator*>(integrator.get())) {
+    if (photon && !photon->tracesPhotons())
+        std::printf(
+            "photons: none traced: every medium is walked and no surface is a dielectric, so paths carry "
+            "all the light, as in volpath\n");
+    else if (photon) {
         const PhotonStats& s = photon->stats();
         tracing = s.tracingSeconds;
         std::printf("photons: %llu paths traced, %llu stored in media, %llu on surfaces, %.1f MB of maps per pass\n",

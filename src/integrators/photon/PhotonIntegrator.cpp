@@ -58,6 +58,18 @@ double opticalSize(const Scene& scene, const std::vector<int>& media, double dia
     return smallest * diagonal;
 }
 
+// Whether a surface or a medium boundary of the scene refracts or reflects specularly (a
+// dielectric): light from a light that reaches a diffuse surface through one is a caustic, which
+// from a light of zero size only photons find.
+bool hasDielectric(const Scene& scene) {
+    auto dielectric = [](const MaterialDesc& m) { return m.type == MaterialType::Dielectric; };
+    const auto& surfaces = scene.desc().surfaces;
+    return std::any_of(surfaces.begin(), surfaces.end(), [&](const auto& s) { return dielectric(s.material); }) ||
+           std::any_of(scene.volumes().begin(), scene.volumes().end(), [&](const SceneVolume& v) {
+               return std::any_of(v.materials.begin(), v.materials.end(), dielectric);
+           });
+}
+
 }  // namespace
 
 PhotonIntegrator::PhotonIntegrator(const Scene& scene, const IntegratorDesc& desc)
@@ -95,6 +107,8 @@ PhotonIntegrator::PhotonIntegrator(const Scene& scene, const IntegratorDesc& des
     }
     for (const auto& s : scene.desc().surfaces) all.extend(bounds(s.mesh));
     surfaceMaxRadius_ = float(kMaxRadiusFraction * (all.empty() ? 1.0 : all.diagonal()));
+    tracing_ =
+        hasDielectric(scene) || std::any_of(media_.begin(), media_.end(), [](const auto& m) { return !m.walked; });
 }
 
 PhotonIntegrator::~PhotonIntegrator() = default;
@@ -122,6 +136,7 @@ double PhotonIntegrator::radiusScale(uint64_t pass, double alpha, int dim) {
 }
 
 void PhotonIntegrator::beginPass(uint64_t pass, const std::atomic<bool>* cancel) {
+    if (!tracing_) return;
     const auto start = std::chrono::steady_clock::now();
     const auto maxStored = uint64_t(physicalMemory() / kBytesPerStoredPhoton);
     TracedPhotons traced = tracePhotons(scene_, source_,
@@ -183,6 +198,7 @@ void PhotonIntegrator::beginPass(uint64_t pass, const std::atomic<bool>* cancel)
 }
 
 RGB PhotonIntegrator::radiance(const Ray& cameraRay, Rng& rng) const {
+    if (!tracing_) return walk_.radiance(cameraRay, rng);
     RGB L(0), beta(1);
     Ray ray = cameraRay;
     VolumeState state = cameraMedium_;
