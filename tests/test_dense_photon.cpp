@@ -121,7 +121,7 @@ TEST(DensePhoton, AgreesWithVolpath) {
 // Where the eye path walks every medium and nothing refracts, the only photons a pass would keep
 // are the floor's, whose light paths with next-event estimation carry without a kernel's blur:
 // photon mapping traces none and renders volpath's image, sample for sample (it traced 100k paths
-// a pass on blub.json, 65% of its time, for 0.3% of them on the floor, at twice volpath's error).
+// a pass on blub.json, 65% of its time, for 0.6% of them on the floor, at twice volpath's error).
 // A dielectric floor (caustics) or a medium that keeps its photons brings the passes back.
 TEST(DensePhoton, WhereEveryMediumIsWalkedAndNothingRefractsNoPhotonIsTraced) {
     SceneDesc s = denseSphere(12);
