@@ -4,18 +4,24 @@
 // ended; a path that goes on draws one number, one that is never at risk none.
 #pragma once
 #include <algorithm>
+#include <cmath>
 
 #include "base/Spectrum.h"
 #include "sampling/Rng.h"
 
 namespace tetglow {
 
-// An eye path after `events` scattering events, none at risk for the first three: it ends with
-// probability q = max(0.05, 1 - the weight's largest channel).
+// An eye path after `events` scattering events, none at risk for the first three: while its
+// weight's largest channel w is below 1 it goes on with probability sqrt(w) (Cycles' rule), so a
+// survivor's weight, sqrt(w), stays below 1 and falls slowly; at 1 or above it always goes on. A
+// 5% chance of ending at every event, whatever the weight, made survivors' weights grow by
+// albedo / 0.95 per event: in jade (albedo 0.998, a hundred events) samples of 100 to 500 times
+// their pixel's value.
 inline double eyePathSurvival(const RGB& weight, int events, Rng& rng) {
     if (events <= 3) return 1;
-    const double q = std::max(0.05, 1 - maxComponent(weight));
-    return rng.uniform() < q ? 0 : 1 - q;
+    const double keep = std::sqrt(maxComponent(weight));
+    if (keep >= 1) return 1;
+    return rng.uniform() < keep ? keep : 0;
 }
 
 // A photon goes on with probability min(1, its flux's largest channel relative to what it was
