@@ -88,11 +88,8 @@ TEST(DensePhoton, AWalkedMediumStoresNoPhotons) {
 // A thin medium beside the view (a small sphere at x = 3): its photons keep the photon passes
 // going, so the dense medium's eye stretches are photon mapping's own walk.
 MediumDesc thinAside() {
-    MediumDesc m = sphereMedium(RGB(0.2), RGB(0.8), 0, 2);
-    for (auto& p : m.boundary.positions) {
-        const glm::dvec3 q = p * 0.25 + glm::dvec3(3, 0, 0);
-        p = {roundToFloat(q.x), roundToFloat(q.y), roundToFloat(q.z)};
-    }
+    MediumDesc m = sphereMedium(RGB(0.2), RGB(0.8));
+    m.boundary = icosphere(2, 0.25, {3, 0, 0});
     m.name = "aside";
     return m;
 }
