@@ -12,6 +12,7 @@
 #include "integrators/PathStep.h"
 #include "integrators/Renderer.h"
 #include "media/ColumnProfile.h"
+#include "sampling/Sampling.h"
 #include "tet/Shapes.h"
 
 namespace tetglow::test {
@@ -199,6 +200,55 @@ TEST(Render, RouletteKeepsAPathsWeightInAMediumThatAbsorbsLittle) {
     }
     EXPECT_GT(largest, 0.9);
     EXPECT_LE(largest, 1 + 1e-9);
+}
+
+// Every stretch through a thin homogeneous medium brings back direct light, not only the few
+// whose free flight interacts: a camera ray through a sphere of optical depth 0.1 under a point
+// light, single scattering only. Nearly every sample is lit (9% were, those that interacted),
+// and the mean is the single-scattering integral along the ray by quadrature, with the scene's own
+// transmittances to the camera and to the light.
+TEST(Render, AThinMediumIsLitOnEveryStretch) {
+    const double sigmaS = 0.05;
+    SceneDesc desc = sceneWith(sphereMedium(RGB(0), RGB(sigmaS)), 8);
+    const glm::dvec3 lamp(0.3, 3, 0.2);
+    const RGB intensity(5);
+    desc.lights.push_back(pointLight(lamp, intensity));
+    const Scene scene(desc);
+    IntegratorDesc integ;
+    integ.maxDepth = 2;  // single scattering
+    const auto integrator = makeIntegrator(scene, integ);
+    const Ray ray{scene.camera().position(), {0, 0, -1}};
+    ASSERT_NEAR(ray.o.z, 4, 1e-12);
+    const int n = 20000;
+    int lit = 0;
+    double sum = 0, sum2 = 0;
+    for (uint32_t i = 0; i < uint32_t(n); ++i) {
+        Rng rng = Rng::pixelSample(3, 0, i);
+        const double L = integrator->radiance(ray, rng).x;
+        lit += L > 0;
+        sum += L;
+        sum2 += L * L;
+    }
+    const double mean = sum / n, stdError = std::sqrt((sum2 / n - mean * mean) / (n - 1));
+    EXPECT_GT(lit, 0.99 * n);
+    // The chord lies within t in [2.9, 5.1]; the midpoint rule over it (the integrand jumps at the
+    // boundary: an error of about the step's share).
+    const int steps = 4000;
+    const double t0 = 2.9, t1 = 5.1, h = (t1 - t0) / steps;
+    const VolumeState camera = scene.mediumAt(ray.o);
+    double integral = 0;
+    for (int k = 0; k < steps; ++k) {
+        const double t = t0 + (k + 0.5) * h;
+        const glm::dvec3 x = ray.at(t);
+        const VolumeState here = scene.mediumAt(x);
+        if (!here.inside()) continue;
+        const glm::dvec3 toLamp = lamp - x;
+        const double r = glm::length(toLamp);
+        const double toCamera = transmittance(scene, ray, t, camera).x;
+        const double toLight = transmittance(scene, Ray{x, toLamp / r}, r, here).x;
+        integral += sigmaS * toCamera * toLight * intensity.x / (r * r) * kInv4Pi * h;
+    }
+    EXPECT_NEAR(mean, integral, 5 * stdError + 2e-3 * integral) << "stdError " << stdError;
 }
 
 // (b) White furnace: a medium that absorbs nothing, inside an environment of radiance 1, is

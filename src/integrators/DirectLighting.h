@@ -18,9 +18,11 @@ struct Scattering {
 // With `mis`, area light samples are weighted by the power heuristic against phase/BSDF
 // sampling, which must then count emitters it hits with lightPdf() (the constant environment,
 // never chosen then, with weight 1); without it, phase/BSDF rays must not count them at all.
+// `lightScale`: how much likelier p was to be chosen than by the phase/BSDF path's own sampling
+// (StretchSampling.h), a factor of the light sample's pdf in the weight.
 template <class ScatterFn, class VisibilityFn>
 RGB sampleDirect(const Scene& scene, const glm::dvec3& p, Rng& rng, bool mis, ScatterFn&& scatter,
-                 VisibilityFn&& visibility) {
+                 VisibilityFn&& visibility, double lightScale = 1) {
     if (scene.lights().empty()) return RGB(0);
     const LightChoice choice = chooseLight(scene.lights(), p, mis, rng.uniform());
     const double u0 = rng.uniform(), u1 = rng.uniform();
@@ -33,7 +35,7 @@ RGB sampleDirect(const Scene& scene, const glm::dvec3& p, Rng& rng, bool mis, Sc
     const RGB tr = visibility(Ray{p, ls.wi}, tMax);
     if (isBlack(tr)) return RGB(0);
     const double pdf = ls.pdf * choice.pmf;
-    const double weight = ls.delta || !mis ? 1 : powerHeuristic(pdf, s.pdf);
+    const double weight = ls.delta || !mis ? 1 : powerHeuristic(lightScale * pdf, s.pdf);
     return s.f * tr * ls.L * (weight / pdf);
 }
 

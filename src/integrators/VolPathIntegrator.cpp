@@ -4,10 +4,20 @@
 #include "integrators/PathStep.h"
 #include "media/Roulette.h"
 #include "media/SpectralPath.h"
+#include "media/StretchSampling.h"
 #include "render/Material.h"
 #include "render/UnsampledLight.h"
 
 namespace tetglow {
+
+namespace {
+
+// Stretches through a homogeneous region are lit at a point of their own when their optical depth
+// is below this; deeper ones almost always end in an interaction, which is lit instead.
+// (Measured on blub: the same variance at 4, 8 and 16, 1.1x at 2, 1.2x at 1.)
+constexpr double kLitStretchDepth = 4;
+
+}  // namespace
 
 VolPathIntegrator::VolPathIntegrator(const Scene& scene, int maxDepth)
     : scene_(scene), maxDepth_(maxDepth), cameraMedium_(scene.mediumAt(scene.camera().position())) {}
@@ -25,12 +35,15 @@ RGB VolPathIntegrator::continuePath(const Ray& start, VolumeState state, int dep
     SpectralPath path = SpectralPath::pick(rng.uniform());
     Ray ray = start;
     // How the current direction was chosen, for the MIS weight of an emitter it reaches:
-    // from the camera or a specular event (weight 1), else with lastPdf at lastPoint (0: none).
+    // from the camera or a specular event (weight 1), else with lastPdf at lastPoint (0: none),
+    // where next-event estimation chose its point lastScale times likelier (sampleDirect).
     bool specular = emittersSeen;
-    double lastPdf = 0;
+    double lastPdf = 0, lastScale = 1;
     glm::dvec3 lastPoint = ray.o;
     auto emitterWeight = [&](const Light& light, const glm::dvec3& point, uint32_t triangle) {
-        return specular ? 1.0 : powerHeuristic(lastPdf, lightPdf(scene_, light, lastPoint, ray.d, point, triangle));
+        return specular
+                   ? 1.0
+                   : powerHeuristic(lastPdf, lastScale * lightPdf(scene_, light, lastPoint, ray.d, point, triangle));
     };
     auto visibility = [&](const VolumeState& from) {
         return [this, from, &rng](const Ray& r, double tMax) { return transmittance(scene_, r, tMax, from, &rng); };
@@ -54,7 +67,15 @@ RGB VolPathIntegrator::continuePath(const Ray& start, VolumeState state, int dep
                 path.beta *= flight.transmittance;
                 if (!path.alive()) break;
             } else {
-                flight = medium.sampleFlight(ray, state.start, tMax, path.hero, rng.uniform(), path.r, true);
+                const double u = rng.uniform();
+                std::optional<RegionStretch> stretch;
+                if (!scene_.sealed(state.volume) && depth + 1 < maxDepth_)
+                    stretch = medium.regionStretch(ray, state.start, tMax, kLitStretchDepth);
+                double stretchScale = 0;  // 0: the flight's interaction is lit instead
+                if (stretch) L += directWithin(*stretch, ray, path, state.volume, rng, stretchScale);
+                const std::optional<FreeFlight> within =
+                    stretch ? medium.flightWithin(*stretch, path.hero, u, path.r) : std::nullopt;
+                flight = within ? *within : medium.sampleFlight(ray, state.start, tMax, path.hero, u, path.r, true);
                 // Regions without extinction glow along the whole stretch they hold, exactly.
                 L += path.beta * flight.glow;
                 if (!flight.scattered) {
@@ -68,13 +89,14 @@ RGB VolPathIntegrator::continuePath(const Ray& start, VolumeState state, int dep
                     const glm::dvec3 p = ray.at(flight.t);
                     const VolumeState here{
                         state.volume, flight.located ? WalkStart::inside(flight.tet) : WalkStart::inRegion(flight.tet)};
-                    if (!scene_.sealed(state.volume))
+                    if (!scene_.sealed(state.volume) && stretchScale == 0)
                         L += path.weight() *
                              sampleDirect(scene_, p, rng, true, phaseScattering(optics.phase, ray.d), visibility(here));
                     const double u0 = rng.uniform(), u1 = rng.uniform();
                     const glm::dvec3 wi = optics.phase.sample(ray.d, {u0, u1});
                     specular = false;
                     lastPdf = optics.phase.eval(glm::dot(ray.d, wi));
+                    lastScale = stretchScale > 0 ? stretchScale : 1;
                     lastPoint = p;
                     ray = {p, wi};
                     state = here;
@@ -112,11 +134,35 @@ RGB VolPathIntegrator::continuePath(const Ray& start, VolumeState state, int dep
         path.beta *= bs.weight;
         specular = bs.specular;
         lastPdf = bs.pdf;
+        lastScale = 1;
         lastPoint = hit->p;
         leaveSurface(scene_, *hit, bs.direction, ray, state);
         if (!survives()) break;
     }
     return L;
+}
+
+RGB VolPathIntegrator::directWithin(const RegionStretch& stretch, const Ray& ray, const SpectralPath& path, int volume,
+                                    Rng& rng, double& scale) const {
+    const RegionOptics& optics = scene_.volumes()[size_t(volume)].media->region(stretch.region);
+    const double length = stretch.end - stretch.t0;
+    const double meanDepth = average(optics.sigmaT) * length;
+    // Known to its end, not empty, not deep, and scattering.
+    scale = 0;
+    if (!stretch.whole || !(meanDepth > 0) || maxComponent(optics.params.sigmaS) == 0) return RGB(0);
+    const double x = distanceWithin(optics.sigmaT[path.hero], length, rng.uniform());
+    SpectralPath at = path;
+    at.interact(exp(-optics.sigmaT * x), interactionWithin(optics.sigmaT, length));
+    at.beta *= optics.params.sigmaS;
+    // Against a flight's interaction lit by phase sampling, the point was this much likelier:
+    // the conditioning's factor, for the mean extinction so that the MIS weights of both
+    // strategies do not depend on the hero channel and still sum to one.
+    scale = 1 / -std::expm1(-meanDepth);
+    const VolumeState here{volume, WalkStart::inRegion(stretch.tet)};
+    return at.weight() * sampleDirect(
+                             scene_, ray.at(stretch.t0 + x), rng, true, phaseScattering(optics.phase, ray.d),
+                             [&](const Ray& r, double tMax) { return transmittance(scene_, r, tMax, here, &rng); },
+                             scale);
 }
 
 }  // namespace tetglow

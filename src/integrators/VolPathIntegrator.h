@@ -1,9 +1,13 @@
 // The reference: an unbiased volumetric path tracer. Free flights are sampled exactly through
 // the tets (spectral MIS over the RGB channels), next-event estimation sends shadow rays that
 // walk the tets inside media and use Embree outside, and area and environment lights are
-// combined with phase/BSDF sampling by multiple importance sampling. Russian roulette ends paths.
+// combined with phase/BSDF sampling by multiple importance sampling. In homogeneous regions
+// every stretch that is not optically deep is lit at a point of its own (StretchSampling.h), not
+// only where its free flight interacts. Russian roulette ends paths.
 #pragma once
 #include "integrators/Integrator.h"
+#include "media/RegionMedia.h"
+#include "media/SpectralPath.h"
 
 namespace tetglow {
 
@@ -18,6 +22,13 @@ public:
     RGB continuePath(const Ray& ray, VolumeState state, int depth, bool emittersSeen, Rng& rng) const;
 
 private:
+    // Direct light scattered towards -ray.d at a point of `stretch` (in `volume`) sampled by
+    // its conditioned free-flight pdf; *scale receives that pdf's ratio to the free flight's for
+    // the MIS weight of an emitter hit after the flight interacts on the stretch. Nothing, and
+    // *scale 0, where the stretch is not lit at its own point.
+    RGB directWithin(const RegionStretch& stretch, const Ray& ray, const SpectralPath& path, int volume, Rng& rng,
+                     double& scale) const;
+
     const Scene& scene_;
     int maxDepth_;
     VolumeState cameraMedium_;

@@ -138,54 +138,21 @@ FreeFlight RegionMedia::sampleFlight(const Ray& ray, WalkStart start, double tMa
         flight.transmittance = exp(-depth);
         return flight;
     }
-    // An exit query that looks only as far as the interaction costs a few tet steps
-    // (bench_shadow's BM_FreeFlight), but leaves the interaction's tet to be located where the
-    // next ray walks: a flight asks it where it would walk more than kFlightSteps tets on average
-    // (its mean free path over the mean chord). 16 made the sphere scene walk (0.85x its samples
-    // per second); asking at every mean free path made jade's flights jump and its shadow rays
-    // locate (0.8x).
-    constexpr double kFlightSteps = 4;
-    // Entering through the surface, the walk's first tet and the entry's t come at once.
     std::optional<TetWalk> entered;
-    int32_t region = -1;
-    double t0 = 0;  // where the flight is in the region
-    if (!start.throughSurface) {
-        region = mesh().region(start.index);
-    } else if (jump) {
-        entered = beginWalk(ray, start);
-        if (!entered->exited()) {  // not a touch
-            region = mesh().region(entered->exitTet());
-            t0 = entered->exitT();
-        }
-    }
-    if (jump && region >= 0 && tetChord_[size_t(region)] > 0 &&
-        tetChord_[size_t(region)] * kFlightSteps * regions_[size_t(region)].sigmaT[hero] < 1) {
-        // From a point in a region of constant density (or its entry into one): its exit by one
-        // query, and the interaction, where it comes first, at the distance that solves the
-        // optical depth.
-        const RegionOptics& optics = regions_[size_t(region)];
-        const double sigma = optics.sigmaT[hero], t = sigma > 0 ? t0 + target / sigma : INFINITY;
-        // Only an exit before the interaction matters: the query looks that far (an eighth beyond,
-        // where Embree's float t of a triangle nearly parallel to the ray may land), not across
-        // the whole medium, and finds and decides fewer candidates.
-        const double reach = std::min(tMax, t0 + 1.125 * (t - t0));
-        const RegionExit e = regionExit(volume_, ray, region, t0, reach);
-        const double end = e.kind == RegionExit::Kind::Exit ? e.t : reach;
-        // Too close to the exit to call, or past an interface the walk crosses: the walk decides.
-        const bool clear = t < end - 1e-9 * (1 + end) || (t > end && !crossesAt(e));
-        if (e.kind != RegionExit::Kind::Unsure && clear) {
-            if (t < end) {
-                flight.scattered = true;
-                flight.t = t;
-                flight.tet = entered ? entered->exitTet() : start.index;
-                flight.located = false;
-                flight.transmittance = exp(-optics.sigmaT * (t - t0));
-                return flight;
-            }
-            pass(optics, end - t0);
-            flight.transmittance = exp(-depth);
-            if (e.kind == RegionExit::Kind::Exit) flight.exit = {true, e.triangle, e.tet, e.t};
-            return flight;
+    std::optional<RegionStretch> stretch;
+    if (jump) stretch = stretchStart(ray, start, entered);
+    if (stretch) {
+        const size_t region = size_t(stretch->region);
+        const double sigma = regions_[region].sigmaT[hero];
+        if (tetChord_[region] > 0 && tetChord_[region] * kFlightSteps * sigma < 1) {
+            // From a point in a region of constant density (or its entry into one): its exit by
+            // one query, and the interaction, where it comes first. Only an exit before the
+            // interaction matters: the query looks that far (an eighth beyond, where Embree's float
+            // t of a triangle nearly parallel to the ray may land), not across the whole medium,
+            // and finds and decides fewer candidates.
+            const double t = sigma > 0 ? stretch->t0 + target / sigma : INFINITY;
+            if (findEnd(*stretch, ray, std::min(tMax, stretch->t0 + 1.125 * (t - stretch->t0)), tMax))
+                if (auto flight = flightWithin(*stretch, hero, u, ratios)) return *flight;
         }
     }
     TetWalk w = entered ? *entered : beginWalk(ray, start);
@@ -193,6 +160,70 @@ FreeFlight RegionMedia::sampleFlight(const Ray& ray, WalkStart start, double tMa
     const WalkExit exit = WalkExit::of(w, tMax);
     flight.transmittance = exp(-depth);
     if (!flight.scattered) flight.exit = exit;
+    return flight;
+}
+
+std::optional<RegionStretch> RegionMedia::stretchStart(const Ray& ray, WalkStart start,
+                                                       std::optional<TetWalk>& entered) const {
+    RegionStretch stretch;
+    stretch.tet = start.index;
+    if (start.throughSurface) {
+        // Entering through the surface, the walk's first tet and the entry's t come at once.
+        entered = beginWalk(ray, start);
+        if (entered->exited()) return std::nullopt;  // a touch
+        stretch.tet = entered->exitTet();
+        stretch.t0 = entered->exitT();
+    }
+    stretch.region = mesh().region(stretch.tet);
+    return stretch;
+}
+
+bool RegionMedia::findEnd(RegionStretch& stretch, const Ray& ray, double reach, double tMax) const {
+    const RegionExit e = regionExit(volume_, ray, stretch.region, stretch.t0, reach);
+    if (e.kind == RegionExit::Kind::Unsure) return false;
+    const bool exits = e.kind == RegionExit::Kind::Exit;
+    stretch.end = exits ? e.t : reach;
+    // Past an interface the walk crosses, the flight goes on in another region.
+    stretch.whole = exits ? !crossesAt(e) : reach >= tMax;
+    if (exits && stretch.whole) stretch.exit = {true, e.triangle, e.tet, e.t};
+    return true;
+}
+
+std::optional<RegionStretch> RegionMedia::regionStretch(const Ray& ray, WalkStart start, double tMax,
+                                                        double depth) const {
+    std::optional<TetWalk> entered;
+    std::optional<RegionStretch> stretch = stretchStart(ray, start, entered);
+    if (!stretch || tetChord_[size_t(stretch->region)] <= 0) return std::nullopt;
+    const RGB& sigma = regions_[size_t(stretch->region)].sigmaT;
+    const double least = std::min({sigma.x, sigma.y, sigma.z});
+    // Where flights walk (their mean free path is a few tet chords), so does the stretch.
+    if (tetChord_[size_t(stretch->region)] * kFlightSteps * average(sigma) >= 1) return std::nullopt;
+    const double reach = least > 0 ? std::min(tMax, stretch->t0 + depth / least) : tMax;
+    if (!findEnd(*stretch, ray, reach, tMax)) return std::nullopt;
+    return stretch;
+}
+
+std::optional<FreeFlight> RegionMedia::flightWithin(const RegionStretch& stretch, int hero, double u,
+                                                    const RGB& ratios) const {
+    const RegionOptics& optics = regions_[size_t(stretch.region)];
+    const double sigma = optics.sigmaT[hero], t = sigma > 0 ? stretch.t0 - std::log1p(-u) / sigma : INFINITY;
+    const double end = stretch.end;
+    const bool interacts = t < end - 1e-9 * (1 + end);  // else too close to the end to call, or beyond it
+    if (!interacts && !(t > end && stretch.whole)) return std::nullopt;
+    FreeFlight flight;
+    if (interacts) {
+        flight.scattered = true;
+        flight.t = t;
+        flight.tet = stretch.tet;
+        flight.located = false;
+        flight.transmittance = exp(-optics.sigmaT * (t - stretch.t0));
+        return flight;
+    }
+    const double length = end - stretch.t0;
+    flight.transmittance = exp(-optics.sigmaT * length);
+    // Without extinction the emission integrates exactly (as sampleFlight's walk does).
+    if (isBlack(optics.sigmaT)) flight.glow = optics.params.emission * length / average(ratios);
+    flight.exit = stretch.exit;
     return flight;
 }
 
