@@ -370,6 +370,81 @@ TEST(RegionMediaExit, FlightsThatJumpCrossOrStopAtInterfacesLikeTheWalk) {
     expectJumpsAsTheWalk(medium, 10);
 }
 
+// A stretch (RegionMedia::regionStretch: one exit query) ends where the walk of every tet leaves
+// its region: whole, with the walk's exit triangle, tet and t, where the walk leaves the medium or
+// stops at an interface; not whole where the ray goes on across an interface into another region
+// or where the exit lies beyond the depth the stretch looks ahead.
+void expectStretchesEndAsTheWalk(RegionMedia& medium, uint64_t seed, bool crosses) {
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(-1, 1);
+    size_t whole = 0, across = 0, short_ = 0, unsure = 0;
+    for (int i = 0; i < 1000; ++i) {
+        const glm::dvec3 p(0.9 * u(rng), 0.9 * u(rng), 0.9 * u(rng));
+        const int64_t tet = medium.volume().locate(p);
+        if (tet < 0) continue;
+        const Ray ray{p, direction(rng)};
+        const WalkStart start = WalkStart::inside(uint32_t(tet));
+        const int32_t region = medium.mesh().region(uint32_t(tet));
+        // The walk's way out of the region: its segments until the region changes.
+        double leaves = INFINITY;
+        bool intoAnother = false;
+        const TetWalk walk = medium.walk(ray, start, [&](const WalkSegment& s) {
+            if (medium.mesh().region(s.tet) == region) return true;
+            leaves = s.tIn;
+            intoAnother = true;
+            return false;
+        });
+        if (!intoAnother) leaves = walk.exitT();
+        const auto stretch = medium.regionStretch(ray, start, INFINITY, 1e6);
+        if (!stretch) {  // too close to call (an exit just ahead): the walk decides
+            ++unsure;
+            continue;
+        }
+        ASSERT_NEAR(stretch->end, leaves, 1e-12);
+        ASSERT_EQ(stretch->whole, !intoAnother);
+        if (stretch->whole) {
+            ++whole;
+            ASSERT_TRUE(stretch->exit.left);
+            ASSERT_EQ(stretch->exit.triangle, walk.exitTriangle());
+            ASSERT_EQ(stretch->exit.tet, walk.exitTet());
+        }
+        across += intoAnother;
+        // Looking ahead a tenth of the way: the end is that far, not known beyond.
+        const RGB& sigma = medium.at(uint32_t(tet)).sigmaT;
+        const double least = std::min({sigma.x, sigma.y, sigma.z});
+        const auto near = medium.regionStretch(ray, start, INFINITY, 0.1 * least * leaves);
+        if (!near) continue;
+        ASSERT_FALSE(near->whole);
+        ASSERT_NEAR(near->end, 0.1 * leaves, 1e-12);
+        ++short_;
+    }
+    EXPECT_GT(whole, 300u);
+    if (crosses) {
+        EXPECT_GT(across, 50u);
+    } else {
+        EXPECT_EQ(across, 0u);
+    }
+    EXPECT_GT(short_, 400u);
+    EXPECT_LT(unsure, 5u);
+}
+
+TEST(RegionMediaExit, AStretchEndsWhereTheWalkLeavesItsRegion) {
+    MediumParams p;
+    p.sigmaA = RGB(0.2, 0.3, 0.4);
+    p.sigmaS = RGB(0.3);
+    auto sphere = std::make_unique<RegionMedia>(p, tetrahedralize(icosphere(3), test::noCache()));
+    expectStretchesEndAsTheWalk(*sphere, 11, false);
+    MediumParams shell, core;
+    shell.sigmaA = RGB(0.1, 0.15, 0.2);
+    shell.sigmaS = RGB(0.3);
+    core.sigmaA = RGB(0.2, 0.05, 0.1);
+    core.sigmaS = RGB(0.4);
+    RegionMedia nested = nestedSpheres(shell, core);
+    expectStretchesEndAsTheWalk(nested, 12, true);  // across the interface: not whole there
+    stopAtInterfaces(nested);
+    expectStretchesEndAsTheWalk(nested, 13, false);  // stopping there: whole, the interface its exit
+}
+
 TEST(RegionMediaExit, VaryingDensityKeepsTheWalk) {
     MediumParams p;
     p.sigmaA = RGB(1);
