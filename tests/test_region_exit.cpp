@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <random>
 
 #include <gtest/gtest.h>
@@ -26,6 +27,20 @@ glm::dvec3 direction(std::mt19937_64& rng) {
     std::normal_distribution<double> n;
     const glm::dvec3 d(n(rng), n(rng), n(rng));
     return d / glm::length(d);
+}
+
+// A ray from a random point of the cube of half-width 0.9 in a random direction, and the tet that
+// holds the point; nothing where the point lies outside the medium.
+struct InteriorRay {
+    Ray ray;
+    uint32_t tet;
+};
+std::optional<InteriorRay> interiorRay(const RegionMedia& medium, std::mt19937_64& rng) {
+    std::uniform_real_distribution<double> u(-1, 1);
+    const glm::dvec3 p(0.9 * u(rng), 0.9 * u(rng), 0.9 * u(rng));
+    const int64_t tet = medium.volume().locate(p);
+    if (tet < 0) return std::nullopt;
+    return InteriorRay{{p, direction(rng)}, uint32_t(tet)};
 }
 
 struct ExitCounts {
@@ -187,13 +202,11 @@ TEST(RegionMediaExit, TransmittanceAlongAChordIsTheClosedForm) {
     const auto medium = absorbingSphere(sigma);
     const TriangleMesh sphere = icosphere(3);
     std::mt19937_64 rng(4);
-    std::uniform_real_distribution<double> u(-1, 1);
     const uint64_t queries = surfaceQueries();
     for (int i = 0; i < 2000; ++i) {
-        const glm::dvec3 p(0.9 * u(rng), 0.9 * u(rng), 0.9 * u(rng));
-        const int64_t tet = medium->volume().locate(p);
-        if (tet < 0) continue;
-        const Ray ray{p, direction(rng)};
+        const auto drawn = interiorRay(*medium, rng);
+        if (!drawn) continue;
+        const auto [ray, tet] = *drawn;
         const double chord = test::convexChord(sphere, ray);
         // To the boundary, and up to a distance inside (the jump ends there): the closed form
         // (to the float rounding of the tets' vertices) and the walk's (to the last bits).
@@ -214,13 +227,11 @@ TEST(RegionMediaExit, TransmittanceAlongAChordIsTheClosedForm) {
 // the same exit (triangle, tet, t), the same transmittance.
 void expectSameAsTheWalk(RegionMedia& medium, uint64_t seed) {
     std::mt19937_64 rng(seed);
-    std::uniform_real_distribution<double> u(-1, 1);
     size_t left = 0;
     for (int i = 0; i < 2000; ++i) {
-        const glm::dvec3 p(0.9 * u(rng), 0.9 * u(rng), 0.9 * u(rng));
-        const int64_t tet = medium.volume().locate(p);
-        if (tet < 0) continue;
-        const Ray ray{p, direction(rng)};
+        const auto drawn = interiorRay(medium, rng);
+        if (!drawn) continue;
+        const auto [ray, tet] = *drawn;
         const WalkStart start = WalkStart::inside(uint32_t(tet));
         FreeFlight flights[2], shadows[2];
         for (const size_t k : {0, 1}) {
@@ -253,6 +264,16 @@ RegionMedia nestedSpheres(const MediumParams& shell, const MediumParams& core) {
     o.useCache = false;
     TetMesh mesh = tetrahedralize({icosphere(3, 1.0), icosphere(2, 0.5, {0.1, 0.05, 0})}, {"shell", "core"}, o);
     return RegionMedia(std::move(mesh), {RegionMedium{shell, {}}, RegionMedium{core, {}}});
+}
+
+// The same, both scattering and thin enough that flights jump.
+RegionMedia scatteringNestedSpheres() {
+    MediumParams shell, core;
+    shell.sigmaA = RGB(0.1, 0.15, 0.2);
+    shell.sigmaS = RGB(0.3);
+    core.sigmaA = RGB(0.2, 0.05, 0.1);
+    core.sigmaS = RGB(0.4);
+    return nestedSpheres(shell, core);
 }
 
 // Flights stop at the interface between the two (a dielectric there).
@@ -359,12 +380,7 @@ TEST(RegionMediaExit, FlightsThatJumpLandWhereTheWalkLands) {
 }
 
 TEST(RegionMediaExit, FlightsThatJumpCrossOrStopAtInterfacesLikeTheWalk) {
-    MediumParams shell, core;
-    shell.sigmaA = RGB(0.1, 0.15, 0.2);
-    shell.sigmaS = RGB(0.3);
-    core.sigmaA = RGB(0.2, 0.05, 0.1);
-    core.sigmaS = RGB(0.4);
-    RegionMedia medium = nestedSpheres(shell, core);
+    RegionMedia medium = scatteringNestedSpheres();
     expectJumpsAsTheWalk(medium, 9);
     stopAtInterfaces(medium);
     expectJumpsAsTheWalk(medium, 10);
@@ -376,13 +392,11 @@ TEST(RegionMediaExit, FlightsThatJumpCrossOrStopAtInterfacesLikeTheWalk) {
 // or where the exit lies beyond the depth the stretch looks ahead.
 void expectStretchesEndAsTheWalk(RegionMedia& medium, uint64_t seed, bool crosses) {
     std::mt19937_64 rng(seed);
-    std::uniform_real_distribution<double> u(-1, 1);
     size_t whole = 0, across = 0, short_ = 0, unsure = 0;
     for (int i = 0; i < 1000; ++i) {
-        const glm::dvec3 p(0.9 * u(rng), 0.9 * u(rng), 0.9 * u(rng));
-        const int64_t tet = medium.volume().locate(p);
-        if (tet < 0) continue;
-        const Ray ray{p, direction(rng)};
+        const auto drawn = interiorRay(medium, rng);
+        if (!drawn) continue;
+        const auto [ray, tet] = *drawn;
         const WalkStart start = WalkStart::inside(uint32_t(tet));
         const int32_t region = medium.mesh().region(uint32_t(tet));
         // The walk's way out of the region: its segments until the region changes.
@@ -434,12 +448,7 @@ TEST(RegionMediaExit, AStretchEndsWhereTheWalkLeavesItsRegion) {
     p.sigmaS = RGB(0.3);
     auto sphere = std::make_unique<RegionMedia>(p, tetrahedralize(icosphere(3), test::noCache()));
     expectStretchesEndAsTheWalk(*sphere, 11, false);
-    MediumParams shell, core;
-    shell.sigmaA = RGB(0.1, 0.15, 0.2);
-    shell.sigmaS = RGB(0.3);
-    core.sigmaA = RGB(0.2, 0.05, 0.1);
-    core.sigmaS = RGB(0.4);
-    RegionMedia nested = nestedSpheres(shell, core);
+    RegionMedia nested = scatteringNestedSpheres();
     expectStretchesEndAsTheWalk(nested, 12, true);  // across the interface: not whole there
     stopAtInterfaces(nested);
     expectStretchesEndAsTheWalk(nested, 13, false);  // stopping there: whole, the interface its exit
