@@ -19,7 +19,8 @@ public:
     int port() const { return port_; }
     pid_t pid() const { return pid_; }
     long peakMemoryKiB() const;  // VmHWM: the most resident memory it has held
-    int stop();                  // SIGTERM; the exit code
+    // SIGTERM; the exit code, or -2 where it still runs after `limit` seconds (then SIGKILL).
+    int stop(double limit = 60);
 
 private:
     pid_t pid_ = -1;

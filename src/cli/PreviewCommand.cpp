@@ -132,11 +132,16 @@ public:
         }
         std::printf("preview: %s (Ctrl-C stops)\n", url.c_str());
         std::fflush(stdout);
+        std::atomic<bool> served{false};
         std::thread watcher([&] {
             while (!stopRequested) std::this_thread::sleep_for(std::chrono::milliseconds(100));
-            server_.stop();
+            // httplib stops only a server that is running: a signal that came between the URL
+            // and the start of listening would be lost, and the server would serve on.
+            while (!served && !server_.is_running()) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+            if (!served) server_.stop();
         });
         server_.listen_after_bind();
+        served = true;
         stopRequested = true;
         watcher.join();
     }
