@@ -39,6 +39,12 @@ RGB sampleDirect(const Scene& scene, const glm::dvec3& p, Rng& rng, bool mis, Sc
     return s.f * tr * ls.L * (weight / pdf);
 }
 
+// The visibility sampleDirect wants for shadow rays from `from`: their transmittance, with
+// Russian roulette (Scene::transmittance).
+inline auto shadowRays(const Scene& scene, const VolumeState& from, Rng& rng) {
+    return [&scene, from, &rng](const Ray& r, double tMax) { return transmittance(scene, r, tMax, from, &rng); };
+}
+
 // The Scattering towards wi of a medium's phase function, for a path travelling along d.
 inline auto phaseScattering(const HenyeyGreenstein& phase, const glm::dvec3& d) {
     return [&phase, d](const glm::dvec3& wi) {

@@ -45,9 +45,6 @@ RGB VolPathIntegrator::continuePath(const Ray& start, VolumeState state, int dep
                    ? 1.0
                    : powerHeuristic(lastPdf, lastScale * lightPdf(scene_, light, lastPoint, ray.d, point, triangle));
     };
-    auto visibility = [&](const VolumeState& from) {
-        return [this, from, &rng](const Ray& r, double tMax) { return transmittance(scene_, r, tMax, from, &rng); };
-    };
     auto survives = [&] {
         if (!path.alive()) return false;
         const double keep = eyePathSurvival(path.weight(), depth, rng);
@@ -90,8 +87,8 @@ RGB VolPathIntegrator::continuePath(const Ray& start, VolumeState state, int dep
                     const VolumeState here{
                         state.volume, flight.located ? WalkStart::inside(flight.tet) : WalkStart::inRegion(flight.tet)};
                     if (!scene_.sealed(state.volume) && stretchScale == 0)
-                        L += path.weight() *
-                             sampleDirect(scene_, p, rng, true, phaseScattering(optics.phase, ray.d), visibility(here));
+                        L += path.weight() * sampleDirect(scene_, p, rng, true, phaseScattering(optics.phase, ray.d),
+                                                          shadowRays(scene_, here, rng));
                     const double u0 = rng.uniform(), u1 = rng.uniform();
                     const glm::dvec3 wi = optics.phase.sample(ray.d, {u0, u1});
                     specular = false;
@@ -127,7 +124,7 @@ RGB VolPathIntegrator::continuePath(const Ray& start, VolumeState state, int dep
                                          return Scattering{evaluateMaterial(material, ray.d, hit->n, wi),
                                                            materialPdf(material, ray.d, hit->n, wi)};
                                      },
-                                     visibility(here));
+                                     shadowRays(scene_, here, rng));
         }
         const double u0 = rng.uniform(), u1 = rng.uniform();
         const BsdfSample bs = sampleMaterial(material, ray.d, hit->n, {u0, u1});
@@ -159,10 +156,8 @@ RGB VolPathIntegrator::directWithin(const RegionStretch& stretch, const Ray& ray
     // strategies do not depend on the hero channel and still sum to one.
     scale = 1 / -std::expm1(-meanDepth);
     const VolumeState here{volume, WalkStart::inRegion(stretch.tet)};
-    return at.weight() * sampleDirect(
-                             scene_, ray.at(stretch.t0 + x), rng, true, phaseScattering(optics.phase, ray.d),
-                             [&](const Ray& r, double tMax) { return transmittance(scene_, r, tMax, here, &rng); },
-                             scale);
+    return at.weight() * sampleDirect(scene_, ray.at(stretch.t0 + x), rng, true, phaseScattering(optics.phase, ray.d),
+                                      shadowRays(scene_, here, rng), scale);
 }
 
 }  // namespace tetglow

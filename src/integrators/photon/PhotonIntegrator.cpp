@@ -241,7 +241,7 @@ RGB PhotonIntegrator::radiance(const Ray& cameraRay, Rng& rng) const {
                             [&](const glm::dvec3& wi) {
                                 return Scattering{evaluateMaterial(material, ray.d, hit->n, wi), 0};
                             },
-                            [&](const Ray& r, double t) { return transmittance(scene_, r, t, here, &rng); });
+                            shadowRays(scene_, here, rng));
             if (gathering || !desc_.finalGather) {
                 L += beta * caustics(surface_.get(), *hit, ray.d, material);
                 break;
