@@ -68,8 +68,10 @@ RGB VolPathIntegrator::continuePath(const Ray& start, VolumeState state, int dep
                 std::optional<RegionStretch> stretch;
                 if (!scene_.sealed(state.volume) && depth + 1 < maxDepth_)
                     stretch = medium.regionStretch(ray, state.start, tMax, kLitStretchDepth);
-                double stretchScale = 0;  // 0: the flight's interaction is lit instead
-                if (stretch) L += directWithin(*stretch, ray, path, state.volume, rng, stretchScale);
+                // Where the stretch is not lit at a point of its own, the flight's interaction is.
+                const std::optional<StretchLight> lit =
+                    stretch ? directWithin(*stretch, ray, path, state.volume, rng) : std::nullopt;
+                if (lit) L += lit->radiance;
                 const std::optional<FreeFlight> within =
                     stretch ? medium.flightWithin(*stretch, path.hero, u, path.r) : std::nullopt;
                 flight = within ? *within : medium.sampleFlight(ray, state.start, tMax, path.hero, u, path.r, true);
@@ -86,14 +88,14 @@ RGB VolPathIntegrator::continuePath(const Ray& start, VolumeState state, int dep
                     const glm::dvec3 p = ray.at(flight.t);
                     const VolumeState here{
                         state.volume, flight.located ? WalkStart::inside(flight.tet) : WalkStart::inRegion(flight.tet)};
-                    if (!scene_.sealed(state.volume) && stretchScale == 0)
+                    if (!scene_.sealed(state.volume) && !lit)
                         L += path.weight() * sampleDirect(scene_, p, rng, true, phaseScattering(optics.phase, ray.d),
                                                           shadowRays(scene_, here, rng));
                     const double u0 = rng.uniform(), u1 = rng.uniform();
                     const glm::dvec3 wi = optics.phase.sample(ray.d, {u0, u1});
                     specular = false;
                     lastPdf = optics.phase.eval(glm::dot(ray.d, wi));
-                    lastScale = stretchScale > 0 ? stretchScale : 1;
+                    lastScale = lit ? lit->scale : 1;
                     lastPoint = p;
                     ray = {p, wi};
                     state = here;
@@ -139,14 +141,14 @@ RGB VolPathIntegrator::continuePath(const Ray& start, VolumeState state, int dep
     return L;
 }
 
-RGB VolPathIntegrator::directWithin(const RegionStretch& stretch, const Ray& ray, const SpectralPath& path, int volume,
-                                    Rng& rng, double& scale) const {
+std::optional<VolPathIntegrator::StretchLight> VolPathIntegrator::directWithin(const RegionStretch& stretch,
+                                                                               const Ray& ray, const SpectralPath& path,
+                                                                               int volume, Rng& rng) const {
     const RegionOptics& optics = scene_.volumes()[size_t(volume)].media->region(stretch.region);
     const double length = stretch.end - stretch.t0;
     const double meanDepth = average(optics.sigmaT) * length;
     // Known to its end, not empty, not deep, and scattering.
-    scale = 0;
-    if (!stretch.whole || !(meanDepth > 0) || maxComponent(optics.params.sigmaS) == 0) return RGB(0);
+    if (!stretch.whole || !(meanDepth > 0) || maxComponent(optics.params.sigmaS) == 0) return std::nullopt;
     const double x = distanceWithin(optics.sigmaT[path.hero], length, rng.uniform());
     SpectralPath at = path;
     at.interact(exp(-optics.sigmaT * x), interactionWithin(optics.sigmaT, length));
@@ -154,10 +156,12 @@ RGB VolPathIntegrator::directWithin(const RegionStretch& stretch, const Ray& ray
     // Against a flight's interaction lit by phase sampling, the point was this much likelier:
     // the conditioning's factor, for the mean extinction so that the MIS weights of both
     // strategies do not depend on the hero channel and still sum to one.
-    scale = 1 / -std::expm1(-meanDepth);
+    const double scale = 1 / -std::expm1(-meanDepth);
     const VolumeState here{volume, WalkStart::inRegion(stretch.tet)};
-    return at.weight() * sampleDirect(scene_, ray.at(stretch.t0 + x), rng, true, phaseScattering(optics.phase, ray.d),
-                                      shadowRays(scene_, here, rng), scale);
+    return StretchLight{
+        at.weight() * sampleDirect(scene_, ray.at(stretch.t0 + x), rng, true, phaseScattering(optics.phase, ray.d),
+                                   shadowRays(scene_, here, rng), scale),
+        scale};
 }
 
 }  // namespace tetglow

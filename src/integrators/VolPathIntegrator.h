@@ -5,6 +5,8 @@
 // every stretch that is not optically deep is lit at a point of its own (StretchSampling.h), not
 // only where its free flight interacts. Russian roulette ends paths.
 #pragma once
+#include <optional>
+
 #include "integrators/Integrator.h"
 #include "media/RegionMedia.h"
 #include "media/SpectralPath.h"
@@ -22,12 +24,17 @@ public:
     RGB continuePath(const Ray& ray, VolumeState state, int depth, bool emittersSeen, Rng& rng) const;
 
 private:
+    // Direct light at a point of a stretch, and how much likelier its conditioned free-flight pdf
+    // chose that point than the free flight would: the factor of the MIS weight of an emitter
+    // that phase sampling reaches after the flight interacts on the stretch.
+    struct StretchLight {
+        RGB radiance;
+        double scale;
+    };
     // Direct light scattered towards -ray.d at a point of `stretch` (in `volume`) sampled by
-    // its conditioned free-flight pdf; *scale receives that pdf's ratio to the free flight's for
-    // the MIS weight of an emitter hit after the flight interacts on the stretch. Nothing, and
-    // *scale 0, where the stretch is not lit at its own point.
-    RGB directWithin(const RegionStretch& stretch, const Ray& ray, const SpectralPath& path, int volume, Rng& rng,
-                     double& scale) const;
+    // its conditioned free-flight pdf; none where the stretch is not lit at a point of its own.
+    std::optional<StretchLight> directWithin(const RegionStretch& stretch, const Ray& ray, const SpectralPath& path,
+                                             int volume, Rng& rng) const;
 
     const Scene& scene_;
     int maxDepth_;
