@@ -189,15 +189,22 @@ bool RegionMedia::findEnd(RegionStretch& stretch, const Ray& ray, double reach, 
     return true;
 }
 
+bool RegionMedia::stretchAsks(int32_t region) const {
+    const double chord = tetChord_[size_t(region)];
+    return chord > 0 && chord * kFlightSteps * average(regions_[size_t(region)].sigmaT) < 1;
+}
+
 std::optional<RegionStretch> RegionMedia::regionStretch(const Ray& ray, WalkStart start, double tMax,
                                                         double depth) const {
+    // The region behind the entry triangle, or the tet's, decides before a walk enters it (in the
+    // rare entry through a neighbour of another region, the entered tet's decides again).
+    const int32_t region = start.throughSurface ? mesh().surfaceRegions[start.index][0] : mesh().region(start.index);
+    if (region < 0 || !stretchAsks(region)) return std::nullopt;
     std::optional<TetWalk> entered;
     std::optional<RegionStretch> stretch = stretchStart(ray, start, entered);
-    if (!stretch || tetChord_[size_t(stretch->region)] <= 0) return std::nullopt;
+    if (!stretch || !stretchAsks(stretch->region)) return std::nullopt;
     const RGB& sigma = regions_[size_t(stretch->region)].sigmaT;
     const double least = std::min({sigma.x, sigma.y, sigma.z});
-    // Where flights walk (their mean free path is a few tet chords), so does the stretch.
-    if (tetChord_[size_t(stretch->region)] * kFlightSteps * average(sigma) >= 1) return std::nullopt;
     const double reach = least > 0 ? std::min(tMax, stretch->t0 + depth / least) : tMax;
     if (!findEnd(*stretch, ray, reach, tMax)) return std::nullopt;
     return stretch;

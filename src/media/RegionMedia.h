@@ -173,6 +173,9 @@ private:
     // The region and tet a stretch from `start` begins in; a start through the surface leaves its
     // walk in *entered. Nothing where the ray only touches the medium.
     std::optional<RegionStretch> stretchStart(const Ray& ray, WalkStart start, std::optional<TetWalk>& entered) const;
+    // Whether a stretch through `region` is found by an exit query: its density is constant and its
+    // mean free path spans more than kFlightSteps tet chords (else its flights walk, and so does it).
+    bool stretchAsks(int32_t region) const;
     // The end of `stretch` by one exit query as far as reach (at most tMax); false where unsure.
     bool findEnd(RegionStretch& stretch, const Ray& ray, double reach, double tMax) const;
 
