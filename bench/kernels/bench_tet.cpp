@@ -156,6 +156,30 @@ void BM_FirstEntry(benchmark::State& state) {
 }
 BENCHMARK(BM_FirstEntry);
 
+void BM_EmbreeClosestHit(benchmark::State& state) {
+    // What an exact first entry could cost at best: Embree's closest hit on the triangles
+    // themselves (robust mode), which near an edge or a vertex may name the wrong triangle.
+    const Fixture& f = fixture();
+    size_t i = 0;
+    for (auto _ : state) benchmark::DoNotOptimize(f.volume->bvh().intersect(f.rays[i++ % f.rays.size()], 0, INFINITY));
+    state.counters["rays/s"] = benchmark::Counter(double(state.iterations()), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_EmbreeClosestHit);
+
+void BM_GrownCandidates(benchmark::State& state) {
+    // The first entry's Embree part alone: the grown triangles' candidates of the same rays,
+    // all of them (argument 0), or as far as the first entry's search looks past the nearest (1).
+    const Fixture& f = fixture();
+    size_t i = 0, found = 0;
+    for (auto _ : state)
+        f.volume->bvh().visitCandidates(f.rays[i++ % f.rays.size()], 0, INFINITY, [&](const SurfaceHit& hit) {
+            ++found;
+            return state.range(0) ? hit.t : INFINITY;
+        });
+    state.counters["candidates"] = double(found) / double(state.iterations());
+}
+BENCHMARK(BM_GrownCandidates)->Arg(0)->Arg(1);
+
 void BM_LocateAlongPath(benchmark::State& state) {
     // The march's inside test with tets, as the single-scattering integrator does it: walk the
     // ray once through the box and give each sample the tet of the segment holding it (-1
