@@ -27,29 +27,29 @@ std::vector<std::string> VolPathIntegrator::warnings() const {
 }
 
 RGB VolPathIntegrator::radiance(const Ray& cameraRay, Rng& rng) const {
-    return continuePath(cameraRay, cameraMedium_, 0, true, rng);
+    return trace(PathVertex::start(cameraRay, cameraMedium_, 0, true, rng), kFirstBranches, rng);
 }
 
 RGB VolPathIntegrator::continuePath(const Ray& start, VolumeState state, int depth, bool emittersSeen, Rng& rng) const {
+    return trace(PathVertex::start(start, state, depth, emittersSeen, rng), 1, rng);
+}
+
+RGB VolPathIntegrator::trace(PathVertex v, int branches, Rng& rng) const {
     RGB L(0);
-    SpectralPath path = SpectralPath::pick(rng.uniform());
-    Ray ray = start;
-    // How the current direction was chosen, for the MIS weight of an emitter it reaches:
-    // from the camera or a specular event (weight 1), else with lastPdf at lastPoint (0: none),
-    // where next-event estimation chose its point lastScale times likelier (sampleDirect).
-    bool specular = emittersSeen;
-    double lastPdf = 0, lastScale = 1;
-    glm::dvec3 lastPoint = ray.o;
+    Ray& ray = v.ray;
+    VolumeState& state = v.state;
+    SpectralPath& path = v.path;
+    int& depth = v.depth;
     auto emitterWeight = [&](const Light& light, const glm::dvec3& point, uint32_t triangle) {
-        return specular
-                   ? 1.0
-                   : powerHeuristic(lastPdf, lastScale * lightPdf(scene_, light, lastPoint, ray.d, point, triangle));
+        return v.specular ? 1.0
+                          : powerHeuristic(v.lastPdf,
+                                           v.lastScale * lightPdf(scene_, light, v.lastPoint, ray.d, point, triangle));
     };
-    auto survives = [&] {
-        if (!path.alive()) return false;
-        const double keep = eyePathSurvival(path.weight(), depth, rng);
+    auto survives = [&](PathVertex& at) {
+        if (!at.path.alive()) return false;
+        const double keep = eyePathSurvival(at.path.weight(), at.depth, rng);
         if (keep == 0) return false;
-        path.beta /= keep;
+        at.path.beta /= keep;
         return true;
     };
     for (int crossings = 0; crossings < kMaxCrossings; ++crossings) {
@@ -91,15 +91,26 @@ RGB VolPathIntegrator::continuePath(const Ray& start, VolumeState state, int dep
                     if (!scene_.sealed(state.volume) && !lit)
                         L += path.weight() * sampleDirect(scene_, p, rng, true, phaseScattering(optics.phase, ray.d),
                                                           shadowRays(scene_, here, rng));
-                    const double u0 = rng.uniform(), u1 = rng.uniform();
-                    const glm::dvec3 wi = optics.phase.sample(ray.d, {u0, u1});
-                    specular = false;
-                    lastPdf = optics.phase.eval(glm::dot(ray.d, wi));
-                    lastScale = lit ? lit->scale : 1;
-                    lastPoint = p;
-                    ray = {p, wi};
-                    state = here;
-                    if (!survives()) break;
+                    // Each branch goes on in a direction of its own, with a share of the path's light.
+                    const double scale = lit ? lit->scale : 1;
+                    auto scatter = [&](PathVertex& next) {
+                        const double u0 = rng.uniform(), u1 = rng.uniform();
+                        const glm::dvec3 wi = optics.phase.sample(ray.d, {u0, u1});
+                        next.specular = false;
+                        next.lastPdf = optics.phase.eval(glm::dot(ray.d, wi));
+                        next.lastScale = scale;
+                        next.lastPoint = p;
+                        next.ray = {p, wi};
+                        next.state = here;
+                        return survives(next);
+                    };
+                    if (branches > 1) {
+                        RGB branched(0);
+                        for (int b = 0; b < branches; ++b)
+                            if (PathVertex next = v; scatter(next)) branched += trace(next, 1, rng);
+                        return L + branched / double(branches);
+                    }
+                    if (!scatter(v)) break;
                     continue;
                 }
             }
@@ -131,12 +142,12 @@ RGB VolPathIntegrator::continuePath(const Ray& start, VolumeState state, int dep
         const double u0 = rng.uniform(), u1 = rng.uniform();
         const BsdfSample bs = sampleMaterial(material, ray.d, hit->n, {u0, u1});
         path.beta *= bs.weight;
-        specular = bs.specular;
-        lastPdf = bs.pdf;
-        lastScale = 1;
-        lastPoint = hit->p;
+        v.specular = bs.specular;
+        v.lastPdf = bs.pdf;
+        v.lastScale = 1;
+        v.lastPoint = hit->p;
         leaveSurface(scene_, *hit, bs.direction, ray, state);
-        if (!survives()) break;
+        if (!survives(v)) break;
     }
     return L;
 }

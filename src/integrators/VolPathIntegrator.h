@@ -24,6 +24,29 @@ public:
     RGB continuePath(const Ray& ray, VolumeState state, int depth, bool emittersSeen, Rng& rng) const;
 
 private:
+    // Where a path goes on from, and how its current direction was chosen, for the MIS weight of
+    // an emitter it reaches: from the camera or a specular event (weight 1), else with lastPdf at
+    // lastPoint, where next-event estimation chose its point lastScale times likelier.
+    struct PathVertex {
+        Ray ray;
+        VolumeState state;
+        SpectralPath path;
+        int depth;
+        bool specular;
+        double lastPdf = 0, lastScale = 1;
+        glm::dvec3 lastPoint;
+        static PathVertex start(const Ray& ray, const VolumeState& state, int depth, bool emittersSeen, Rng& rng) {
+            return {ray, state, SpectralPath::pick(rng.uniform()), depth, emittersSeen, 0, 1, ray.o};
+        }
+    };
+    // A camera path splits at its first interaction in a medium into this many (Arvo and Kirk's
+    // splitting): the camera ray's stretch, with its exact entry and its light, costs about as much
+    // as all the rest of a path, and most of the variance comes after it. Measured, variance x time
+    // against one branch: 2 branches 0.89 (blub), 0.78 (sphere), 0.86 (jade); 3 on blub 0.98.
+    static constexpr int kFirstBranches = 2;
+    // The light along the path from v; at its next interaction in a medium it branches in
+    // `branches` directions, each carrying that share of its light.
+    RGB trace(PathVertex v, int branches, Rng& rng) const;
     // Direct light at a point of a stretch, and how much likelier its conditioned free-flight pdf
     // chose that point than the free flight would: the factor of the MIS weight of an emitter
     // that phase sampling reaches after the flight interacts on the stretch.
