@@ -104,7 +104,9 @@ RGB VolPathIntegrator::trace(PathVertex v, int branches, Rng& rng) const {
                         next.state = here;
                         return survives(next);
                     };
-                    if (branches > 1) {
+                    // Only where flights ask their region's exit: where they walk (a dense medium),
+                    // the rest of a path is long and costs more than its camera ray's stretch.
+                    if (branches > 1 && stretch) {
                         RGB branched(0);
                         for (int b = 0; b < branches; ++b)
                             if (PathVertex next = v; scatter(next)) branched += trace(next, 1, rng);
