@@ -104,8 +104,8 @@ RGB VolPathIntegrator::trace(PathVertex v, int branches, Rng& rng) const {
                         next.state = here;
                         return survives(next);
                     };
-                    // Only where flights ask their region's exit: where they walk (a dense medium),
-                    // the rest of a path is long and costs more than its camera ray's stretch.
+                    // Only on a stretch its region's exit query found: where flights walk (a dense
+                    // medium), the rest of a path is long and costs more than its camera ray's stretch.
                     if (branches > 1 && stretch) {
                         RGB branched(0);
                         for (int b = 0; b < branches; ++b)

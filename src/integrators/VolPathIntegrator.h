@@ -41,13 +41,14 @@ private:
         }
     };
     // A camera path splits at its first interaction in a medium into this many (Arvo and Kirk's
-    // splitting) where its flights ask the region's exit: there the camera ray's stretch, with its
+    // splitting) where that stretch was found by its region's exit query (flights ask the exit, no
+    // glass seals the medium): there the camera ray's stretch, with its
     // exact entry and its light, costs about as much as all the rest of a path, and most of the
     // variance comes after it. Measured, variance x time against one branch: 2 branches 0.89
     // (blub), 0.78 (sphere); 3 on blub 0.98; 2 in jade, whose flights walk, 1.04.
     static constexpr int kFirstBranches = 2;
-    // The light along the path from v; at its next interaction in a medium it branches in
-    // `branches` directions, each carrying that share of its light.
+    // The light along the path from v; at its next interaction in a medium, on a stretch found by
+    // an exit query, it branches in `branches` directions, each carrying that share of its light.
     RGB trace(PathVertex v, int branches, Rng& rng) const;
     // Direct light at a point of a stretch, and how much likelier its conditioned free-flight pdf
     // chose that point than the free flight would: the factor of the MIS weight of an emitter
