@@ -11,6 +11,7 @@
 #include "integrators/Integrator.h"
 #include "integrators/PathStep.h"
 #include "integrators/Renderer.h"
+#include "integrators/VolPathIntegrator.h"
 #include "media/ColumnProfile.h"
 #include "sampling/Sampling.h"
 #include "tet/Shapes.h"
@@ -249,6 +250,36 @@ TEST(Render, AThinMediumIsLitOnEveryStretch) {
         integral += sigmaS * toCamera * toLight * intensity.x / (r * r) * kInv4Pi * h;
     }
     EXPECT_NEAR(mean, integral, 5 * stdError + 2e-3 * integral) << "stdError " << stdError;
+}
+
+// A camera path splits in two at its first interaction in a homogeneous medium: the same mean as
+// the path that does not split (continuePath from the same camera ray), with less variance per
+// sample, multiple scattering under a point light.
+TEST(Render, ACameraPathSplitsAtItsFirstInteractionKeepingItsMean) {
+    SceneDesc desc = sceneWith(sphereMedium(RGB(0.1), RGB(1), 0.3), 8);
+    desc.lights.push_back(pointLight({0.3, 3, 0.2}, RGB(5)));
+    const Scene scene(desc);
+    const VolPathIntegrator integrator(scene, 64);
+    const Ray ray{scene.camera().position(), glm::normalize(-scene.camera().position())};
+    const VolumeState camera = scene.mediumAt(ray.o);
+    const int n = 20000;
+    double sum[2] = {}, sum2[2] = {};
+    for (uint32_t i = 0; i < uint32_t(n); ++i) {
+        Rng split = Rng::pixelSample(5, 0, i), whole = Rng::pixelSample(6, 0, i);
+        const double L[2] = {integrator.radiance(ray, split).x, integrator.continuePath(ray, camera, 0, true, whole).x};
+        for (int k = 0; k < 2; ++k) {
+            sum[k] += L[k];
+            sum2[k] += L[k] * L[k];
+        }
+    }
+    double mean[2], variance[2];
+    for (int k = 0; k < 2; ++k) {
+        mean[k] = sum[k] / n;
+        variance[k] = (sum2[k] / n - mean[k] * mean[k]) * n / (n - 1);
+    }
+    ASSERT_GT(mean[1], 0);
+    EXPECT_NEAR(mean[0], mean[1], 5 * std::sqrt((variance[0] + variance[1]) / n));
+    EXPECT_LT(variance[0], 0.8 * variance[1]) << "split " << variance[0] << ", whole " << variance[1] << ", means " << mean[0] << " " << mean[1];
 }
 
 // (b) White furnace: a medium that absorbs nothing, inside an environment of radiance 1, is
