@@ -279,7 +279,8 @@ TEST(Render, ACameraPathSplitsAtItsFirstInteractionKeepingItsMean) {
     }
     ASSERT_GT(mean[1], 0);
     EXPECT_NEAR(mean[0], mean[1], 5 * std::sqrt((variance[0] + variance[1]) / n));
-    EXPECT_LT(variance[0], 0.8 * variance[1]) << "split " << variance[0] << ", whole " << variance[1] << ", means " << mean[0] << " " << mean[1];
+    EXPECT_LT(variance[0], 0.8 * variance[1])
+        << "split " << variance[0] << ", whole " << variance[1] << ", means " << mean[0] << " " << mean[1];
 }
 
 // (b) White furnace: a medium that absorbs nothing, inside an environment of radiance 1, is
