@@ -92,12 +92,14 @@ RGB VolPathIntegrator::trace(PathVertex v, int branches, Rng& rng) const {
                         L += path.weight() * sampleDirect(scene_, p, rng, true, phaseScattering(optics.phase, ray.d),
                                                           shadowRays(scene_, here, rng));
                     // Each branch goes on in a direction of its own, with a share of the path's light.
+                    // The incoming direction is kept apart: `next` may be this very vertex.
                     const double scale = lit ? lit->scale : 1;
+                    const glm::dvec3 incoming = ray.d;
                     auto scatter = [&](PathVertex& next) {
                         const double u0 = rng.uniform(), u1 = rng.uniform();
-                        const glm::dvec3 wi = optics.phase.sample(ray.d, {u0, u1});
+                        const glm::dvec3 wi = optics.phase.sample(incoming, {u0, u1});
                         next.specular = false;
-                        next.lastPdf = optics.phase.eval(glm::dot(ray.d, wi));
+                        next.lastPdf = optics.phase.eval(glm::dot(incoming, wi));
                         next.lastScale = scale;
                         next.lastPoint = p;
                         next.ray = {p, wi};
