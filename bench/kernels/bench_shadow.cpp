@@ -1,6 +1,7 @@
 // Kernels of shadow rays and free flights from interior points of a homogeneous medium: the
-// transmittance to the boundary, shadowFlight (with Russian roulette) in a dense medium, and
-// sampleFlight walked or jumping to its interaction. For shadow rays the argument is the number
+// transmittance to the boundary, shadowFlight (with Russian roulette) in a dense medium, with and
+// without the tests its ball clear of the boundary makes certain decided first, and
+// sampleFlight walked or jumping to its interaction. For the exit kernels the argument is the number
 // of tets walked before the region's exit is asked of the surface BVH (0: walk every tet, the
 // behaviour before the exit query), so one run measures before and after. Each reports its rays
 // per second, the tet steps a ray takes and skips (against the walk), and the steps per second
@@ -133,6 +134,32 @@ void BM_DenseShadowExit(benchmark::State& state) {
     state.counters["rays/s"] = benchmark::Counter(double(rays), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_DenseShadowExit)->Arg(0)->Arg(1)->Arg(2)->Arg(4)->Arg(8);
+
+// The same shadow rays as the next-event estimation's transmittance starts them, argument 1: the
+// roulette's tests that the ray's ball clear of the boundary makes certain (sureDepth) decided
+// before any walk; 0: each decided where the walk reaches it, as before. Reports the share of
+// rays that end before walking a tet.
+void BM_DenseShadowSure(benchmark::State& state) {
+    ShadowFixture& f = shadowFixture();
+    setMeanFreePath(f, 0.01 * f.diagonal);
+    f.medium->setExitQueryAfter(1);
+    const bool sure = state.range(0) == 1;
+    Rng rng(1, 2);
+    size_t rays = 0, unwalked = 0;
+    for (auto _ : state) {
+        const size_t i = rays++ % f.rays.size();
+        const WalkStart start = WalkStart::inside(f.tets[i]);
+        ShadowRoulette roulette;
+        if (sure && !roulette.reach(f.medium->sureDepth(start, f.rays[i].o, INFINITY), rng)) {
+            ++unwalked;
+            continue;
+        }
+        benchmark::DoNotOptimize(f.medium->shadowFlight(f.rays[i], start, INFINITY, rng, roulette));
+    }
+    state.counters["rays/s"] = benchmark::Counter(double(rays), benchmark::Counter::kIsRate);
+    state.counters["unwalked"] = double(unwalked) / double(std::max<size_t>(1, rays));
+}
+BENCHMARK(BM_DenseShadowSure)->Arg(0)->Arg(1);
 
 // Free flights (sampleFlight, the volpath integrator's), first argument 0: walked tet by tet, 1:
 // jumping to the interaction where the region's exit query is worth it. Second argument: the mean

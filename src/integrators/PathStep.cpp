@@ -19,6 +19,12 @@ void leaveSurface(const Scene& scene, const Intersection& hit, const glm::dvec3&
 
 RGB transmittance(const Scene& scene, Ray ray, double tMax, VolumeState state, Rng* roulette) {
     RGB tr(1);
+    // Deep in a dense region the roulette's first tests surely come: decided before any query,
+    // they spare most such rays the surface query and the walk.
+    ShadowRoulette first;
+    if (roulette && state.inside() &&
+        !first.reach(scene.volumes()[state.volume].media->sureDepth(state.start, ray.o, tMax), *roulette))
+        return RGB(0);
     for (int crossings = 0; crossings < kMaxCrossings; ++crossings) {
         auto hit = scene.intersect(ray, state, tMax);
         // An opaque or specular surface blocks the ray whatever lies before it: no walk needed.
@@ -27,7 +33,8 @@ RGB transmittance(const Scene& scene, Ray ray, double tMax, VolumeState state, R
         if (state.inside()) {
             const RegionMedia& medium = *scene.volumes()[state.volume].media;
             const double end = hit ? hit->t : tMax;
-            const FreeFlight f = roulette ? medium.shadowFlight(ray, state.start, end, *roulette)
+            const FreeFlight f = roulette ? medium.shadowFlight(ray, state.start, end, *roulette,
+                                                                crossings == 0 ? first : ShadowRoulette{})
                                           : medium.sampleFlight(ray, state.start, end, 0, 1.0);
             tr *= f.transmittance;
             if (isBlack(tr)) return tr;

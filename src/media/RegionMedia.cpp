@@ -60,6 +60,13 @@ void RegionMedia::setRegions(std::vector<RegionMedium> regions) {
         scatters_ |= maxComponent(r.params.sigmaS) > 0;
         varying |= !r.vertexDensity.empty();
     }
+    // Clear balls pay only where a shadow ray inside one can reach the roulette's first test:
+    // in a region of constant density whose mean free path is short against the box.
+    const glm::dvec3 extent = volume_.bounds().hi - volume_.bounds().lo;
+    const double deepest = 0.5 * std::min({extent.x, extent.y, extent.z});
+    for (size_t r = 0; r < regions_.size() && clearance_.empty(); ++r)
+        if (tetChord_[r] > 0 && minComponent(regions_[r].sigmaT) * deepest > ShadowRoulette{}.at)
+            clearance_ = ClearanceGrid(m);
     densityPlane_.assign(varying ? m.tets.size() : 0, glm::dvec4(0, 0, 0, 1));
     for (uint32_t t = 0; t < densityPlane_.size(); ++t)
         if (const auto& density = regions[size_t(std::max(0, m.region(t)))].vertexDensity; !density.empty())
@@ -204,7 +211,7 @@ std::optional<RegionStretch> RegionMedia::regionStretch(const Ray& ray, WalkStar
     std::optional<RegionStretch> stretch = stretchStart(ray, start, entered);
     if (!stretch || !stretchAsks(stretch->region)) return std::nullopt;
     const RGB& sigma = regions_[size_t(stretch->region)].sigmaT;
-    const double least = std::min({sigma.x, sigma.y, sigma.z});
+    const double least = minComponent(sigma);
     const double reach = least > 0 ? std::min(tMax, stretch->t0 + depth / least) : tMax;
     if (!findEnd(*stretch, ray, reach, tMax)) return std::nullopt;
     return stretch;
@@ -238,30 +245,21 @@ RGB RegionMedia::transmittance(const Ray& ray, WalkStart start, double tMax) con
     return sampleFlight(ray, start, tMax, 0, 1.0).transmittance;  // u = 1: an infinite target, no interaction
 }
 
-FreeFlight RegionMedia::shadowFlight(const Ray& ray, WalkStart start, double tMax, Rng& rng) const {
-    constexpr double kSurvive = 0.25;
+FreeFlight RegionMedia::shadowFlight(const Ray& ray, WalkStart start, double tMax, Rng& rng,
+                                     ShadowRoulette roulette) const {
     RGB depth(0);
-    // Roulette once every channel's depth passes rouletteAt: where weight * exp(-depth) < 1/20.
-    double rouletteAt = std::log(20.0), weight = 1;
     bool stopped = false;
     auto pass = [&](const RegionOptics& optics, double length) {
         depth += optics.sigmaT * length;
-        while (std::min({depth.x, depth.y, depth.z}) > rouletteAt) {
-            if (rng.uniform() >= kSurvive) {
-                stopped = true;
-                return false;
-            }
-            weight /= kSurvive;
-            rouletteAt -= std::log(kSurvive);
-        }
-        return true;
+        stopped = !roulette.reach(minComponent(depth), rng);
+        return !stopped;
     };
     // Where roulette will likely end the ray within kQuerySteps mean tet steps, walking is cheaper
     // than an exit query (which costs about 14 steps on blub, bench_shadow; 8 leans to asking).
     constexpr double kQuerySteps = 8;
     auto worthAsking = [&](const RegionOptics& optics, double meanStep) {
-        const double sigma = std::min({optics.sigmaT.x, optics.sigmaT.y, optics.sigmaT.z});
-        return rouletteAt - std::min({depth.x, depth.y, depth.z}) > sigma * kQuerySteps * meanStep;
+        const double sigma = minComponent(optics.sigmaT);
+        return roulette.at - minComponent(depth) > sigma * kQuerySteps * meanStep;
     };
     const WalkExit exit = walkToExit(
         ray, start, tMax,
@@ -272,9 +270,18 @@ FreeFlight RegionMedia::shadowFlight(const Ray& ray, WalkStart start, double tMa
         },
         pass, worthAsking);
     FreeFlight flight;
-    flight.transmittance = stopped ? RGB(0) : exp(-depth) * weight;
+    flight.transmittance = stopped ? RGB(0) : exp(-depth) * roulette.weight;
     if (!stopped) flight.exit = exit;
     return flight;
+}
+
+double RegionMedia::sureDepth(WalkStart start, const glm::dvec3& origin, double tMax) const {
+    if (start.throughSurface || clearance_.empty()) return 0;
+    const size_t r = size_t(mesh().region(start.index));
+    if (!(tetChord_[r] > 0)) return 0;  // its density varies
+    const double sigma = minComponent(regions_[r].sigmaT);
+    if (!(sigma * clearance_.largest() > ShadowRoulette{}.at)) return 0;
+    return sigma * std::min(clearance_.lowerBound(origin), tMax);
 }
 
 }  // namespace tetglow

@@ -13,7 +13,9 @@
 
 #include "base/Spectrum.h"
 #include "media/PhaseFunction.h"
+#include "media/Roulette.h"
 #include "sampling/Rng.h"
+#include "tet/ClearanceGrid.h"
 #include "tet/RegionExit.h"
 #include "tet/TetVolume.h"
 
@@ -156,9 +158,15 @@ public:
     // The same for a shadow ray, with Russian roulette once the transmittance has fallen below
     // 1/20 (as pbrt-v4's ratio tracking does): the walk stops there with probability 3/4 (a
     // transmittance of 0, no exit) and a survivor counts 4 times, tested again whenever its
-    // weighted transmittance is below 1/20.
-    // Unbiased; deep in a dense medium a shadow ray walks a few tets, not all to the boundary.
-    FreeFlight shadowFlight(const Ray& ray, WalkStart start, double tMax, Rng& rng) const;
+    // weighted transmittance is below 1/20 (ShadowRoulette; `roulette` may hold tests decided
+    // before, by sureDepth). Unbiased; deep in a dense medium a shadow ray walks a few tets, not
+    // all to the boundary.
+    FreeFlight shadowFlight(const Ray& ray, WalkStart start, double tMax, Rng& rng, ShadowRoulette roulette = {}) const;
+    // An optical depth (its smallest channel's) that a ray from `origin`, in the region of
+    // `start`'s tet, surely gathers before tMax: in a region of constant density, along the ball
+    // around `origin` that holds no boundary (ClearanceGrid). 0 where the density varies, the ray
+    // starts on the surface, or no such ball is deep enough for the shadow roulette's first test.
+    double sureDepth(WalkStart start, const glm::dvec3& origin, double tMax) const;
 
 private:
     // walk() for a stretch that needs only the optical depth: once exitQueryAfter_ segments are
@@ -197,6 +205,7 @@ private:
     std::vector<double> tetChord_;  // per region: its tets' mean chord, 0 where its density varies
     bool emissive_ = false, scatters_ = false;
     TetVolume volume_;
+    ClearanceGrid clearance_;
     std::vector<glm::dvec4> densityPlane_;  // per tet: density(p) = w + dot(xyz, p)
     std::vector<bool> stops_;               // per surface triangle, or empty: none
     size_t exitQueryAfter_ = 1;

@@ -1,7 +1,7 @@
-// The two Russian roulette rules of every path: eye paths (volpath, the photon integrator's
-// eye path) and photons (the photon tracer, the photon walk in a medium). Each returns the
-// probability the path went on with, by which the caller divides its weight, or 0 when it
-// ended; a path that goes on draws one number, one that is never at risk none.
+// The Russian roulette rules of every path: eye paths (volpath, the photon integrator's eye
+// path) and photons (the photon tracer, the photon walk in a medium) return the probability the
+// path went on with, by which the caller divides its weight, or 0 when it ended; a path that goes
+// on draws one number, one that is never at risk none. Shadow rays keep theirs as they walk.
 #pragma once
 #include <algorithm>
 #include <cmath>
@@ -30,5 +30,24 @@ inline double photonSurvival(const RGB& relativeFlux, Rng& rng) {
     const double keep = std::min(1.0, maxComponent(relativeFlux));
     return !(keep > 0) || rng.uniform() >= keep ? 0 : keep;
 }
+
+// A shadow ray's Russian roulette (RegionMedia::shadowFlight): once the optical depth it has
+// gathered (its smallest channel's) passes `at`, where its weighted transmittance is below 1/20,
+// it ends with probability 3/4 and a survivor counts 4 times, tested again where that is below
+// 1/20 once more. Each test draws one number.
+struct ShadowRoulette {
+    static constexpr double kSurvive = 0.25;
+    double at = std::log(20.0);
+    double weight = 1;
+    // Decides every test up to optical depth `depth` not decided yet; false: the ray ended.
+    bool reach(double depth, Rng& rng) {
+        while (depth > at) {
+            if (rng.uniform() >= kSurvive) return false;
+            weight /= kSurvive;
+            at -= std::log(kSurvive);
+        }
+        return true;
+    }
+};
 
 }  // namespace tetglow
