@@ -17,13 +17,24 @@ void leaveSurface(const Scene& scene, const Intersection& hit, const glm::dvec3&
     ray = {hit.p, d};
 }
 
+namespace {
+
+// Decides the roulette tests a shadow ray from inside `state`'s volume surely reaches (sureDepth);
+// false where one ended it.
+bool surelyReached(const RegionMedia& medium, const Ray& ray, double tMax, const VolumeState& state, Rng& rng,
+                   ShadowRoulette& roulette) {
+    return !medium.deepShadows() || roulette.reach(medium.sureDepth(state.start, ray.o, tMax), rng);
+}
+
+}  // namespace
+
 RGB transmittance(const Scene& scene, Ray ray, double tMax, VolumeState state, Rng* roulette) {
     RGB tr(1);
     // Deep in a dense region the roulette's first tests surely come: decided before any query,
     // they spare most such rays the surface query and the walk.
     ShadowRoulette first;
     if (roulette && state.inside() &&
-        !first.reach(scene.volumes()[state.volume].media->sureDepth(state.start, ray.o, tMax), *roulette))
+        !surelyReached(*scene.volumes()[state.volume].media, ray, tMax, state, *roulette, first))
         return RGB(0);
     for (int crossings = 0; crossings < kMaxCrossings; ++crossings) {
         auto hit = scene.intersect(ray, state, tMax);

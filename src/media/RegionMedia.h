@@ -167,6 +167,8 @@ public:
     // around `origin` that holds no boundary (ClearanceGrid). 0 where the density varies, the ray
     // starts on the surface, or no such ball is deep enough for the shadow roulette's first test.
     double sureDepth(WalkStart start, const glm::dvec3& origin, double tMax) const;
+    // Whether sureDepth may be above 0 anywhere here (a region is dense enough for it).
+    bool deepShadows() const { return !clearance_.empty(); }
 
 private:
     // walk() for a stretch that needs only the optical depth: once exitQueryAfter_ segments are
