@@ -1,5 +1,8 @@
 // Small scenes the render tests build: a sphere of medium in front of the camera.
 #pragma once
+#include <glm/common.hpp>
+#include <glm/exponential.hpp>
+
 #include "integrators/Integrator.h"
 #include "scene/SceneDescription.h"
 
@@ -17,5 +20,25 @@ SceneDesc glowingSphereUnderQuad(int resolution);
 
 // The mean over the pixels of an image rendered with `spp` samples (or passes) per pixel.
 RGB meanImage(const Scene& scene, Integrator&& integrator, int spp);
+
+// Mean and standard error of n estimates sample(i), i = 0 .. n - 1, and how many were black.
+struct Estimate {
+    RGB mean{0}, stdError{0};
+    int black = 0;
+};
+template <class Sample>
+Estimate estimateMean(int n, Sample&& sample) {
+    RGB sum(0), sum2(0);
+    Estimate e;
+    for (int i = 0; i < n; ++i) {
+        const RGB x = sample(i);
+        sum += x;
+        sum2 += x * x;
+        e.black += isBlack(x);
+    }
+    e.mean = sum / double(n);
+    e.stdError = glm::sqrt(glm::max(RGB(0), sum2 / double(n) - e.mean * e.mean) / double(n - 1));
+    return e;
+}
 
 }  // namespace tetglow::test

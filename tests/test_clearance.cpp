@@ -79,19 +79,13 @@ TEST(ClearanceGrid, ShadowRouletteDecidedInTheClearBallKeepsTheTransmittance) {
     ASSERT_GE(tests, 3);
     const RGB exact = transmittance(scene, ray, 10, centre);
     const int n = 400000;
-    RGB sum(0), sum2(0);
-    int survived = 0;
-    for (int i = 0; i < n; ++i) {
+    const test::Estimate e = test::estimateMean(n, [&](int i) {
         Rng rng(9, uint64_t(i));
-        const RGB tr = transmittance(scene, ray, 10, centre, &rng);
-        sum += tr;
-        sum2 += tr * tr;
-        survived += !isBlack(tr);
-    }
-    const RGB mean = sum / double(n), se = glm::sqrt(glm::max(RGB(0), sum2 / double(n) - mean * mean) / double(n - 1));
-    for (int c = 0; c < 3; ++c) EXPECT_NEAR(mean[c], exact[c], 5 * se[c]) << c;
+        return transmittance(scene, ray, 10, centre, &rng);
+    });
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(e.mean[c], exact[c], 5 * e.stdError[c]) << c;
     // At least the certain tests, each survived with probability 1/4.
-    EXPECT_LE(double(survived) / n, 1.2 * std::pow(0.25, tests));
+    EXPECT_LE(double(n - e.black) / n, 1.2 * std::pow(0.25, tests));
 }
 
 }  // namespace

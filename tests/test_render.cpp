@@ -80,24 +80,17 @@ TEST(Render, ShadowRayRouletteKeepsTheTransmittance) {
         const VolumeState outside = scene.mediumAt(ray.o);
         const RGB exact = transmittance(scene, ray, 10, outside);
         const int n = 40000;
-        RGB sum(0), sum2(0);
-        int zeros = 0;
-        for (int i = 0; i < n; ++i) {
+        const Estimate e = estimateMean(n, [&](int i) {
             Rng rng(3, uint64_t(i));
-            const RGB tr = transmittance(scene, ray, 10, outside, &rng);
-            sum += tr;
-            sum2 += tr * tr;
-            zeros += isBlack(tr);
-        }
-        const RGB mean = sum / double(n),
-                  se = glm::sqrt(glm::max(RGB(0), sum2 / double(n) - mean * mean) / double(n - 1));
+            return transmittance(scene, ray, 10, outside, &rng);
+        });
         if (sigmaA.z < 1) {
-            EXPECT_EQ(zeros, 0);
-            for (int c = 0; c < 3; ++c) EXPECT_NEAR(mean[c], exact[c], 1e-12 * exact[c]);
+            EXPECT_EQ(e.black, 0);
+            for (int c = 0; c < 3; ++c) EXPECT_NEAR(e.mean[c], exact[c], 1e-12 * exact[c]);
             continue;
         }
-        EXPECT_NEAR(double(zeros) / n, 0.75, 0.02);  // one roulette
-        for (int c = 0; c < 3; ++c) EXPECT_NEAR(mean[c], exact[c], 5 * se[c]) << c;
+        EXPECT_NEAR(double(e.black) / n, 0.75, 0.02);  // one roulette
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(e.mean[c], exact[c], 5 * e.stdError[c]) << c;
     }
 }
 
@@ -168,19 +161,11 @@ TEST(Render, AbsorbingSphereMatchesChords) {
 }
 
 // Mean and standard error of n samples of one pixel.
-struct Estimate {
-    RGB mean{0}, stdError{0};
-};
 Estimate samplePixel(const Integrator& integrator, const Ray& ray, uint64_t key, int n) {
-    RGB sum(0), sum2(0);
-    for (int i = 0; i < n; ++i) {
+    return estimateMean(n, [&](int i) {
         Rng rng(7, key, uint64_t(i));
-        const RGB L = integrator.radiance(ray, rng);
-        sum += L;
-        sum2 += L * L;
-    }
-    const RGB mean = sum / double(n);
-    return {mean, glm::sqrt(glm::max(RGB(0), sum2 / double(n) - mean * mean) / double(n - 1))};
+        return integrator.radiance(ray, rng);
+    });
 }
 
 // Russian roulette keeps an eye path's weight at most 1 in a grey medium that absorbs little
