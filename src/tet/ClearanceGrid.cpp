@@ -38,14 +38,14 @@ ClearanceGrid::ClearanceGrid(const TetMesh& mesh, int cells) {
     auto corners = [&](double side) { return std::max(2, int(std::ceil(side / cell_)) + 1); };
     nx_ = corners(extent.x), ny_ = corners(extent.y), nz_ = corners(extent.z);
     Tree tree(triangles.begin(), triangles.end());
-    // Built whole here (the tree and its search tree are otherwise built by the first query), so
-    // that the queries below only read it.
-    tree.build();
-    tree.accelerate_distance_queries();
     auto corner = [&](int i, int j, int k) { return origin_ + cell_ * glm::dvec3(i, j, k); };
     auto distance = [&](const glm::dvec3& p) {
         return std::sqrt(tree.squared_distance(Kernel::Point_3(p.x, p.y, p.z)));
     };
+    // The tree and its search tree for distances are otherwise built by the first query: built
+    // here, one thread, so that the parallel queries below only read them.
+    tree.build();
+    tree.accelerate_distance_queries();
     distance(origin_);
     // The distance's rounding is about 1e-16 of the coordinates' size.
     const glm::dvec3 far = glm::max(glm::abs(box.lo), glm::abs(box.hi));
@@ -63,7 +63,7 @@ ClearanceGrid::ClearanceGrid(const TetMesh& mesh, int cells) {
 double ClearanceGrid::lowerBound(const glm::dvec3& p) const {
     if (empty()) return 0;
     const glm::dvec3 g = (p - origin_) / cell_;
-    // Outside the box (or NaN) the corners are far: no bound worth the work.
+    // Outside the grid (or NaN) no corner is near: no bound worth the work.
     if (!(g.x >= 0 && g.y >= 0 && g.z >= 0 && g.x <= nx_ - 1 && g.y <= ny_ - 1 && g.z <= nz_ - 1)) return 0;
     // The nearest corner c, at most 0.87 cells away: one lookup and one square root, and since
     // d(c) >= d(p) - |p - c|, at most 1.74 cells short of p's distance.
