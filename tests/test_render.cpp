@@ -248,24 +248,20 @@ TEST(Render, ACameraPathSplitsAtItsFirstInteractionKeepingItsMean) {
     const Ray ray{scene.camera().position(), glm::normalize(-scene.camera().position())};
     const VolumeState camera = scene.mediumAt(ray.o);
     const int n = 20000;
-    double sum[2] = {}, sum2[2] = {};
-    for (uint32_t i = 0; i < uint32_t(n); ++i) {
-        Rng split = Rng::pixelSample(5, 0, i), whole = Rng::pixelSample(6, 0, i);
-        const double L[2] = {integrator.radiance(ray, split).x, integrator.continuePath(ray, camera, 0, true, whole).x};
-        for (int k = 0; k < 2; ++k) {
-            sum[k] += L[k];
-            sum2[k] += L[k] * L[k];
-        }
-    }
-    double mean[2], variance[2];
-    for (int k = 0; k < 2; ++k) {
-        mean[k] = sum[k] / n;
-        variance[k] = (sum2[k] / n - mean[k] * mean[k]) * n / (n - 1);
-    }
-    ASSERT_GT(mean[1], 0);
-    EXPECT_NEAR(mean[0], mean[1], 5 * std::sqrt((variance[0] + variance[1]) / n));
+    const Estimate split = estimateMean(n, [&](int i) {
+        Rng rng = Rng::pixelSample(5, 0, uint32_t(i));
+        return integrator.radiance(ray, rng);
+    });
+    const Estimate whole = estimateMean(n, [&](int i) {
+        Rng rng = Rng::pixelSample(6, 0, uint32_t(i));
+        return integrator.continuePath(ray, camera, 0, true, rng);
+    });
+    // Variances per sample: n squared standard errors.
+    const double variance[2] = {n * split.stdError.x * split.stdError.x, n * whole.stdError.x * whole.stdError.x};
+    ASSERT_GT(whole.mean.x, 0);
+    EXPECT_NEAR(split.mean.x, whole.mean.x, 5 * std::sqrt((variance[0] + variance[1]) / n));
     EXPECT_LT(variance[0], 0.8 * variance[1])
-        << "split " << variance[0] << ", whole " << variance[1] << ", means " << mean[0] << " " << mean[1];
+        << "split " << variance[0] << ", whole " << variance[1] << ", means " << split.mean.x << " " << whole.mean.x;
 }
 
 // (b) White furnace: a medium that absorbs nothing, inside an environment of radiance 1, is
