@@ -38,7 +38,6 @@ ClearanceGrid::ClearanceGrid(const TetMesh& mesh, int cells) {
     auto corners = [&](double side) { return std::max(2, int(std::ceil(side / cell_)) + 1); };
     nx_ = corners(extent.x), ny_ = corners(extent.y), nz_ = corners(extent.z);
     Tree tree(triangles.begin(), triangles.end());
-    auto corner = [&](int i, int j, int k) { return origin_ + cell_ * glm::dvec3(i, j, k); };
     auto distance = [&](const glm::dvec3& p) {
         return std::sqrt(tree.squared_distance(Kernel::Point_3(p.x, p.y, p.z)));
     };
@@ -53,9 +52,7 @@ ClearanceGrid::ClearanceGrid(const TetMesh& mesh, int cells) {
     distance_.resize(size_t(nx_) * size_t(ny_) * size_t(nz_));
     tbb::parallel_for(0, nz_, [&](int k) {
         for (int j = 0; j < ny_; ++j)
-            for (int i = 0; i < nx_; ++i)
-                distance_[(size_t(k) * size_t(ny_) + size_t(j)) * size_t(nx_) + size_t(i)] =
-                    std::max(0.0, distance(corner(i, j, k)) - margin);
+            for (int i = 0; i < nx_; ++i) distance_[index(i, j, k)] = std::max(0.0, distance(corner(i, j, k)) - margin);
     });
     largest_ = *std::max_element(distance_.begin(), distance_.end());
 }
@@ -68,8 +65,7 @@ double ClearanceGrid::lowerBound(const glm::dvec3& p) const {
     // The nearest corner c, at most 0.87 cells away: one lookup and one square root, and since
     // d(c) >= d(p) - |p - c|, at most 1.74 cells short of p's distance.
     const int i = int(g.x + 0.5), j = int(g.y + 0.5), k = int(g.z + 0.5);
-    const double d = distance_[(size_t(k) * size_t(ny_) + size_t(j)) * size_t(nx_) + size_t(i)];
-    return std::max(0.0, d - glm::length(p - (origin_ + cell_ * glm::dvec3(i, j, k))));
+    return std::max(0.0, distance_[index(i, j, k)] - glm::length(p - corner(i, j, k)));
 }
 
 }  // namespace tetglow

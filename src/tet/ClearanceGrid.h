@@ -2,6 +2,7 @@
 // distances at the corners of a coarse grid over the medium's box. A ball of that radius around
 // the point holds no boundary triangle, so it lies inside one region.
 #pragma once
+#include <cstddef>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -24,6 +25,9 @@ public:
     double largest() const { return largest_; }
 
 private:
+    size_t index(int i, int j, int k) const { return (size_t(k) * size_t(ny_) + size_t(j)) * size_t(nx_) + size_t(i); }
+    glm::dvec3 corner(int i, int j, int k) const { return origin_ + cell_ * glm::dvec3(i, j, k); }
+
     glm::dvec3 origin_{0};
     double cell_ = 1;
     int nx_ = 0, ny_ = 0, nz_ = 0;  // corners per axis
