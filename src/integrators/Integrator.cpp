@@ -5,7 +5,6 @@
 #include "integrators/MarchStep.h"
 #include "integrators/SingleScatterIntegrator.h"
 #include "integrators/VolPathIntegrator.h"
-#include "integrators/photon/PhotonBeamIntegrator.h"
 #include "integrators/photon/PhotonIntegrator.h"
 
 namespace tetglow {
@@ -22,7 +21,6 @@ std::unique_ptr<Integrator> makeIntegrator(const Scene& scene, const IntegratorD
         case IntegratorType::VolPath: return std::make_unique<VolPathIntegrator>(scene, desc.maxDepth);
         case IntegratorType::Single: return std::make_unique<SingleScatterIntegrator>(scene, desc);
         case IntegratorType::Photon: return std::make_unique<PhotonIntegrator>(scene, desc);
-        case IntegratorType::Beams: return std::make_unique<PhotonBeamIntegrator>(scene, desc);
     }
     return nullptr;
 }

@@ -114,7 +114,7 @@ struct MediumDesc {
     bool cavity = false;
 };
 
-enum class IntegratorType { VolPath, Single, Photon, Beams };
+enum class IntegratorType { VolPath, Single, Photon };
 enum class BoundaryMode { Tet, Parity, Bbox };
 // The photon integrator's volume estimate along eye rays: the parity baseline's ray march with a k-NN
 // lookup per step, or the beam radiance estimate (Jarosz, Zwicker, Jensen 2008).
@@ -124,10 +124,8 @@ enum class PhotonEstimate { KnnMarch, Beam };
 // writer and the command line.
 template <class T, size_t N>
 using NameTable = std::array<std::pair<std::string_view, T>, N>;
-inline constexpr NameTable<IntegratorType, 4> kIntegratorNames{{{"volpath", IntegratorType::VolPath},
-                                                                {"single", IntegratorType::Single},
-                                                                {"photon", IntegratorType::Photon},
-                                                                {"beams", IntegratorType::Beams}}};
+inline constexpr NameTable<IntegratorType, 3> kIntegratorNames{
+    {{"volpath", IntegratorType::VolPath}, {"single", IntegratorType::Single}, {"photon", IntegratorType::Photon}}};
 inline constexpr NameTable<BoundaryMode, 3> kBoundaryNames{
     {{"tet", BoundaryMode::Tet}, {"parity", BoundaryMode::Parity}, {"bbox", BoundaryMode::Bbox}}};
 inline constexpr NameTable<PhotonEstimate, 2> kEstimateNames{
