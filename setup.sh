@@ -13,9 +13,13 @@ case "$job" in demo|test|build|sanitizers) ;; *) echo "usage: $0 demo|test|build
 packages=(g++ cmake make pkg-config libtet1.5-dev libcgal-dev libboost-dev libembree-dev libopenexr-dev libglm-dev libtbb-dev nlohmann-json3-dev
           libcli11-dev libnanoflann-dev libpng-dev libassimp-dev libcpp-httplib-dev libgtest-dev libbenchmark-dev gnuplot-nox pngquant python3)
 # Only the tests need these: tetglow preview's page is tested in headless Chromium, tetglow farm
-# through a real Slurm on localhost (tests/slurm); the sanitized suite and the fuzzers need clang.
+# through a real Slurm on localhost (tests/slurm); the sanitized suite and the fuzzers need clang,
+# and ccache keeps the sanitized build that CI compiles from each clean clone.
 test_packages=(chromium chromium-driver python3-selenium slurmctld slurmd slurm-client munge clang-format)
-case "$job" in test) packages+=("${test_packages[@]}") ;; sanitizers) packages+=("${test_packages[@]}" clang libclang-rt-14-dev) ;; esac
+case "$job" in
+  test) packages+=("${test_packages[@]}") ;;
+  sanitizers) packages+=("${test_packages[@]}" clang libclang-rt-14-dev ccache) ;;
+esac
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "ok installed" || missing+=("$p")
