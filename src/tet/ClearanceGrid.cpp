@@ -45,7 +45,6 @@ ClearanceGrid::ClearanceGrid(const TetMesh& mesh, int cells) {
     // here, one thread, so that the parallel queries below only read them.
     tree.build();
     tree.accelerate_distance_queries();
-    distance(origin_);
     // The distance's rounding is about 1e-16 of the coordinates' size.
     const glm::dvec3 far = glm::max(glm::abs(box.lo), glm::abs(box.hi));
     const double margin = 1e-9 * (std::max({far.x, far.y, far.z}) + longest);
