@@ -23,6 +23,7 @@
 #include "cli/PreviewSaves.h"
 #include "cli/PreviewSettings.h"
 #include "render/ImageIO.h"
+#include "scene/GltfScene.h"
 #include "scene/SceneLoader.h"
 #include "scene/SceneWriter.h"
 
@@ -33,7 +34,7 @@ namespace fs = std::filesystem;
 using Json = nlohmann::json;
 
 struct Options {
-    std::string scene, host = "127.0.0.1";
+    std::string scene, camera, host = "127.0.0.1";
     int port = 8080, threads = 0;
 };
 
@@ -88,9 +89,11 @@ bool flagOf(const std::string& text, const char* key) {
 
 // The scene file as JSON, keys in their order, or null for a pbrt scene.
 nlohmann::ordered_json jsonScene(const std::string& path) {
+    if (looksLikeGltf(path, "")) return {};  // saved as the scene writer's JSON, as a pbrt scene is
     const std::string text = readInputFile(path, kMaxSceneFileBytes, "a scene file");
     nlohmann::ordered_json doc = nlohmann::ordered_json::parse(text, nullptr, false, true);
-    return doc.is_discarded() ? nlohmann::ordered_json() : doc;
+    const bool gltf = doc.is_object() && doc.contains("asset") && !doc.contains("camera");
+    return doc.is_discarded() || gltf || looksLikeGltf(path, text) ? nlohmann::ordered_json() : doc;
 }
 
 class PreviewServer {
@@ -334,7 +337,7 @@ private:
 };
 
 void run(const Options& o) {
-    const SceneDesc desc = loadScene(o.scene);
+    const SceneDesc desc = loadScene(o.scene, o.camera);
     PreviewServer server(o.scene, desc);
     const int port = server.bind(o.host, o.port);
     auto scene = std::make_unique<Scene>(desc);
@@ -353,7 +356,11 @@ void addPreviewCommand(CLI::App& app) {
     auto* cmd = app.add_subcommand(
         "preview",
         "Serve a local web page that renders the scene live while its media, lights, camera and integrator are tuned");
-    cmd->add_option("scene", o->scene, "Scene file: JSON, or pbrt-v3 (.pbrt)")->required()->check(CLI::ExistingFile);
+    cmd->add_option("scene", o->scene, "Scene file: JSON, pbrt-v3 (.pbrt) or glTF 2.0 (.gltf, .glb)")
+        ->required()
+        ->check(CLI::ExistingFile);
+    cmd->add_option("--camera", o->camera, "glTF scene: the camera node to look through (default: the first)")
+        ->check(kNonEmpty);
     cmd->add_option("--port", o->port, "TCP port (0: any free one; the URL printed says which)")
         ->check(CLI::Range(0, 65535));
     cmd->add_option("--host", o->host, "Address to listen on (default 127.0.0.1: this machine only)");

@@ -56,7 +56,7 @@ void applyOverrides(const RenderArgs& o, SceneDesc& scene) {
 }  // namespace
 
 std::vector<CLI::Option*> addRenderArgs(CLI::App* cmd, RenderArgs& o) {
-    cmd->add_option("scene", o.scene, "Scene file: JSON, or pbrt-v3 (.pbrt); see docs/FORMAT.md")
+    cmd->add_option("scene", o.scene, "Scene file: JSON, pbrt-v3 (.pbrt) or glTF 2.0 (.gltf, .glb); see docs/FORMAT.md")
         ->required()
         ->check(CLI::ExistingFile);
     std::vector<CLI::Option*> options;
@@ -72,6 +72,8 @@ std::vector<CLI::Option*> addRenderArgs(CLI::App* cmd, RenderArgs& o) {
     add(cmd->add_option("--seed", o.seed, "Random seed: the same seed gives the same image at any thread count")
             ->check(inRange(kNonNegative)));
     add(cmd->add_option("--resolution", o.resolution, "Image size WxH")->check(kNonEmpty));
+    add(cmd->add_option("--camera", o.camera, "glTF scene: the camera node to look through (default: the first)")
+            ->check(kNonEmpty));
     add(cmd->add_option(
                "--boundary", o.boundary,
                "single: where the medium is: tet (exact), parity (the parity baseline's ray-parity test) or bbox")
@@ -107,7 +109,7 @@ std::vector<CLI::Option*> addRenderArgs(CLI::App* cmd, RenderArgs& o) {
 }
 
 SceneDesc loadSceneWith(const RenderArgs& args) {
-    SceneDesc desc = loadScene(args.scene);
+    SceneDesc desc = loadScene(args.scene, args.camera);
     applyOverrides(args, desc);
     return desc;
 }

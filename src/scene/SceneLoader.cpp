@@ -8,6 +8,7 @@
 #include <glm/geometric.hpp>
 
 #include "base/InputFile.h"
+#include "scene/GltfScene.h"
 #include "scene/JsonReader.h"
 #include "scene/PbrtParser.h"
 #include "scene/SceneShapes.h"
@@ -172,14 +173,8 @@ TetOptions readTetOptions(JsonObject& o) {
 // What a page or a report may show as a medium's name: one line of a bounded length.
 std::string readLabel(const JsonValue& v) {
     const std::string label = v.string();
-    const auto control = [&](size_t i) {
-        const auto c = static_cast<unsigned char>(label[i]);  // C0 and DEL, or C1 (U+0080..U+009F) in UTF-8
-        return c < 0x20 || c == 0x7f ||
-               (c == 0xc2 && i + 1 < label.size() && static_cast<unsigned char>(label[i + 1]) < 0xa0);
-    };
-    bool clean = label.size() <= kMaxLabelBytes;
-    for (size_t i = 0; i < label.size() && clean; ++i) clean = !control(i);
-    if (!clean) v.fail("a name of 1 to " + std::to_string(kMaxLabelBytes) + " bytes without control characters");
+    if (!validLabel(label))
+        v.fail("a name of 1 to " + std::to_string(kMaxLabelBytes) + " bytes without control characters");
     return label;
 }
 
@@ -335,6 +330,17 @@ void readMediumCoefficients(JsonObject& o, MediumDesc& m) {
     if (auto f = o["density"]) m.density = f.readObject(readDensity);
 }
 
+bool validLabel(const std::string& label) {
+    const auto control = [&](size_t i) {
+        const auto c = static_cast<unsigned char>(label[i]);  // C0 and DEL, or C1 (U+0080..U+009F) in UTF-8
+        return c < 0x20 || c == 0x7f ||
+               (c == 0xc2 && i + 1 < label.size() && static_cast<unsigned char>(label[i + 1]) < 0xa0);
+    };
+    bool clean = !label.empty() && label.size() <= kMaxLabelBytes;
+    for (size_t i = 0; i < label.size() && clean; ++i) clean = !control(i);
+    return clean;
+}
+
 bool emitsLight(const SceneDesc& s) {
     for (const LightDesc& l : s.lights)
         if (l.on && (l.intensity != RGB(0) || l.radiance != RGB(0) || l.irradiance != RGB(0))) return true;
@@ -343,7 +349,7 @@ bool emitsLight(const SceneDesc& s) {
     return false;
 }
 
-SceneDesc loadScene(const std::string& path) {
+SceneDesc loadScene(const std::string& path, const std::string& camera) {
     const InputLog log;
     const auto read = [&] {
         auto pbrt = [&] {
@@ -351,10 +357,22 @@ SceneDesc loadScene(const std::string& path) {
             checkLimits(s);
             return s;
         };
+        auto gltf = [&](std::string data) {
+            SceneDesc s = loadGltfScene(path, std::move(data), camera);
+            checkLimits(s);
+            return s;
+        };
+        // A GLB carries its buffers: it may be as large as a mesh file.
+        if (looksLikeGltf(path, "")) return gltf(readInputFile(path, kMaxMeshFileBytes, "a glTF scene"));
+        if (!camera.empty())
+            throw InputError("--camera " + shorten(camera) + ": " + path +
+                             " is not a glTF scene; only glTF scenes name their cameras");
         if (fs::path(path).extension() == ".pbrt") return pbrt();  // without reading the file here too
-        const std::string text = readInputFile(path, kMaxSceneFileBytes, "a scene file");
+        std::string text = readInputFile(path, kMaxSceneFileBytes, "a scene file");
+        if (looksLikeGltf(path, text)) return gltf(std::move(text));
         if (looksLikePbrt(text)) return pbrt();
         const nlohmann::json doc = parseJson(text, path);
+        if (doc.is_object() && doc.contains("asset") && !doc.contains("camera")) return gltf(std::move(text));
         return JsonValue(&doc, nlohmann::json::json_pointer(), path).readObject([&](JsonObject& o) {
             return readScene(o, path);
         });

@@ -14,8 +14,10 @@ inline constexpr size_t kMaxLabelBytes = 64;  // a medium's "name", in UTF-8
 // multiplied by their "scale". Throws InputError, one line naming the file and the JSON pointer
 // of the bad field, on any problem. Mesh warnings go to stderr.
 // A file whose name ends in .pbrt, or whose first token is a pbrt-v3 directive, is read as a
-// pbrt-v3 scene (scene/PbrtParser.h).
-SceneDesc loadScene(const std::string& path);
+// pbrt-v3 scene (scene/PbrtParser.h); a .gltf or .glb file, or a GLB or a JSON object with an
+// "asset" and no "camera", as a glTF 2.0 scene (scene/GltfScene.h), looking through the camera
+// node named `camera` ("" the first); a camera named for another format is an error.
+SceneDesc loadScene(const std::string& path, const std::string& camera = "");
 
 // The parts of a scene file the preview re-tunes, with the loader's own checks and errors.
 // A camera's "position", "look_at", "up" and "fov" (up and fov, when absent, keep c's).
@@ -27,6 +29,9 @@ IntegratorDesc readIntegrator(JsonObject& o);
 // A medium's "scale", "sigma_a", "sigma_s", "g", "emission" and "density": the keys present
 // replace m's values (sigma_a and sigma_s times "scale", 1 when absent).
 void readMediumCoefficients(JsonObject& o, MediumDesc& m);
+
+// A medium's name as a page or a report may show it: 1 to kMaxLabelBytes bytes of one line.
+bool validLabel(const std::string& label);
 
 // Something gives off light: a light with non-zero intensity, irradiance or radiance, or an
 // emissive medium.

@@ -1,0 +1,59 @@
+// A glTF 2.0 file as data: its JSON (from a .gltf, or a GLB's JSON chunk), its buffers, the
+// triangles of its mesh primitives and the world transform of every node of a scene. What the
+// nodes mean (cameras, lights, materials) is read by scene/GltfScene.h.
+//
+// Geometry is read here from the accessors rather than through Assimp (scene/AssimpReader.h, which
+// reads a glTF as one mesh file): a scene needs each primitive apart with its material index and
+// each node with its own transform and extensions, which Assimp's merged, renamed and re-split
+// meshes do not keep one to one. Every read is bounded: the buffers together within
+// kMaxMeshFileBytes, every accessor inside its buffer view and buffer, every index inside its
+// accessor, the placed triangles within kMaxSceneMeshTriangles.
+#pragma once
+#include <string>
+#include <vector>
+
+#include <glm/mat4x4.hpp>
+#include <nlohmann/json.hpp>
+
+#include "scene/JsonReader.h"
+#include "tet/TriangleMesh.h"
+
+namespace tetglow {
+
+struct GltfDocument {
+    std::string path;
+    nlohmann::json json;
+    std::vector<std::string> buffers;  // the bytes of each buffer, at least its byteLength
+    // The arrays every primitive looks into, listed once (their elements do not move with the document).
+    std::vector<JsonValue> accessors, bufferViews;
+
+    JsonValue root() const { return {&json, nlohmann::json::json_pointer(), path}; }
+};
+
+// A .gltf (JSON text) or .glb (binary container) file's bytes `data` read from `path`; buffers
+// named by a relative URI are read from the file's folder (never outside it), `data:` URIs
+// decoded. Throws InputError "<path>: <JSON pointer>: <problem>".
+GltfDocument readGltfDocument(const std::string& path, std::string data);
+
+// True when `data` is a GLB container (its first four bytes are "glTF").
+bool isGlb(const std::string& data);
+
+// The triangles of mesh primitive `primitive` (an object of a mesh's "primitives") in the mesh's
+// own frame: POSITION, with its indices where it has them; modes 4 (triangles), 5 (strip) and 6
+// (fan). Other modes (points, lines) give an empty mesh and a warning.
+TriangleMesh primitiveTriangles(const GltfDocument& doc, const JsonValue& primitive,
+                                std::vector<std::string>* warnings);
+
+struct GltfNode {
+    int index = 0;     // into the document's "nodes"
+    glm::dmat4 world;  // the product of the local transforms of the node and its ancestors
+};
+
+// The document's scene: its "scene", else the first of its "scenes".
+JsonValue sceneOf(const GltfDocument& doc);
+
+// Every node of the document's scene (its "scene", else the first), parents before children.
+// A node reached twice (a node with two parents, or a cycle) is an error.
+std::vector<GltfNode> sceneNodes(const GltfDocument& doc);
+
+}  // namespace tetglow

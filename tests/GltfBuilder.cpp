@@ -1,0 +1,112 @@
+#include "GltfBuilder.h"
+
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+namespace tetglow::test {
+namespace {
+
+void writeBytes(const std::string& path, const std::string& bytes) { std::ofstream(path, std::ios::binary) << bytes; }
+
+void appendU32(std::string& out, uint32_t v) { out.append(reinterpret_cast<const char*>(&v), 4); }
+
+}  // namespace
+
+GltfBuilder::GltfBuilder() {
+    json = {{"asset", {{"version", "2.0"}}}, {"scene", 0}, {"scenes", {{{"nodes", nlohmann::json::array()}}}}};
+}
+
+int GltfBuilder::push(const char* key, nlohmann::json value) {
+    if (!json.contains(key)) json[key] = nlohmann::json::array();
+    json[key].push_back(std::move(value));
+    return int(json[key].size()) - 1;
+}
+
+int GltfBuilder::addView(const std::string& bytes) {
+    while (bin.size() % 4) bin.push_back('\0');
+    const size_t offset = bin.size();
+    bin += bytes;
+    json["buffers"] = {{{"byteLength", bin.size()}}};
+    return push("bufferViews", {{"buffer", 0}, {"byteOffset", offset}, {"byteLength", bytes.size()}});
+}
+
+int GltfBuilder::addMesh(const TriangleMesh& mesh, int material) {
+    std::string positions, indices;
+    for (const auto& p : mesh.positions)
+        for (int k = 0; k < 3; ++k) {
+            const auto f = float(p[k]);
+            positions.append(reinterpret_cast<const char*>(&f), 4);
+        }
+    for (const auto& t : mesh.triangles)
+        for (const uint32_t i : t) appendU32(indices, i);
+    const int p = push("accessors", {{"bufferView", addView(positions)},
+                                     {"componentType", 5126},
+                                     {"count", mesh.positions.size()},
+                                     {"type", "VEC3"}});
+    const int i = push("accessors", {{"bufferView", addView(indices)},
+                                     {"componentType", 5125},
+                                     {"count", mesh.triangles.size() * 3},
+                                     {"type", "SCALAR"}});
+    nlohmann::json primitive = {{"attributes", {{"POSITION", p}}}, {"indices", i}};
+    if (material >= 0) primitive["material"] = material;
+    return push("meshes", {{"primitives", {primitive}}});
+}
+
+int GltfBuilder::addNode(nlohmann::json node, bool root) {
+    const int index = push("nodes", std::move(node));
+    if (root) json["scenes"][0]["nodes"].push_back(index);
+    return index;
+}
+
+int GltfBuilder::addMaterial(nlohmann::json material) { return push("materials", std::move(material)); }
+
+int GltfBuilder::addCamera(double yfov, double aspectRatio) {
+    return push("cameras", {{"type", "perspective"},
+                            {"perspective", {{"yfov", yfov}, {"aspectRatio", aspectRatio}, {"znear", 0.01}}}});
+}
+
+int GltfBuilder::addLight(nlohmann::json light) {
+    auto& lights = json["extensions"]["KHR_lights_punctual"]["lights"];
+    if (lights.is_null()) lights = nlohmann::json::array();
+    lights.push_back(std::move(light));
+    return int(lights.size()) - 1;
+}
+
+std::string GltfBuilder::writeGltf(const std::string& path) const {
+    nlohmann::json j = json;
+    const std::string binName = std::filesystem::path(path).stem().string() + ".bin";
+    if (j.contains("buffers") && !j["buffers"][0].contains("uri")) j["buffers"][0]["uri"] = binName;
+    writeBytes(path, j.dump());
+    writeBytes((std::filesystem::path(path).parent_path() / binName).string(), bin);
+    return path;
+}
+
+nlohmann::json GltfBuilder::glbJson() const {
+    nlohmann::json j = json;
+    if (j.contains("buffers")) j["buffers"][0].erase("uri");
+    return j;
+}
+
+std::string GltfBuilder::writeGlb(const std::string& path) const {
+    std::string text = glbJson().dump(), data = bin;
+    while (text.size() % 4) text.push_back(' ');
+    while (data.size() % 4) data.push_back('\0');
+    std::string out;
+    appendU32(out, 0x46546C67);
+    appendU32(out, 2);
+    appendU32(out, uint32_t(12 + 8 + text.size() + (data.empty() ? 0 : 8 + data.size())));
+    appendU32(out, uint32_t(text.size()));
+    appendU32(out, 0x4E4F534A);
+    out += text;
+    if (!data.empty()) {
+        appendU32(out, uint32_t(data.size()));
+        appendU32(out, 0x004E4942);
+        out += data;
+    }
+    writeBytes(path, out);
+    return path;
+}
+
+}  // namespace tetglow::test
