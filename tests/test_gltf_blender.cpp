@@ -1,0 +1,203 @@
+// A scene built in headless Blender and written by Blender's own glTF exporter: tetglow reads the
+// light in Cycles' units (a point light of P watts: P / (4 pi) W/sr), the camera's field of view,
+// the glass and its Principled Volume, and renders the .glb as Cycles (the peer in
+// ../shared/peers, on the converted JSON) renders it, within their noise. Skipped where Blender
+// or the peer is missing.
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+
+#include <gtest/gtest.h>
+#include <glm/gtc/constants.hpp>
+#include <nlohmann/json.hpp>
+
+#include "TestMeshes.h"
+#include "render/ImageIO.h"
+#include "scene/SceneLoader.h"
+
+namespace tetglow {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr double kWatts = 400, kLensAngle = 0.8, kIor = 1.45, kDensity = 1.5;
+const glm::dvec3 kColour(0.9, 0.5, 0.2);
+
+// The scene in Blender's Z-up frame: a camera, a point light of kWatts, a diffuse floor and an ico
+// sphere of glass (Principled BSDF, transmission 1) holding an absorbing volume. Blender 3.4's
+// exporter writes KHR_materials_volume only from a Volume Absorption node (Color, and Density as
+// 1 / attenuationDistance; a Principled Volume gives none) and only where a "glTF Material Output"
+// group gives a non-zero Thickness (the group its importer makes), so the script adds one.
+const char* const kBlenderScript = R"(
+import bpy, math, sys
+out = sys.argv[sys.argv.index('--') + 1]
+bpy.ops.wm.read_factory_settings(use_empty=True)
+scene = bpy.context.scene
+scene.render.resolution_x, scene.render.resolution_y, scene.render.resolution_percentage = 48, 36, 100
+scene['tetglow'] = {'resolution': [48, 36]}  # glTF has no resolution: the scene's extras carry it
+cam = bpy.data.objects.new('Eye', bpy.data.cameras.new('Eye'))
+cam.data.angle = @ANGLE@
+cam.location = (0.3, -4.5, 1.6)
+cam.rotation_euler = (math.radians(72), 0, math.radians(4))
+scene.collection.objects.link(cam)
+scene.camera = cam
+lamp = bpy.data.lights.new('Lamp', 'POINT')
+lamp.energy = @WATTS@
+lamp.shadow_soft_size = 0
+lamp_object = bpy.data.objects.new('Lamp', lamp)
+lamp_object.location = (1.5, -1.0, 3.0)
+scene.collection.objects.link(lamp_object)
+
+def principled(name):
+    m = bpy.data.materials.new(name)
+    m.use_nodes = True
+    return m, m.node_tree.nodes['Principled BSDF']
+
+bpy.ops.mesh.primitive_plane_add(size=8, location=(0, 0, -0.8))
+floor, p = principled('Floor')
+p.inputs['Base Color'].default_value = (0.6, 0.55, 0.5, 1)
+p.inputs['Metallic'].default_value = 0
+bpy.context.object.data.materials.append(floor)
+
+bpy.ops.mesh.primitive_ico_sphere_add(subdivisions=3, radius=0.8, location=(0, 0, 0))
+glass, p = principled('Glass')
+p.inputs['Transmission'].default_value = 1
+p.inputs['Roughness'].default_value = 0
+p.inputs['IOR'].default_value = @IOR@
+nodes, links = glass.node_tree.nodes, glass.node_tree.links
+volume = nodes.new('ShaderNodeVolumeAbsorption')
+volume.inputs['Color'].default_value = (@R@, @G@, @B@, 1)
+volume.inputs['Density'].default_value = @DENSITY@
+links.new(volume.outputs['Volume'], nodes['Material Output'].inputs['Volume'])
+group = bpy.data.node_groups.new('glTF Material Output', 'ShaderNodeTree')
+group.inputs.new('NodeSocketFloat', 'Thickness')
+settings = nodes.new('ShaderNodeGroup')
+settings.node_tree = group
+settings.inputs['Thickness'].default_value = 1
+bpy.context.object.data.materials.append(glass)
+
+bpy.ops.export_scene.gltf(filepath=out, export_format='GLB', export_cameras=True, export_lights=True,
+                          export_extras=True)
+)";
+
+std::string replaced(std::string text, const std::string& key, double value) {
+    for (size_t at; (at = text.find(key)) != std::string::npos;) text.replace(at, key.size(), std::to_string(value));
+    return text;
+}
+
+bool onPath(const std::string& program) {
+    return std::system(("command -v " + program + " >/dev/null 2>&1").c_str()) == 0;
+}
+
+int runQuiet(const std::string& command, const std::string& log) {
+    return std::system((command + " >" + log + " 2>&1 </dev/null").c_str());
+}
+
+// Per-block z-scores of the grey difference of two independent renders: z = mean(d) / (std(d) /
+// sqrt(n)) in each block of `block` x `block` pixels, about N(0, 1) where both are unbiased.
+struct BlockZ {
+    double meanZ = 0, stdZ = 0, maxAbsZ = 0;
+    int blocks = 0;
+};
+BlockZ blockZ(const Image& a, const Image& b, int block) {
+    std::vector<double> zs;
+    for (int by = 0; by + block <= a.height; by += block)
+        for (int bx = 0; bx + block <= a.width; bx += block) {
+            double sum = 0, sum2 = 0;
+            const int n = block * block;
+            for (int y = by; y < by + block; ++y)
+                for (int x = bx; x < bx + block; ++x) {
+                    const glm::vec3 d = a.at(x, y) - b.at(x, y);
+                    const double g = (d.x + d.y + d.z) / 3;
+                    sum += g;
+                    sum2 += g * g;
+                }
+            const double mean = sum / n, var = (sum2 - n * mean * mean) / (n - 1);
+            if (var > 1e-14) zs.push_back(mean / std::sqrt(var / n));
+        }
+    BlockZ r;
+    r.blocks = int(zs.size());
+    for (const double z : zs) r.meanZ += z / double(zs.size());
+    for (const double z : zs) {
+        r.stdZ += (z - r.meanZ) * (z - r.meanZ) / double(zs.size());
+        r.maxAbsZ = std::max(r.maxAbsZ, std::abs(z));
+    }
+    r.stdZ = std::sqrt(r.stdZ);
+    return r;
+}
+
+TEST(GltfBlender, ExportedSceneRendersAsCyclesDoes) {
+    if (!onPath("blender")) GTEST_SKIP() << "blender is not on PATH (./setup.sh test installs it)";
+    const fs::path peer = fs::path(TETGLOW_SOURCE_DIR) / ".." / "shared" / "peers" / "cycles_render.py";
+    if (!fs::exists(peer)) GTEST_SKIP() << peer << " is missing (the Cycles peer)";
+    const std::string dir = test::tempDir(), glb = dir + "/scene.glb";
+    std::string script = kBlenderScript;
+    for (const auto& [key, value] : {std::pair{"@ANGLE@", kLensAngle},
+                                     {"@WATTS@", kWatts},
+                                     {"@IOR@", kIor},
+                                     {"@DENSITY@", kDensity},
+                                     {"@R@", kColour.x},
+                                     {"@G@", kColour.y},
+                                     {"@B@", kColour.z}})
+        script = replaced(script, key, value);
+    const std::string scriptPath = test::writeTemp("build_scene.py", script);
+    ASSERT_EQ(runQuiet("blender -b --factory-startup --python-exit-code 1 --python " + scriptPath + " -- " + glb,
+                       dir + "/blender.log"),
+              0)
+        << test::readFile(dir + "/blender.log");
+
+    // What the exporter wrote, read in Cycles' units.
+    const SceneDesc s = loadScene(glb);
+    ASSERT_EQ(s.lights.size(), 1u);
+    EXPECT_EQ(s.lights[0].type, LightType::Point);
+    for (int k = 0; k < 3; ++k)  // the exporter writes 32-bit floats
+        EXPECT_NEAR(s.lights[0].intensity[k], kWatts / (4 * glm::pi<double>()), 1e-6 * kWatts);
+    EXPECT_EQ(s.camera.width, 48);
+    EXPECT_EQ(s.camera.height, 36);
+    // Blender's lens angle spans the wider (horizontal) axis; tetglow's fov the shorter one.
+    EXPECT_NEAR(s.camera.fov, 2 * std::atan(std::tan(kLensAngle / 2) * 36 / 48) * 180 / glm::pi<double>(), 1e-4);
+    ASSERT_EQ(s.surfaces.size(), 1u);
+    EXPECT_EQ(s.surfaces[0].material.type, MaterialType::Diffuse);
+    ASSERT_EQ(s.media.size(), 1u);
+    EXPECT_EQ(s.media[0].boundaryMaterial.type, MaterialType::Dielectric);
+    EXPECT_NEAR(s.media[0].boundaryMaterial.ior, kIor, 1e-6);
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(s.media[0].sigmaA[k], -std::log(kColour[k]) * kDensity, 1e-5);
+
+    // tetglow renders the .glb; Cycles renders the same scene converted to JSON.
+    const std::string json = dir + "/scene.json";
+    const auto converted = test::runTetglow("convert " + glb + " -o " + json);
+    ASSERT_EQ(converted.exitCode, 0) << converted.err;
+    const auto rendered =
+        test::runTetglow("render " + glb + " --spp 128 --seed 1 --threads 2 -o " + dir + "/tetglow.exr");
+    ASSERT_EQ(rendered.exitCode, 0) << rendered.err;
+    // The peer predates the integrator's "final_gather" and media's "name", which it does not need.
+    nlohmann::json forPeer = nlohmann::json::parse(test::readFile(json));
+    forPeer["integrator"].erase("final_gather");
+    for (auto& medium : forPeer["media"]) medium.erase("name");
+    test::writeTemp("peer.json", forPeer.dump());
+    ASSERT_EQ(runQuiet("blender -b --factory-startup --python " + peer.string() + " -- " + dir + "/peer.json" +
+                           " --spp 128 --threads 2 --seed 1 --out " + dir + "/cycles.exr",
+                       dir + "/cycles.log"),
+              0)
+        << test::readFile(dir + "/cycles.log");
+    const Image a = readExr(dir + "/tetglow.exr"), b = readExr(dir + "/cycles.exr");
+    ASSERT_EQ(a.width, b.width);
+    ASSERT_EQ(a.height, b.height);
+    glm::dvec3 meanA(0), meanB(0);
+    for (size_t i = 0; i < a.pixels.size(); ++i) {
+        meanA += glm::dvec3(a.pixels[i]) / double(a.pixels.size());
+        meanB += glm::dvec3(b.pixels[i]) / double(b.pixels.size());
+    }
+    const BlockZ z = blockZ(a, b, 6);
+    std::printf(
+        "tetglow mean %.5f %.5f %.5f, Cycles %.5f %.5f %.5f; %d blocks: mean z %.2f, std z %.2f, max |z| %.2f\n",
+        meanA.x, meanA.y, meanA.z, meanB.x, meanB.y, meanB.z, z.blocks, z.meanZ, z.stdZ, z.maxAbsZ);
+    EXPECT_GT(meanA.x, 0.01);           // the floor is lit
+    ASSERT_GE(z.blocks, 24);            // half the image or more is noisy floor and sphere (34 of 48 blocks)
+    EXPECT_LT(std::abs(z.meanZ), 1.0);  // 5 sigma of the mean of 24 or more independent z
+    EXPECT_LT(z.stdZ, 1.6);
+    EXPECT_LT(z.maxAbsZ, 5);
+}
+
+}  // namespace
+}  // namespace tetglow
