@@ -1,5 +1,6 @@
 // A scene built in headless Blender and written by Blender's own glTF exporter: tetglow reads the
-// light in Cycles' units (a point light of P watts: P / (4 pi) W/sr), the camera's field of view,
+// lights in Cycles' units (a point or spot light of P watts: P / (4 pi) W/sr; a sun of strength S:
+// S W/m^2), the camera's field of view,
 // the glass and its Principled Volume, and renders the .glb as Cycles (the peer in
 // ../shared/peers, on the converted JSON) renders it, within their noise. Skipped where Blender
 // or the peer is missing.
@@ -20,10 +21,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr double kWatts = 400, kLensAngle = 0.8, kIor = 1.45, kDensity = 1.5;
+constexpr double kWatts = 400, kSun = 0.5, kLensAngle = 0.8, kIor = 1.45, kDensity = 1.5;
 const glm::dvec3 kColour(0.9, 0.5, 0.2);
 
-// The scene in Blender's Z-up frame: a camera, a point light of kWatts, a diffuse floor and an ico
+// The scene in Blender's Z-up frame: a camera, a point and a spot light of kWatts, a sun, a diffuse floor and an ico
 // sphere of glass (Principled BSDF, transmission 1) holding an absorbing volume. Blender 3.4's
 // exporter writes KHR_materials_volume only from a Volume Absorption node (Color, and Density as
 // 1 / attenuationDistance; a Principled Volume gives none) and only where a "glTF Material Output"
@@ -47,6 +48,20 @@ lamp.shadow_soft_size = 0
 lamp_object = bpy.data.objects.new('Lamp', lamp)
 lamp_object.location = (1.5, -1.0, 3.0)
 scene.collection.objects.link(lamp_object)
+sun = bpy.data.lights.new('Sun', 'SUN')
+sun.energy = @SUN@
+sun.angle = 0
+sun_object = bpy.data.objects.new('Sun', sun)
+sun_object.rotation_euler = (math.radians(30), 0, math.radians(50))
+scene.collection.objects.link(sun_object)
+spot = bpy.data.lights.new('Spot', 'SPOT')
+spot.energy = @WATTS@
+spot.shadow_soft_size = 0
+spot.spot_size = math.radians(60)
+spot.spot_blend = 0.2
+spot_object = bpy.data.objects.new('Spot', spot)
+spot_object.location = (-1.5, -1.0, 2.5)
+scene.collection.objects.link(spot_object)
 
 def principled(name):
     m = bpy.data.materials.new(name)
@@ -134,6 +149,7 @@ TEST(GltfBlender, ExportedSceneRendersAsCyclesDoes) {
     std::string script = kBlenderScript;
     for (const auto& [key, value] : {std::pair{"@ANGLE@", kLensAngle},
                                      {"@WATTS@", kWatts},
+                                     {"@SUN@", kSun},
                                      {"@IOR@", kIor},
                                      {"@DENSITY@", kDensity},
                                      {"@R@", kColour.x},
@@ -148,10 +164,17 @@ TEST(GltfBlender, ExportedSceneRendersAsCyclesDoes) {
 
     // What the exporter wrote, read in Cycles' units.
     const SceneDesc s = loadScene(glb);
-    ASSERT_EQ(s.lights.size(), 1u);
-    EXPECT_EQ(s.lights[0].type, LightType::Point);
-    for (int k = 0; k < 3; ++k)  // the exporter writes 32-bit floats
-        EXPECT_NEAR(s.lights[0].intensity[k], kWatts / (4 * glm::pi<double>()), 1e-6 * kWatts);
+    // Point and spot lights of P watts: P / (4 pi) W/sr; the sun: its strength in W/m^2.
+    ASSERT_EQ(s.lights.size(), 3u);
+    for (const LightDesc& l : s.lights) {
+        const double expected = l.type == LightType::Distant ? kSun : kWatts / (4 * glm::pi<double>());
+        for (int k = 0; k < 3; ++k)  // the exporter writes 32-bit floats
+            EXPECT_NEAR(emissionOf(l)[k], expected, 1e-6 * expected) << emissionKey(l.type);
+        if (l.type == LightType::Spot) {  // Blender's spot_size is the whole cone; its blend a part of the half
+            EXPECT_NEAR(l.coneAngle, 30, 1e-4);
+            EXPECT_NEAR(l.coneDelta, 30 * 0.2, 1e-4);
+        }
+    }
     EXPECT_EQ(s.camera.width, 48);
     EXPECT_EQ(s.camera.height, 36);
     // Blender's lens angle spans the wider (horizontal) axis; tetglow's fov the shorter one.
