@@ -11,6 +11,7 @@
 #include <glm/gtc/constants.hpp>
 
 #include "GltfBuilder.h"
+#include "PreviewProcess.h"
 #include "SceneCompare.h"
 #include "TestMeshes.h"
 #include "render/ImageIO.h"
@@ -355,6 +356,28 @@ TEST(GltfScene, ConvertedToJsonRendersTheSameImage) {
     render(jsonPath, dir + "/json.exr", res);
     EXPECT_EQ(test::readFile(dir + "/glb.exr"), test::readFile(dir + "/json.exr"));
     EXPECT_EQ(relativeDifference(dir + "/glb.exr", dir + "/json.exr"), 0);  // and not black
+}
+
+// A .gltf is JSON, but not a tetglow scene: the preview saves it as the scene writer's JSON beside
+// it, as a pbrt scene, and never edits the glTF itself.
+TEST(GltfScene, PreviewSavesTheSceneAsJsonBesideIt) {
+    const std::string dir = test::tempDir();
+    GltfBuilder b = withCamera();
+    addFloor(b);
+    b.addLight({{"type", "point"}, {"intensity", 683}});
+    b.addNode({{"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}, {"translation", {0, 2, 0}}});
+    const std::string gltf = b.writeGltf(dir + "/room.gltf"), before = test::readFile(gltf);
+    test::PreviewProcess preview(gltf + " --port 0 --threads 1");
+    const auto post = [&](const std::string& path, const std::string& body) {
+        return test::rawHttp(preview.port(), test::httpRequest("POST", path, preview.port(),
+                                                               {{"Content-Type", "application/json"}}, body));
+    };
+    const test::HttpReply saved = post("/save/scene", "{}");
+    ASSERT_EQ(saved.status, 200) << saved.body;
+    EXPECT_EQ(json::parse(saved.body)["scene"], dir + "/room-tuned-1.json");
+    test::expectSameScene(loadScene(gltf), loadScene(dir + "/room-tuned-1.json"));
+    EXPECT_NE(post("/save/scene", R"({"overwrite": true})").status, 200);
+    EXPECT_EQ(test::readFile(gltf), before);
 }
 
 // Every malformed file is one line naming the file and the JSON pointer (or the GLB part).

@@ -292,14 +292,14 @@ private:
     }
 
     // A JSON scene: the user's file with only the values changed ({"overwrite": true}: over it,
-    // else as <scene>-tuned-<n>.json beside it, so its mesh references hold). A pbrt scene: the
+    // else as <scene>-tuned-<n>.json beside it, so its mesh references hold). A pbrt or glTF scene: the
     // scene writer's JSON, its meshes beside it.
     void saveScene(const std::string& body, httplib::Response& res) {
         const bool overwrite = flagOf(body, "overwrite");
         std::lock_guard lock(saveMutex_);
         std::lock_guard settingsLock(settingsMutex_);
         if (overwrite && original_.is_null())
-            return sendError(res, "not saved: a pbrt scene is saved as JSON beside it, never over it");
+            return sendError(res, "not saved: a pbrt or glTF scene is saved as JSON beside it, never over it");
         const std::string path = overwrite ? scenePath_ : saves_.next("tuned", {".json"}) + ".json";
         if (original_.is_null())
             writeScene(settings_.scene(), path);
@@ -321,7 +321,7 @@ private:
     }
 
     const std::string scenePath_;
-    const nlohmann::ordered_json original_;  // the JSON scene file as read; null for pbrt
+    const nlohmann::ordered_json original_;  // the JSON scene file as read; null for pbrt and glTF
     PreviewSaves saves_;
     std::string host_;  // what the server is bound to, from bind() on
     int port_ = 0;
