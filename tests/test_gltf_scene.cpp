@@ -418,6 +418,8 @@ TEST(GltfScene, MalformedFilesAreOneLineErrors) {
              json& j = b.json;
              j["buffers"][0]["byteLength"] = 100000;
          }},
+        {"huge", "/accessors/0/count: expected an integer in 1..402653184, got 1000000000",
+         [](GltfBuilder& b) { b.json["accessors"][0]["count"] = 1000000000; }},
         {"cycle", "/nodes/0/children/0: node 0 is reached twice",
          [](GltfBuilder& b) {
              json& j = b.json;
@@ -463,6 +465,12 @@ TEST(GltfScene, MalformedFilesAreOneLineErrors) {
         EXPECT_EQ(e.rfind(path + ": " + c.expected, 0), 0u) << c.name << ": " << e;
         EXPECT_EQ(e.find('\n'), std::string::npos) << c.name;
     }
+    // JSON past a scene file's 64 MiB is refused before it is parsed (parsed, it would take many times that).
+    GltfBuilder big = good;
+    big.json["extras"] = std::string(65 << 20, 'x');
+    const std::string bigPath = big.writeGltf(dir + "/big.gltf");
+    EXPECT_EQ(errorOf(bigPath).rfind(bigPath + ": its JSON is 65 MiB, larger than the 64 MiB limit for a scene", 0), 0u)
+        << errorOf(bigPath);
     // A cut GLB, through the command line: one line, exit code 1.
     const std::string glb = good.writeGlb(dir + "/cut.glb");
     std::string bytes = test::readFile(glb);

@@ -159,7 +159,8 @@ AccessorView accessorView(const GltfDocument& doc, const JsonValue& indexValue, 
     if (!allowed) o["componentType"].error("this component type is not allowed here");
     const uint64_t components = std::strcmp(type, "VEC3") == 0 ? 3 : 1;
     const uint64_t element = components * uint64_t(componentBytes(a.componentType));
-    a.count = uint64_t(o["count"].integer(1, int64_t(kMaxMeshFileBytes)));
+    // No primitive may hold more than the triangles a whole scene may (a strip: count - 2).
+    a.count = uint64_t(o["count"].integer(1, 3 * int64_t(kMaxSceneMeshTriangles)));
     const JsonValue viewIndex = o["bufferView"];
     const std::vector<JsonValue>& views = doc.bufferViews;
     if (views.empty()) viewIndex.error("the file has no bufferViews");
@@ -227,6 +228,11 @@ GltfDocument readGltfDocument(const std::string& path, std::string data) {
     doc.path = path;
     std::string glbBin;
     if (isGlb(data)) std::tie(data, glbBin) = splitGlb(data, path);
+    // The JSON within a scene file's limit: parsed, it takes many times its size.
+    if (data.size() > kMaxSceneFileBytes)
+        throw InputError(path + ": its JSON is " + std::to_string(data.size() / kMiB) +
+                         " MiB, larger than the 64 MiB limit for a scene (embedded data: URIs count; put the "
+                         "buffers in a .bin or a GLB)");
     doc.json = parseJson(data, path);
     data.clear();
     JsonObject root(doc.root());
