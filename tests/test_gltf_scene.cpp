@@ -420,6 +420,10 @@ TEST(GltfScene, MalformedFilesAreOneLineErrors) {
          }},
         {"huge", "/accessors/0/count: expected an integer in 1..402653184, got 1000000000",
          [](GltfBuilder& b) { b.json["accessors"][0]["count"] = 1000000000; }},
+        {"flat", "/nodes/0: the camera's transform is singular (scale 0)",
+         [](GltfBuilder& b) {
+             b.json["nodes"][0]["scale"] = {1, 0, 1};
+         }},
         {"cycle", "/nodes/0/children/0: node 0 is reached twice",
          [](GltfBuilder& b) {
              json& j = b.json;

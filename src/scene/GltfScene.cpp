@@ -345,6 +345,8 @@ SceneDesc loadGltfScene(const std::string& path, std::string data, const std::st
         if (auto f = o["camera"]) {
             cameraNodes.push_back("'" + shorten(nodeName, 40) + "'");
             if (!haveCamera && (cameraName.empty() || nodeName == cameraName)) {
+                if (glm::determinant(glm::dmat3(n.world)) == 0)
+                    node.error("the camera's transform is singular (scale 0)");
                 s.camera = readCamera(cameras[index(f, cameras.size(), "cameras")], n.world, extras.resolution);
                 haveCamera = true;
             }
