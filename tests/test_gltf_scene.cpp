@@ -454,7 +454,7 @@ TEST(GltfScene, MalformedFilesAreOneLineErrors) {
              json& j = b.json;
              j["materials"][0]["extensions"]["KHR_materials_volume"] = {{"attenuationColor", {0, 1, 1}}};
          }},
-        {"spot", "/extensions/KHR_lights_punctual/lights/0/spot/innerConeAngle: expected a number in [0, 0.5)",
+        {"spot", "/extensions/KHR_lights_punctual/lights/0/spot/innerConeAngle: expected a number in [0, 0.5]",
          [](GltfBuilder& b) {
              json& j = b.json;
              j["extensions"]["KHR_lights_punctual"]["lights"][0] = {

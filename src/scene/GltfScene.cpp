@@ -94,16 +94,20 @@ struct MaterialRole {
 
 // A material with no extensions or extras of tetglow's: diffuse from its base colour, or
 // index-matched where it is see-through without a transmission extension (alpha blending).
+// pbrMetallicRoughness's baseColorFactor: RGB and alpha.
+std::pair<RGB, double> baseColourOf(JsonObject& o) {
+    const JsonValue pbr = o["pbrMetallicRoughness"];
+    const JsonValue f = pbr ? JsonObject(pbr)["baseColorFactor"] : absent();
+    if (!f) return {RGB(1), 1};
+    const std::vector<double> c = f.numbers(4, kUnit);
+    return {RGB(c[0], c[1], c[2]), c[3]};
+}
+
 MaterialDesc readSurfaceMaterial(JsonObject& o, std::vector<std::string>& warnings) {
-    RGB base(1);
-    double alpha = 1, metallic = 1;
+    const auto [base, alpha] = baseColourOf(o);
+    double metallic = 1;
     if (auto pbr = o["pbrMetallicRoughness"]) {
         JsonObject p(pbr);
-        if (auto f = p["baseColorFactor"]) {
-            const std::vector<double> c = f.numbers(4, kUnit);
-            base = RGB(c[0], c[1], c[2]);
-            alpha = c[3];
-        }
         if (auto f = p["metallicFactor"]) metallic = f.number(kUnit);
         if (auto f = p["baseColorTexture"])
             addWarning(warnings, warning(f, "textures are not read; the baseColorFactor is used"));
@@ -160,6 +164,10 @@ MaterialRole readMaterial(const GltfDocument& doc, const JsonValue& v, std::vect
             if (auto f = JsonObject(e)["ior"]) m.boundaryMaterial.ior = f.number(kPositive);
         if (transmission < 1)
             addWarning(warnings, warning(o.self(), "a transmissionFactor below 1 is rendered as 1 (all light enters)"));
+        if (baseColourOf(o).first != RGB(1))
+            addWarning(warnings, warning(o.self(),
+                                         "the baseColorFactor's tint of transmitted light is not rendered "
+                                         "(tetglow's glass is clear)"));
     }
     if (volume) {
         // Beer-Lambert: light that travels attenuationDistance keeps attenuationColor of itself.
@@ -237,7 +245,8 @@ LightDesc readLight(const JsonValue& v, const glm::dmat4& world, std::vector<std
         JsonObject s(o["spot"]);
         double inner = 0, outer = kPi / 4;
         if (auto f = s["outerConeAngle"]) outer = f.number({.lo = 0, .hi = kPi / 2, .loOpen = true});
-        if (auto f = s["innerConeAngle"]) inner = f.number({.lo = 0, .hi = outer, .hiOpen = true});
+        // The spec asks inner < outer; Blender writes them equal for a spot without blend.
+        if (auto f = s["innerConeAngle"]) inner = f.number({.lo = 0, .hi = outer});
         l.coneAngle = glm::degrees(outer);
         l.coneDelta = glm::degrees(outer - inner);
     }
