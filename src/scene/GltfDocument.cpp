@@ -166,6 +166,7 @@ AccessorView accessorView(const GltfDocument& doc, const JsonValue& indexValue, 
     if (views.empty()) viewIndex.error("the file has no bufferViews");
     JsonObject view(views[size_t(viewIndex.integer(0, int64_t(views.size()) - 1))]);
     const JsonValue bufferIndex = view["buffer"];
+    if (doc.buffers.empty()) bufferIndex.error("the file has no buffers");
     const std::string& buffer = doc.buffers.at(size_t(bufferIndex.integer(0, int64_t(doc.buffers.size()) - 1)));
     const uint64_t viewOffset = view["byteOffset"] ? uint64_t(view["byteOffset"].integer(0)) : 0;
     const uint64_t viewLength = uint64_t(view["byteLength"].integer(1));
