@@ -1,0 +1,31 @@
+"""File > Export > tetglow scene: the JSON scene with its meshes beside it, for `tetglow render`
+or `tetglow farm`."""
+import bpy
+from bpy_extras.io_utils import ExportHelper
+
+from . import export
+
+
+class EXPORT_SCENE_OT_tetglow(bpy.types.Operator, ExportHelper):
+    """Export the scene as a tetglow JSON scene with its meshes in a 'meshes' folder beside it"""
+    bl_idname = 'export_scene.tetglow'
+    bl_label = 'Export tetglow scene'
+    filename_ext = '.json'
+    filter_glob: bpy.props.StringProperty(default='*.json', options={'HIDDEN'})
+
+    def execute(self, context):
+        depsgraph = context.evaluated_depsgraph_get()
+        warnings = []
+        try:
+            export.write(depsgraph, context.scene.tetglow, self.filepath, warnings.append)
+        except (ValueError, OSError) as e:
+            self.report({'ERROR'}, 'tetglow: %s' % e)
+            return {'CANCELLED'}
+        for w in warnings:
+            self.report({'WARNING'}, w)
+        self.report({'INFO'}, 'tetglow scene written to %s' % self.filepath)
+        return {'FINISHED'}
+
+
+def menu_entry(self, context):
+    self.layout.operator(EXPORT_SCENE_OT_tetglow.bl_idname, text='tetglow scene (.json)')

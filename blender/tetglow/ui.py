@@ -1,0 +1,51 @@
+"""The render properties panel, and the standard panels shown for the tetglow engine."""
+import bpy
+
+from . import preferences
+
+
+class RENDER_PT_tetglow(bpy.types.Panel):
+    bl_label = 'tetglow'
+    bl_space_type = 'PROPERTIES'
+    bl_region_type = 'WINDOW'
+    bl_context = 'render'
+    COMPAT_ENGINES = {'TETGLOW'}
+
+    @classmethod
+    def poll(cls, context):
+        return context.engine in cls.COMPAT_ENGINES
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        s = context.scene.tetglow
+        layout.prop(s, 'integrator')
+        layout.prop(s, 'passes')
+        layout.prop(s, 'noise')
+        row = layout.row()
+        row.enabled = s.integrator == 'photon'
+        row.prop(s, 'photons')
+        layout.prop(s, 'time_cap')
+        layout.prop(s, 'max_depth')
+        layout.prop(s, 'seed')
+        if preferences.find_binary(context) is None:
+            layout.label(text='tetglow binary not found: see Preferences > Add-ons', icon='ERROR')
+
+
+def shared_panels():
+    """Blender's own panels (output, materials, lights, world, camera) that Cycles shows."""
+    for p in bpy.types.Panel.__subclasses__():
+        engines = getattr(p, 'COMPAT_ENGINES', None)
+        if engines is not None and 'CYCLES' in engines and not p.__name__.startswith(
+                ('CYCLES_RENDER_PT', 'CYCLES_VIEW_LAYER_PT', 'RENDER_PT_eevee')):
+            yield p
+
+
+def register():
+    for p in shared_panels():
+        p.COMPAT_ENGINES.add('TETGLOW')
+
+
+def unregister():
+    for p in shared_panels():
+        p.COMPAT_ENGINES.discard('TETGLOW')
