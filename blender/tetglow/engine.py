@@ -7,7 +7,7 @@ import time
 
 import bpy
 
-from . import camera, export, preferences, process
+from . import camera, export, preferences, process, repair
 
 
 def command(binary, scene_json, out_exr, settings, threads):
@@ -46,12 +46,15 @@ class TetglowRenderEngine(bpy.types.RenderEngine):
         self.update_stats('', 'tetglow: exporting the scene')
         t0 = time.monotonic()
         path = os.path.join(folder, 'scene.json')
+        open_media = []
         try:
-            export.write(depsgraph, scene.tetglow, path, lambda m: self.report({'WARNING'}, m))
+            export.write(depsgraph, scene.tetglow, path, lambda m: self.report({'WARNING'}, m), open_media)
         except (ValueError, OSError) as e:
             self.fail('tetglow: %s' % e)
             return
-        self.export_seconds = time.monotonic() - t0
+        self.update_stats('', 'tetglow: scene exported in %.2f s' % (time.monotonic() - t0))
+        for note in repair.notes(binary, folder, open_media):
+            self.report({'WARNING'}, note)
         out = os.path.join(folder, 'render.exr')
         run = process.Render(command(binary, path, out, scene.tetglow, scene.render.threads), folder)
         tail = []

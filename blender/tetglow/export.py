@@ -90,8 +90,9 @@ def _g(v, name, warn):
     return max(min(v, 0.999), -0.999)
 
 
-def build(depsgraph, settings, folder, warn):
-    """Writes the meshes under folder/meshes and returns the scene as a dict."""
+def build(depsgraph, settings, folder, warn, open_media=None):
+    """Writes the meshes under folder/meshes and returns the scene as a dict; the (object, mesh
+    file) of each medium whose mesh is not closed go to open_media, for tetglow's repair note."""
     scene = depsgraph.scene
     os.makedirs(os.path.join(folder, 'meshes'), exist_ok=True)
     if scene.camera is None:
@@ -120,7 +121,14 @@ def build(depsgraph, settings, folder, warn):
     for i, p in enumerate(parts):
         if p.volume is not None:
             v = p.effective
-            m = {'name': _name(p.name), 'shape': _mesh_shape(folder, p, i), 'sigma_a': v.sigma_a,
+            shape = _mesh_shape(folder, p, i)
+            edges = geometry.open_edges(p.T)
+            if edges:
+                warn("object '%s': its mesh is not closed (%d edges not shared by two faces): "
+                     "tetglow repairs it" % (p.name, edges))
+                if open_media is not None:
+                    open_media.append((p.name, shape['file']))
+            m = {'name': _name(p.name), 'shape': shape, 'sigma_a': v.sigma_a,
                  'sigma_s': v.sigma_s, 'g': _g(v.g, p.name, warn), 'emission': v.emission}
             if p.surface is not None and p.surface.kind == 'dielectric':
                 m['boundary'] = {'type': 'dielectric', 'ior': p.surface.ior}
@@ -139,10 +147,10 @@ def build(depsgraph, settings, folder, warn):
     return out
 
 
-def write(depsgraph, settings, path, warn):
+def write(depsgraph, settings, path, warn, open_media=None):
     """Exports to path (a .json), its meshes in a 'meshes' folder beside it; returns the dict."""
     folder = os.path.dirname(os.path.abspath(path))
-    scene = build(depsgraph, settings, folder, warn)
+    scene = build(depsgraph, settings, folder, warn, open_media)
     with open(path, 'w') as f:
         json.dump(scene, f, indent=1)
     return scene

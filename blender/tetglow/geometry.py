@@ -40,6 +40,13 @@ def compact(P, T):
     return P[used], inv.reshape(-1, 3)
 
 
+def open_edges(T):
+    """Edges not shared by exactly two triangles: 0 for a closed manifold surface."""
+    E = np.sort(np.concatenate([T[:, [0, 1]], T[:, [1, 2]], T[:, [2, 0]]]), axis=1)
+    _, counts = np.unique(E, axis=0, return_counts=True)
+    return int((counts != 2).sum())
+
+
 def write_obj(path, P, T):
     with open(path, 'w') as f:
         np.savetxt(f, P, fmt='v %.9g %.9g %.9g')

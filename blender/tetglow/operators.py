@@ -1,9 +1,11 @@
 """File > Export > tetglow scene: the JSON scene with its meshes beside it, for `tetglow render`
 or `tetglow farm`."""
+import os
+
 import bpy
 from bpy_extras.io_utils import ExportHelper
 
-from . import export
+from . import export, preferences, repair
 
 
 class EXPORT_SCENE_OT_tetglow(bpy.types.Operator, ExportHelper):
@@ -15,12 +17,15 @@ class EXPORT_SCENE_OT_tetglow(bpy.types.Operator, ExportHelper):
 
     def execute(self, context):
         depsgraph = context.evaluated_depsgraph_get()
-        warnings = []
+        warnings, open_media = [], []
         try:
-            export.write(depsgraph, context.scene.tetglow, self.filepath, warnings.append)
+            export.write(depsgraph, context.scene.tetglow, self.filepath, warnings.append, open_media)
         except (ValueError, OSError) as e:
             self.report({'ERROR'}, 'tetglow: %s' % e)
             return {'CANCELLED'}
+        binary = preferences.find_binary(context)
+        if binary is not None:
+            warnings += repair.notes(binary, os.path.dirname(os.path.abspath(self.filepath)), open_media)
         for w in warnings:
             self.report({'WARNING'}, w)
         self.report({'INFO'}, 'tetglow scene written to %s' % self.filepath)

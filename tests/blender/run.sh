@@ -8,5 +8,5 @@ work=$(mktemp -d "${TMPDIR:-/tmp}/tetglow-blender.XXXXXX") || exit 1
 trap 'rm -rf "$work"' EXIT
 mkdir -p "$work/scripts/addons"
 ln -s "$here/../../blender/tetglow" "$work/scripts/addons/tetglow"
-BLENDER_USER_SCRIPTS="$work/scripts" blender -b --factory-startup --python-exit-code 1 \
+BLENDER_USER_SCRIPTS="$work/scripts" BLENDER_USER_CONFIG="$work/config" blender -b --factory-startup --python-exit-code 1 \
     --python "$here/test_addon.py" -- "$tetglow" "$work/out" 2>&1
