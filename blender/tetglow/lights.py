@@ -1,7 +1,8 @@
 """Blender lights and world as tetglow lights, in Cycles 3.4's units (measured against Cycles:
 docs/BLENDER.md).
 
-Point and spot: radiant intensity I = Power / (4 pi) W/sr (on the spot's axis). Sun: irradiance
+Point and spot: radiant intensity I = Power / (4 pi) W/sr (on the spot's axis); a spot's radius
+makes tetglow's spot a disk of that radius. Sun: irradiance
 = Strength W/m^2 on a surface facing it. Area: radiance L = Power / (4 A), one-sided along the
 light's -Z. World: the Background colour x strength, a constant environment.
 """
@@ -28,7 +29,7 @@ def convert_light(ob, matrix, warn):
             n.bl_idname not in ('ShaderNodeEmission', 'ShaderNodeOutputLight') for n in ld.node_tree.nodes):
         warn("light '%s': its node tree is not carried; using its colour and power" % name)
     if ld.type in ('POINT', 'SPOT'):
-        if ld.shadow_soft_size > 0:
+        if ld.type == 'POINT' and ld.shadow_soft_size > 0:
             warn("light '%s': radius %g is not carried: a point of radius 0" % (name, ld.shadow_soft_size))
         light = {'type': 'point', 'position': pos, 'intensity': _rgb(ld.color, ld.energy / (4 * math.pi))}
         if ld.type == 'SPOT':
@@ -38,6 +39,11 @@ def convert_light(ob, matrix, warn):
             delta = min(max(half - math.degrees(math.acos(cos_start)), 0.0), half)
             light.update({'type': 'spot', 'look_at': [p + a for p, a in zip(pos, axis)],
                           'cone_angle': min(half, 90.0), 'cone_delta': delta})
+            if cos_total < 0.99:
+                warn("light '%s': spot profile approximated: Cycles 3.4 also multiplies by the cosine "
+                     "off the axis (%.2f at the cone's edge) and blends by a smoothstep" % (name, cos_total))
+            if ld.shadow_soft_size > 0:     # tetglow: a disk facing the axis; Cycles: one facing the point lit
+                light['radius'] = ld.shadow_soft_size
         return light
     if ld.type == 'SUN':
         if ld.angle > math.radians(1):

@@ -42,10 +42,12 @@ def shared_panels():
 
 
 def register():
-    for p in shared_panels():
-        p.COMPAT_ENGINES.add('TETGLOW')
+    # A new set on each class: Cycles' panels share one set object through their base class,
+    # and adding to it would show every Cycles panel (its sampling too) for tetglow.
+    for p in list(shared_panels()):
+        p.COMPAT_ENGINES = set(p.COMPAT_ENGINES) | {'TETGLOW'}
 
 
 def unregister():
-    for p in shared_panels():
-        p.COMPAT_ENGINES.discard('TETGLOW')
+    for p in list(shared_panels()):
+        p.COMPAT_ENGINES = set(p.COMPAT_ENGINES) - {'TETGLOW'}
