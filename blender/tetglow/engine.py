@@ -10,6 +10,11 @@ import bpy
 from . import camera, export, preferences, process, repair
 
 
+# Seconds of the last render's stages (export, tetglow's own run, the whole render call), shown
+# in the status line and read by bench/results/blender_compare.py.
+last_timing = {}
+
+
 def command(binary, scene_json, out_exr, settings, threads):
     argv = [binary, 'render', scene_json, '-o', out_exr, '--threads', str(threads)]
     if settings.noise > 0:
@@ -55,7 +60,9 @@ class TetglowRenderEngine(bpy.types.RenderEngine):
         self.update_stats('', 'tetglow: scene exported in %.2f s' % (time.monotonic() - t0))
         for note in repair.notes(binary, folder, open_media):
             self.report({'WARNING'}, note)
+        t_export = time.monotonic() - t0
         out = os.path.join(folder, 'render.exr')
+        t1 = time.monotonic()
         run = process.Render(command(binary, path, out, scene.tetglow, scene.render.threads), folder)
         tail = []
         while True:
@@ -78,6 +85,7 @@ class TetglowRenderEngine(bpy.types.RenderEngine):
             elif process.is_warning(line):
                 self.report({'WARNING'}, line)
         code = run.proc.wait()
+        t_tetglow = time.monotonic() - t1
         if code != 0 or not os.path.isfile(out):
             errors = [t for t in tail if 'error' in t] or tail or ['exit code %d' % code]
             self.fail(errors[-1])
@@ -85,3 +93,6 @@ class TetglowRenderEngine(bpy.types.RenderEngine):
         result = self.begin_result(0, 0, w, h)
         result.layers[0].load_from_file(out)
         self.end_result(result)
+        last_timing.update(export_s=t_export, tetglow_s=t_tetglow, total_s=time.monotonic() - t0)
+        self.update_stats('', 'tetglow: export %.2f s, tetglow render %.2f s, in all %.2f s' % (
+            t_export, t_tetglow, last_timing['total_s']))

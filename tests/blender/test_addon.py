@@ -272,6 +272,14 @@ def test_unsupported_nodes_warn():
     assert len(s['surfaces']) == 1
 
 
+def test_panels_shown_for_the_engine():
+    t = bpy.types
+    assert 'TETGLOW' in t.CYCLES_MATERIAL_PT_volume.COMPAT_ENGINES     # node trees stay editable
+    assert 'TETGLOW' in t.CYCLES_LIGHT_PT_light.COMPAT_ENGINES
+    assert 'TETGLOW' not in t.CYCLES_RENDER_PT_sampling.COMPAT_ENGINES  # Cycles' own settings do not show
+    assert 'TETGLOW' not in t.CYCLES_RENDER_PT_light_paths.COMPAT_ENGINES
+
+
 def test_export_operator():
     scenes.glowing_volume(16)
     path = os.path.join(WORK, 'operator', 'fish.json')
