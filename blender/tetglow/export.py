@@ -151,6 +151,7 @@ def write(depsgraph, settings, path, warn, open_media=None):
     """Exports to path (a .json), its meshes in a 'meshes' folder beside it; returns the dict."""
     folder = os.path.dirname(os.path.abspath(path))
     scene = build(depsgraph, settings, folder, warn, open_media)
+    scene['output'] = os.path.splitext(os.path.basename(path))[0] + '.exr'    # `farm` and `render` without -o
     with open(path, 'w') as f:
         json.dump(scene, f, indent=1)
     return scene

@@ -287,6 +287,9 @@ def test_export_operator():
     assert bpy.ops.export_scene.tetglow(filepath=path) == {'FINISHED'}
     s = json.load(open(path))
     assert os.path.isfile(os.path.join(os.path.dirname(path), s['media'][0]['shape']['file']))
+    assert s['output'] == 'fish.exr'
+    r = subprocess.run([TETGLOW, 'farm', path, '--parts', '2', '--dry-run'], capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
     r = subprocess.run([TETGLOW, 'render', path, '--spp', '2', '-o', os.path.join(WORK, 'operator', 'x.exr')],
                        capture_output=True, text=True)
     assert r.returncode == 0, r.stderr
