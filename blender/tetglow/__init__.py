@@ -17,7 +17,7 @@ import bpy
 from . import engine, operators, preferences, properties, ui
 
 CLASSES = (preferences.TetglowPreferences, properties.TetglowRenderSettings, engine.TetglowRenderEngine,
-           operators.EXPORT_SCENE_OT_tetglow, ui.RENDER_PT_tetglow)
+           operators.EXPORT_SCENE_OT_tetglow, operators.SCENE_OT_tetglow_gltf_extras, ui.RENDER_PT_tetglow)
 
 
 def register():

@@ -23,8 +23,9 @@ def integrator(settings):
 class Part:
     """The triangles of one object that share one material, in world space."""
 
-    def __init__(self, name, P, T, surface, volume):
+    def __init__(self, name, P, T, surface, volume, material):
         self.name, self.P, self.T, self.surface, self.volume = name, P, T, surface, volume
+        self.material = material
         self.lo, self.hi = P.min(0), P.max(0)
 
 
@@ -53,7 +54,7 @@ def _parts(depsgraph, warn):
                 continue
             Pk, Tk = geometry.compact(W, T[M == k])
             label = name if len(slots) == 1 else '%s/%s' % (name, mat.name if mat else k)
-            yield Part(label, Pk, Tk, surface, volume)
+            yield Part(label, Pk, Tk, surface, volume, mat)
 
 
 def _nest(media, warn):
@@ -90,9 +91,10 @@ def _g(v, name, warn):
     return max(min(v, 0.999), -0.999)
 
 
-def build(depsgraph, settings, folder, warn, open_media=None):
+def build(depsgraph, settings, folder, warn, open_media=None, media_out=None):
     """Writes the meshes under folder/meshes and returns the scene as a dict; the (object, mesh
-    file) of each medium whose mesh is not closed go to open_media, for tetglow's repair note."""
+    file) of each medium whose mesh is not closed go to open_media, for tetglow's repair note,
+    and (material, medium dict) of every medium to media_out."""
     scene = depsgraph.scene
     os.makedirs(os.path.join(folder, 'meshes'), exist_ok=True)
     if scene.camera is None:
@@ -133,6 +135,8 @@ def build(depsgraph, settings, folder, warn, open_media=None):
             if p.surface is not None and p.surface.kind == 'dielectric':
                 m['boundary'] = {'type': 'dielectric', 'ior': p.surface.ior}
             out['media'].append(m)
+            if media_out is not None:
+                media_out.append((p.material, m))
         elif p.surface.kind == 'emitter':
             if max(p.surface.radiance) > 0:
                 out['lights'].append({'type': 'mesh', 'shape': _mesh_shape(folder, p, i),

@@ -5,7 +5,7 @@ import os
 import bpy
 from bpy_extras.io_utils import ExportHelper
 
-from . import export, preferences, repair
+from . import export, gltf_extras, preferences, repair
 
 
 class EXPORT_SCENE_OT_tetglow(bpy.types.Operator, ExportHelper):
@@ -29,6 +29,20 @@ class EXPORT_SCENE_OT_tetglow(bpy.types.Operator, ExportHelper):
         for w in warnings:
             self.report({'WARNING'}, w)
         self.report({'INFO'}, 'tetglow scene written to %s' % self.filepath)
+        return {'FINISHED'}
+
+
+class SCENE_OT_tetglow_gltf_extras(bpy.types.Operator):
+    """Store each medium's coefficients and the scene's resolution and environment as 'tetglow'
+    custom properties, which File > Export > glTF 2.0 writes to extras (Include > Custom Properties)"""
+    bl_idname = 'scene.tetglow_gltf_extras'
+    bl_label = 'Write glTF extras'
+
+    def execute(self, context):
+        warnings = []
+        gltf_extras.write(context.evaluated_depsgraph_get(), context.scene.tetglow, warnings.append)
+        for w in warnings:
+            self.report({'WARNING'}, w)
         return {'FINISHED'}
 
 

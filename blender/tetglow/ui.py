@@ -28,6 +28,7 @@ class RENDER_PT_tetglow(bpy.types.Panel):
         layout.prop(s, 'time_cap')
         layout.prop(s, 'max_depth')
         layout.prop(s, 'seed')
+        layout.operator('scene.tetglow_gltf_extras')
         if preferences.find_binary(context) is None:
             layout.label(text='tetglow binary not found: see Preferences > Add-ons', icon='ERROR')
 

@@ -126,8 +126,11 @@ def glass_skin(size=48):
     return scene
 
 
-def nested_core(size=48):
-    """(c) A glowing core nested inside a scattering body, under a sun."""
+def nested_core(size=48, gltf=False):
+    """(c) A glowing core nested inside a scattering body, under a sun. The core glows by an
+    Emission node in its volume; with gltf, by a Principled Volume's emission (density 0), which
+    Cycles renders the same: Blender's glTF exporter writes any Emission node as surface
+    emission."""
     scene = empty_scene(size)
     world((0.03, 0.03, 0.04))
     camera((0, -6.0, 1.0), (0, 0, 0))
@@ -140,12 +143,21 @@ def nested_core(size=48):
     nt.links.new(ab.outputs[0], add.inputs[1])
     sphere('body', 1.3, mat=body)
     core, nt, out = material('core')
-    node(nt, 'ShaderNodeEmission', out, 'Volume', Color=(1.0, 0.5, 0.1), Strength=1.5)
+    if gltf:
+        node(nt, 'ShaderNodeVolumePrincipled', out, 'Volume', Density=0.0,
+             **{'Emission Color': (1.0, 0.5, 0.1), 'Emission Strength': 1.5})
+    else:
+        node(nt, 'ShaderNodeEmission', out, 'Volume', Color=(1.0, 0.5, 0.1), Strength=1.5)
     sphere('core', 0.5, location=(0.1, 0, 0.1), subdivisions=2, mat=core)
     return scene
 
 
 SCENES = {'glowing_volume': glowing_volume, 'glass_skin': glass_skin, 'nested_core': nested_core}
+
+# The scenes whose every part glTF carries (cameras, point, spot and sun lights, absorbing volumes
+# and emission; through the add-on's extras, scattering): not the glass skin, whose area light and
+# Glass BSDF Blender's glTF exporter does not write.
+GLTF_SCENES = {'glowing_volume': glowing_volume, 'nested_core': lambda size: nested_core(size, gltf=True)}
 
 
 def cycles(scene, spp, max_depth=64, threads=2):
