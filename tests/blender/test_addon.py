@@ -419,6 +419,21 @@ def test_missing_binary_is_one_line():
     print('MISSING BINARY: %s' % lines[0])
 
 
+def test_tetglow_error_reaches_report():
+    scene = scenes.glowing_volume(16)
+    bpy.data.objects.remove(bpy.data.objects['lamp'])
+    bpy.data.objects.remove(bpy.data.objects['glow'])
+    scene.world = None                             # nothing emits: tetglow refuses the scene
+    scene.render.engine = 'TETGLOW'
+    blend = os.path.join(WORK, 'dark.blend')
+    bpy.ops.wm.save_as_mainfile(filepath=blend)
+    r, text = blender_cli(blend, '-o', '//dark_out', '-F', 'OPEN_EXR', '-x', '1')
+    lines = [x for x in text.splitlines() if x.startswith('Error:')]
+    assert lines and all('scene.json: /lights: nothing emits light' in x for x in lines), text
+    assert not os.path.exists(os.path.join(WORK, 'dark_out0001.exr')), text
+    print('TETGLOW ERROR: %s' % lines[0])
+
+
 def test_open_mesh_repair_reaches_report():
     scene = scenes.glowing_volume(16)
     ob = bpy.data.objects['glow']
