@@ -27,13 +27,12 @@ TETGLOW, WORK = os.path.abspath(ARGS[0]), os.path.abspath(ARGS[1])
 SIZE, SPP = 48, 256
 os.makedirs(WORK, exist_ok=True)
 addon_utils.enable('tetglow', default_set=True, handle_error=None)
-bpy.ops.wm.save_userpref()      # into BLENDER_USER_CONFIG: the command-line Blenders below load it
+# The binary under test, not another tetglow on the PATH; saved into BLENDER_USER_CONFIG, which
+# the command-line Blenders below load.
+bpy.context.preferences.addons['tetglow'].preferences.binary = TETGLOW
+bpy.ops.wm.save_userpref()
 import tetglow  # noqa: E402
 from tetglow import export, sockets  # noqa: E402
-
-
-def prefs():
-    return bpy.context.preferences.addons['tetglow'].preferences
 
 
 def exported(name):
