@@ -129,6 +129,7 @@ def test_surface_nodes():
     m, nt, out = scenes.material('base')
     p = scenes.node(nt, 'ShaderNodeBsdfPrincipled', out, **{'Base Color': (0.4, 0.5, 0.6)})
     scenes.sphere('base', 0.5, (3, 0, 0), mat=m)
+    scenes.sphere('bare', 0.5, (0, 0, 4))                               # no material
     m, nt, out = scenes.material('lamp')
     scenes.node(nt, 'ShaderNodeEmission', out, Color=(1.0, 0.5, 0.25), Strength=8.0)
     scenes.sphere('lamp', 0.5, (0, 0, 2), mat=m)
@@ -140,6 +141,7 @@ def test_surface_nodes():
     assert {'type': 'dielectric', 'ior': 1.5} in mats, mats          # glass without a volume: a surface
     assert any(m['type'] == 'diffuse' and np.allclose(m['reflectance'], [0.1, 0.2, 0.3]) for m in mats), mats
     assert any(m['type'] == 'diffuse' and np.allclose(m['reflectance'], [0.4, 0.5, 0.6]) for m in mats), mats
+    assert any(m['type'] == 'diffuse' and np.allclose(m['reflectance'], 0.8) for m in mats), mats  # Cycles' default
     lights = [x for x in s['lights'] if x['type'] == 'mesh']
     assert len(lights) == 1 and lights[0]['two_sided'], lights
     close(lights[0]['radiance'], [8.0, 4.0, 2.0])
