@@ -14,9 +14,11 @@ packages=(g++ cmake make pkg-config libtet1.5-dev libcgal-dev libboost-dev libem
           libcli11-dev libnanoflann-dev libpng-dev libassimp-dev libcpp-httplib-dev libgtest-dev libbenchmark-dev gnuplot-nox pngquant python3)
 # Only the tests need these: tetglow preview's page is tested in headless Chromium, tetglow farm
 # through a real Slurm on localhost (tests/slurm); the sanitized suite and the fuzzers need clang,
-# and ccache keeps the sanitized build that CI compiles from each clean clone. Blender builds and
-# exports a glTF scene and renders it with Cycles (tests/test_gltf_blender.cpp).
-test_packages=(chromium chromium-driver python3-selenium slurmctld slurmd slurm-client munge clang-format blender)
+# and ccache keeps the sanitized build that CI compiles from each clean clone. Blender is tested
+# itself: the add-on renders its scenes (tests/blender, numpy for the image comparisons), and its
+# glTF exporter writes a scene that tetglow reads (tests/test_gltf_blender.cpp).
+test_packages=(chromium chromium-driver python3-selenium slurmctld slurmd slurm-client munge clang-format
+               blender python3-numpy)
 case "$job" in
   test) packages+=("${test_packages[@]}") ;;
   sanitizers) packages+=("${test_packages[@]}" clang libclang-rt-14-dev ccache) ;;
