@@ -16,6 +16,9 @@ inline constexpr size_t kMaxLabelBytes = 64;  // a medium's "name", in UTF-8
 // A file whose name ends in .pbrt, or whose first token is a pbrt-v3 directive, is read as a
 // pbrt-v3 scene (scene/PbrtParser.h).
 SceneDesc loadScene(const std::string& path);
+// A JSON scene as `path` would hold it (its files relative to path's folder), read as loadScene
+// reads one: a scene checked before it is written.
+SceneDesc loadJsonScene(const nlohmann::json& doc, const std::string& path);
 
 // The parts of a scene file the preview re-tunes, with the loader's own checks and errors.
 // A camera's "position", "look_at", "up" and "fov" (up and fov, when absent, keep c's).
