@@ -17,7 +17,7 @@
 
 namespace tetglow::test {
 
-PreviewProcess::PreviewProcess(const std::string& args) {
+PreviewProcess::PreviewProcess(const std::string& args, const std::string& errPath) {
     int out[2];
     if (pipe(out) != 0) throw std::runtime_error("pipe");
     // TETGLOW_TEST_BINARY: another build, to see a test fail on the code before its fix.
@@ -25,7 +25,7 @@ PreviewProcess::PreviewProcess(const std::string& args) {
     const std::string cache =
         std::filesystem::temp_directory_path() / ("tetglow-preview-cache-" + std::to_string(getpid()));
     const std::string command =
-        "TETGLOW_CACHE_DIR=" + cache + " exec " + binary + " preview " + args + " 2>/dev/null </dev/null";
+        "TETGLOW_CACHE_DIR=" + cache + " exec " + binary + " preview " + args + " 2>" + errPath + " </dev/null";
     pid_ = fork();
     if (pid_ == 0) {
         dup2(out[1], 1);

@@ -10,8 +10,9 @@ namespace tetglow::test {
 
 class PreviewProcess {
 public:
-    // Starts `tetglow preview ARGS` (add "--port 0" for a free port) and waits for its URL.
-    explicit PreviewProcess(const std::string& args);
+    // Starts `tetglow preview ARGS` (add "--port 0" for a free port) and waits for its URL; its
+    // stderr goes to `errPath`.
+    explicit PreviewProcess(const std::string& args, const std::string& errPath = "/dev/null");
     ~PreviewProcess();
     PreviewProcess(const PreviewProcess&) = delete;
     PreviewProcess& operator=(const PreviewProcess&) = delete;

@@ -169,7 +169,7 @@ const Broken kBroken[] = {
      "scene.json:17:27: /media/0/sigma_a/1: number overflow"},
     {"duplicate key", R"("spp": 4,)", R"("spp": 4, "spp": 5,)", "/integrator/spp: duplicate key"},
     {"unknown key", R"("fov": 35)", R"("fovy": 35)",
-     "/camera/fovy: unknown key; allowed here: position, look_at, up, fov"},
+     "/camera/fovy: unknown key (did you mean \"fov\"?); allowed here: position, look_at, up, fov"},
     {"unknown top-level key", R"("output")", R"("ouptut")", "/ouptut: unknown key"},
     {"wrong type", R"("spp": 4)", R"("spp": "many")",
      R"(/integrator/spp: expected an integer in 1..1048576, got "many")"},

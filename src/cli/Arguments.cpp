@@ -30,8 +30,16 @@ std::string unknownArgument(CLI::App& app, int argc, char** argv) {
         if (arg.size() > 1 && arg[0] == '-' && !isNumber(arg)) {
             const std::string name = arg.substr(0, arg.find('='));
             if (name == "--help" || name == "-h") return "";  // CLI11 prints the help
-            if (!command->get_option_no_throw(name))
+            if (!command->get_option_no_throw(name)) {
+                // A value that starts with '-' ("--up -z") reads as an option unless joined by '='.
+                const CLI::Option* before = i > 1 && std::string(argv[i - 1]).find('=') == std::string::npos
+                                                ? command->get_option_no_throw(argv[i - 1])
+                                                : nullptr;
+                if (before && before->get_type_size_min() > 0)
+                    return before->get_name() + ": '" + shorten(arg) + "' reads as an option: write " +
+                           before->get_name() + "=" + shorten(arg);
                 return "unknown option '" + shorten(name) + "' (the options: '" + path + " --help')";
+            }
             continue;
         }
         // The first word where a subcommand is required names it.

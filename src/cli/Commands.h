@@ -1,5 +1,7 @@
 // Each `tetglow` subcommand lives in its own file and registers itself here.
 #pragma once
+#include <charconv>
+#include <cstdint>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -56,6 +58,22 @@ inline CLI::Validator inRange(const Range& range) {
             range.describe()};
 }
 inline const CLI::Validator kFinite = inRange({});
+
+// An integer in lo..hi, said in plain numbers (CLI11's own checks pass a value that then fails
+// to convert, or say only that it did not):
+//   --seed: expected an integer in 0..9223372036854775807, got '9223372036854775808'
+inline CLI::Validator inIntegers(int64_t lo, int64_t hi) {
+    const std::string range = std::to_string(lo) + ".." + std::to_string(hi);
+    return {[lo, hi, range](std::string& s) -> std::string {
+                int64_t v = 0;
+                const char* end = s.data() + s.size();
+                const auto read = std::from_chars(s.data(), end, v);
+                if (read.ec != std::errc() || read.ptr != end || v < lo || v > hi)
+                    return "expected an integer in " + range + ", got '" + shorten(s) + "'";
+                return {};
+            },
+            "INTEGER in " + range};
+}
 
 // An empty value would read as "not given" and be ignored.
 inline const CLI::Validator kNonEmpty{

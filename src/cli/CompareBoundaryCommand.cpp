@@ -163,7 +163,7 @@ void addCompareBoundaryCommand(CLI::App& app) {
     cmd->add_option("--steps", o->comparison.steps,
                     "March steps in world units (default: the diagonal / 20, / 100, / 500)")
         ->check(inRange(kPositive));
-    cmd->add_option("--seed", o->comparison.seed, "Random seed")->check(inRange(kNonNegative));
+    cmd->add_option("--seed", o->comparison.seed, "Random seed")->check(inIntegers(0, INT64_MAX));
     cmd->add_flag("--json", o->json, "Print one JSON object instead of the tables");
     cmd->add_option("--csv", o->csv, "Also write every row to this CSV file")->check(kNonEmpty);
     cmd->add_option("--picture", o->picture,

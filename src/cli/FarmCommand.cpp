@@ -12,6 +12,7 @@
 #include "cli/Commands.h"
 #include "cli/FarmChecks.h"
 #include "cli/FarmScripts.h"
+#include "cli/MediaReport.h"
 #include "cli/RenderArgs.h"
 #include "tet/CacheDirectory.h"
 #include "tet/TriangleMesh.h"
@@ -75,6 +76,7 @@ FarmPlan plan(const Options& o) {
     if (desc.integrator.timeLimit > 0)
         throw InputError("farm: " + o.args.scene +
                          " renders for a time (\"time\"), which cannot be split into parts: give --spp or --passes");
+    printRepairs(desc);  // what every task's render would say, said once here
     const std::string given = o.output.empty() ? desc.output : o.output;
     if (given.empty()) throw InputError("farm: " + o.args.scene + " names no \"output\": give -o OUT.exr");
     if (fs::path(given).extension() != ".exr") throw InputError(given + ": the output must be an .exr file");

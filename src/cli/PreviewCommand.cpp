@@ -19,6 +19,7 @@
 #include "base/InputFile.h"
 #include "cli/Commands.h"
 #include "cli/LiveRender.h"
+#include "cli/MediaReport.h"
 #include "cli/PreviewAccess.h"
 #include "cli/PreviewSaves.h"
 #include "cli/PreviewSettings.h"
@@ -341,9 +342,7 @@ void run(const Options& o) {
     PreviewServer server(o.scene, desc);
     const int port = server.bind(o.host, o.port);
     auto scene = std::make_unique<Scene>(desc);
-    for (const auto& m : scene->volumes())
-        std::fprintf(stderr, "medium %s: %zu tets, %s in %.2f s\n", m.name.c_str(), m.media->mesh().tets.size(),
-                     m.stats.fromCache ? "read from the cache" : "tetrahedralized", m.stats.seconds);
+    printVolumes(*scene);
     std::signal(SIGINT, onStop);
     std::signal(SIGTERM, onStop);
     server.serve(std::move(scene), o.threads, "http://" + o.host + ":" + std::to_string(port) + "/");

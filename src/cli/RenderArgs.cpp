@@ -25,7 +25,10 @@ void applyOverrides(const RenderArgs& o, SceneDesc& scene) {
     // The options were checked against the same tables.
     if (const auto v = valueOf(kIntegratorNames, o.integrator)) integ.type = *v;
     if (const auto v = valueOf(kBoundaryNames, o.boundary)) integ.boundary = *v;
-    if (o.spp) integ.spp = o.spp;
+    if (o.spp) {
+        integ.spp = o.spp;
+        integ.sppGiven = true;
+    }
     if (o.maxDepth) integ.maxDepth = o.maxDepth;
     if (o.step > 0) integ.stepSize = o.step;
     if (o.seed >= 0) integ.seed = uint64_t(o.seed);
@@ -38,10 +41,7 @@ void applyOverrides(const RenderArgs& o, SceneDesc& scene) {
     if (const auto v = valueOf(kEstimateNames, o.estimate)) integ.estimate = *v;
     if (!o.boundaryCorrection.empty()) integ.boundaryCorrection = o.boundaryCorrection == "on";
     if (!o.finalGather.empty()) integ.finalGather = o.finalGather == "on";
-    if (o.time > 0) {
-        integ.timeLimit = o.time;
-        integ.spp = o.spp ? o.spp : kMaxSpp;
-    }
+    if (o.time > 0) integ.timeLimit = o.time;
     if (!o.resolution.empty()) {
         const auto [w, h] = parsePair(o.resolution, 'x');
         if (w < 1 || h < 1 || w > kMaxResolution || h > kMaxResolution)
@@ -70,7 +70,7 @@ std::vector<CLI::Option*> addRenderArgs(CLI::App* cmd, RenderArgs& o) {
     add(cmd->add_option("--spp", o.spp, "Samples per pixel")->check(CLI::Range(1, kMaxSpp)));
     add(cmd->add_option("--threads", o.threads, "Threads (default: all cores)")->check(CLI::Range(1, 1024)));
     add(cmd->add_option("--seed", o.seed, "Random seed: the same seed gives the same image at any thread count")
-            ->check(inRange(kNonNegative)));
+            ->check(inIntegers(0, INT64_MAX)));
     add(cmd->add_option("--resolution", o.resolution, "Image size WxH")->check(kNonEmpty));
     add(cmd->add_option("--camera", o.camera, "glTF scene: the camera node to look through (default: the first)")
             ->check(kNonEmpty));
@@ -97,13 +97,13 @@ std::vector<CLI::Option*> addRenderArgs(CLI::App* cmd, RenderArgs& o) {
     add(cmd->add_option("--final-gather", o.finalGather,
                         "photon: diffuse surfaces seen from the eye gather indirect light by one more bounce (on|off)")
             ->check(CLI::IsMember({"on", "off"})));
-    auto* passes =
-        add(cmd->add_option("--passes", o.spp,
-                            "photon: passes, each with fresh photons and one sample per pixel (the same as --spp)")
-                ->check(CLI::Range(1, kMaxSpp)));
-    add(cmd->add_option("--time", o.time, "Render passes until this many seconds have passed (photon: progressive)")
-            ->check(inRange(kPositive))
-            ->excludes(passes));
+    add(cmd->add_option("--passes", o.spp,
+                        "photon: passes, each with fresh photons and one sample per pixel (the same as --spp)")
+            ->check(CLI::Range(1, kMaxSpp)));
+    add(cmd->add_option("--time", o.time,
+                        "Render passes until this many seconds have passed, at most the spp of the scene or --spp "
+                        "(photon: progressive)")
+            ->check(inRange(kPositive)));
     add(cmd->add_option("--exposure", o.exposure, "PNG preview exposure in stops")->check(kFinite));
     return options;
 }

@@ -10,6 +10,7 @@
 #include "base/OutputFile.h"
 #include "cli/Commands.h"
 #include "cli/Interrupt.h"
+#include "cli/MediaReport.h"
 #include "cli/Progress.h"
 #include "cli/ReferenceLog.h"
 #include "cli/RenderArgs.h"
@@ -39,8 +40,13 @@ std::string outputPath(const Options& o, const SceneDesc& scene) {
 
 void run(const Options& o) {
     SceneDesc desc = loadSceneWith(o.args);
-    if (o.noise > 0 && !o.args.spp && !(o.args.time > 0))
-        desc.integrator.spp = kMaxSpp;  // the noise decides when to stop
+    // A spp given caps a render for a time or to a noise target; none given leaves them their own stop.
+    const bool openEnded = o.noise > 0 || desc.integrator.timeLimit > 0;
+    std::string passesFrom = o.args.spp ? "--spp" : "the scene's spp";
+    if (openEnded && !desc.integrator.sppGiven && o.passRange.empty()) {
+        desc.integrator.spp = kMaxSpp;
+        passesFrom = "the most there are: neither the scene nor --spp gives a spp";
+    }
     PartInfo part;
     if (!o.passRange.empty()) {
         std::tie(part.firstPass, part.endPass) = parseRange("--pass-range", o.passRange, desc.integrator.spp, "passes");
@@ -67,10 +73,7 @@ void run(const Options& o) {
     }
 
     const Scene scene(desc);
-    for (const auto& m : scene.volumes())
-        std::fprintf(stderr, "medium %s: %zu tets, %zu Steiner points, %s in %.2f s\n", m.name.c_str(),
-                     m.media->mesh().tets.size(), m.steinerPoints,
-                     m.stats.fromCache ? "read from the cache" : "tetrahedralized", m.stats.seconds);
+    printVolumes(scene);
     if (o.tetsOnly) return;
     const auto integrator = makeIntegrator(scene, desc.integrator);
     for (const std::string& w : integrator->warnings()) std::fprintf(stderr, "tetglow: warning: %s\n", w.c_str());
@@ -86,8 +89,8 @@ void run(const Options& o) {
     options.noiseTarget = o.noise;
     options.independentHalves = o.noise > 0;
     options.cancel = &interrupted();
-    Progress progress("render", {(part.endPass > 0 ? part.endPass : options.spp) - part.firstPass, options.timeLimit,
-                                 options.noiseTarget, photon && photon->tracesPhotons()});
+    Progress progress("render", {(part.endPass > 0 ? part.endPass : options.spp) - part.firstPass, passesFrom,
+                                 options.timeLimit, options.noiseTarget, photon && photon->tracesPhotons()});
     options.passDone = [&](const PassReport& r) {
         progress.pass(r);
         if (reference) reference->pass(r);
@@ -96,7 +99,7 @@ void run(const Options& o) {
     // write lets the write finish.
     InterruptGuard guard;
     RenderResult result = render(scene, *integrator, options);
-    progress.finish();
+    progress.finish(result);
 
     if (!o.passRange.empty()) {
         // A part with an unfinished pass would merge into an image no single render gives.
@@ -160,11 +163,12 @@ void addRenderCommand(CLI::App& app) {
                     "`tetglow merge`")
         ->excludes(time);
     cmd->add_option("--frame", o->frame, "The frame of the scene's turntable to render (from 0)")
-        ->check(CLI::NonNegativeNumber);
+        ->check(inIntegers(0, INT32_MAX));
     cmd->add_option(
            "--noise", o->noise,
-           "Stop when the estimated relative MSE falls to this (from the fourth pass on; --spp and --time cap it)")
-        ->check(CLI::PositiveNumber)
+           "Stop when the estimated relative MSE falls to this (from the fourth pass on; the spp, of the scene or "
+           "--spp, and --time cap it)")
+        ->check(inRange(kPositive))
         ->excludes("--pass-range");
     cmd->add_option("--reference", o->reference,
                     "After each pass, print the relative MSE against this EXR and add it to a CSV beside the image")

@@ -58,7 +58,7 @@ void addValidateCommand(CLI::App& app) {
     slab->add_option("--g", o->slab.g, "Henyey-Greenstein asymmetry, in (-1, 1)")
         ->check(inRange({.lo = -0.999999, .hi = 0.999999}));
     slab->add_option("--photons", o->slab.photons, "Photons traced")->check(CLI::Range(uint64_t(2), uint64_t(1) << 40));
-    slab->add_option("--seed", o->slab.seed, "Random seed")->check(inRange(kNonNegative));
+    slab->add_option("--seed", o->slab.seed, "Random seed")->check(inIntegers(0, INT64_MAX));
     slab->add_option("--time", o->slab.timeLimit,
                      "An error when the photons are not all traced within this many seconds")
         ->check(inRange(kPositive));

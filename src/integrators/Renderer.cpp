@@ -40,7 +40,10 @@ RenderResult render(const Scene& scene, Integrator& integrator, const RenderOpti
     tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
     auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
     for (int pass = options.firstPass; pass < endPass && !cancelled(); ++pass) {
-        if (pass > options.firstPass && options.timeLimit > 0 && elapsed() >= options.timeLimit) break;
+        if (pass > options.firstPass && options.timeLimit > 0 && elapsed() >= options.timeLimit) {
+            result.stop = RenderStop::Time;
+            break;
+        }
         const PassSequence sequence = passSequence(options, pass);
         arena.execute([&] {
             integrator.beginPass(uint64_t(pass), options.cancel);
@@ -63,10 +66,13 @@ RenderResult render(const Scene& scene, Integrator& integrator, const RenderOpti
         result.noise = estimateRelMse(film, half);
         if (options.passDone) options.passDone({film, result.passes, elapsed(), result.noise});
         if (options.noiseTarget > 0 && result.passes >= kMinNoisePasses && !inFirstHalf(pass) && result.noise &&
-            *result.noise <= options.noiseTarget)
+            *result.noise <= options.noiseTarget) {
+            result.stop = RenderStop::Noise;
             break;
+        }
     }
     result.cancelled = cancelled();
+    if (result.cancelled) result.stop = RenderStop::Cancelled;
     result.image = film.image();
     result.droppedSamples = film.droppedSamples();
     result.film = std::move(film);

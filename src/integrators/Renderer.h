@@ -44,7 +44,11 @@ struct RenderOptions {
     std::function<void(const PassReport&)> passDone;
 };
 
+// What ended a render: its last pass (spp or endPass), timeLimit, noiseTarget, or the cancel flag.
+enum class RenderStop { Passes, Time, Noise, Cancelled };
+
 struct RenderResult {
+    RenderStop stop = RenderStop::Passes;
     Image image;
     Film film{0, 0};  // the exact sums behind `image`, for partial renders
     int passes = 0;   // complete passes (samples per pixel)

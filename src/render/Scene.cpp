@@ -75,7 +75,7 @@ void Scene::buildVolumes() {
         // One medium alone names itself in its errors (as the loader names it), a group each of its meshes.
         try {
             TetMesh mesh = tetrahedralize(std::move(surfaces), group.size() == 1 ? std::vector<std::string>{""} : names,
-                                          groupTetOptions(media, group), &v.stats);
+                                          groupTetOptions(media, group), &v.stats, &v.repairs);
             v.steinerPoints = mesh.vertices.size() - mesh.surfaceVertexCount;
             interfaceMaterials(mesh, media, group, v.triangleMaterial, v.materials);
             std::vector<bool> stops;

@@ -56,6 +56,7 @@ struct SceneVolume {
     std::unique_ptr<RegionMedia> media;  // the tets, and each region's medium on them
     std::vector<int> regionMedium;       // per region: its medium's place in the description
     TetStats stats;
+    std::vector<ValidationReport> repairs;  // per region: what validation welded, flipped or repaired
     size_t steinerPoints = 0;
     // Per surface triangle, what lies between the regions on its two sides: index-matched where
     // their indices of refraction are equal, else a dielectric with their ratio.

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <map>
@@ -19,6 +20,7 @@
 #include "base/InputFile.h"
 #include "scene/MeshWeld.h"
 #include "tet/MeshMessage.h"
+#include "tet/MeshValidation.h"
 
 namespace tetglow {
 namespace {
@@ -203,6 +205,7 @@ const char* extension(SceneMeshFormat f) {
 
 struct Imported {
     TriangleMesh mesh;
+    glm::dvec3 up{0};
     std::vector<std::string> warnings, files;  // files: those read besides the mesh file
 };
 
@@ -226,9 +229,13 @@ Imported import(std::string data, const std::string& path, SceneMeshFormat forma
         for (size_t at; (at = why.find(name)) != std::string::npos;) why.replace(at, name.size(), path);
         throw InputError(path + ": cannot read the " + extension(format) + " file: " + shorten(why, 200));
     }
+    Imported result;
+    int32_t upAxis = -1, upSign = 0;
+    if (scene->mMetaData && scene->mMetaData->Get("UpAxis", upAxis) && scene->mMetaData->Get("UpAxisSign", upSign) &&
+        upAxis >= 0 && upAxis < 3 && (upSign == 1 || upSign == -1))
+        result.up[upAxis] = upSign;
     const std::vector<Placed> nodes = placeNodes(scene->mRootNode, path);
     const aiNode* top = node.empty() ? scene->mRootNode : findNode(nodes, node, path);
-    Imported result;
     result.files = files->read();
     TriangleMesh& out = result.mesh;
     size_t skipped = 0, singular = 0;
@@ -246,7 +253,18 @@ Imported import(std::string data, const std::string& path, SceneMeshFormat forma
         if (local.triangles.size() > kMaxSceneMeshTriangles - out.triangles.size())
             throw InputError(path + ": more than " + std::to_string(kMaxSceneMeshTriangles) +
                              " triangles once every node's meshes are placed");
+        const size_t first = out.positions.size();
         append(out, std::move(local), p.world);
+        Bounds3 placed;
+        for (size_t v = first; v < out.positions.size(); ++v) placed.extend(out.positions[v]);
+        if (const std::string problem = precisionProblem(placed); !problem.empty()) {
+            const glm::dvec3 t(p.world[3]);
+            char transform[160];
+            std::snprintf(transform, sizeof transform, "translation (%g, %g, %g), scale %g", t.x, t.y, t.z,
+                          std::cbrt(std::abs(det)));
+            throw InputError(path + ": node '" + shorten(p.node->mName.C_Str()) + "': its transform (" + transform +
+                             ") leaves a mesh that " + problem);
+        }
     }
     if (skipped)
         addWarning(result.warnings,
@@ -271,7 +289,7 @@ Imported import(std::string data, const std::string& path, SceneMeshFormat forma
 // and 100 bytes a byte leave room for external buffers, and a small hostile file that makes
 // Assimp allocate without end is stopped there, not at half the machine.
 TriangleMesh parseSceneMeshes(std::string data, const std::string& path, SceneMeshFormat format,
-                              const std::string& node, std::vector<std::string>* warnings) {
+                              const std::string& node, std::vector<std::string>* warnings, glm::dvec3* up) {
     const double size = double(data.size());
     const ChildLimits limits{std::min(defaultChildMemory(), 2e9 + 100 * size), 10 + 5 * size / 1e6};
     const std::string importer = std::string("the ") + extension(format) + " importer (Assimp)";
@@ -283,6 +301,7 @@ TriangleMesh parseSceneMeshes(std::string data, const std::string& path, SceneMe
                 ByteWriter m;
                 m.addStrings(r.warnings);
                 m.addStrings(r.files);
+                m.addItems(&r.up, 1);
                 addMesh(m, r.mesh);
                 return std::move(m.bytes());
             },
@@ -297,6 +316,9 @@ TriangleMesh parseSceneMeshes(std::string data, const std::string& path, SceneMe
     for (const auto& w : reply.strings())
         if (warnings) addWarning(*warnings, w);
     for (const auto& f : reply.strings()) noteInputFile(f);
+    const auto stated = reply.items<glm::dvec3>();
+    if (stated.size() != 1) reply.lost();
+    if (up) *up = stated[0];
     return takeMesh(reply);
 }
 

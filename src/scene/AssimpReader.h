@@ -22,7 +22,9 @@ enum class SceneMeshFormat { Gltf, Glb, Fbx, Collada };
 
 // The meshes of the scene file `data` read from `path`. `node`: "" for every mesh, else the
 // meshes of the node of that name and of the nodes below it. Throws InputError "<path>: <problem>".
+// `up`, when given: the up direction the file states (an FBX file's UpAxis and UpAxisSign), zero
+// where it states none.
 TriangleMesh parseSceneMeshes(std::string data, const std::string& path, SceneMeshFormat format,
-                              const std::string& node, std::vector<std::string>* warnings);
+                              const std::string& node, std::vector<std::string>* warnings, glm::dvec3* up = nullptr);
 
 }  // namespace tetglow

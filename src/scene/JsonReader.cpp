@@ -6,6 +6,8 @@
 #include <optional>
 #include <set>
 
+#include "base/Spelling.h"
+
 namespace tetglow {
 namespace {
 
@@ -170,7 +172,11 @@ std::string JsonValue::where() const {
 void JsonValue::error(const std::string& message) const { throw InputError(where() + ": " + message); }
 
 void JsonValue::fail(const std::string& expected) const {
-    if (!json_) error("missing; expected " + expected);
+    if (!json_)
+        error("missing; expected " + expected +
+              (misspelling_.empty() ? ""
+                                    : "; did you mean \"" + pointer_.back() + "\" where the file says \"" +
+                                          shorten(misspelling_) + "\"?"));
     error("expected " + expected + ", got " + shortDump(*json_));
 }
 
@@ -185,11 +191,8 @@ int64_t JsonValue::integer(int64_t lo, int64_t hi) const {
                     (json_->is_number_unsigned() ? json_->get<uint64_t>() <= uint64_t(std::max<int64_t>(hi, 0))
                                                  : json_->get<int64_t>() <= hi) &&
                     json_->get<int64_t>() >= lo;
-    if (!ok) {
-        const bool unbounded = hi == std::numeric_limits<int64_t>::max();
-        fail("an integer " +
-             (unbounded ? ">= " + std::to_string(lo) : "in " + std::to_string(lo) + ".." + std::to_string(hi)));
-    }
+    // The range in full even without an upper bound: 2^63 is >= 0 and still refused.
+    if (!ok) fail("an integer in " + std::to_string(lo) + ".." + std::to_string(hi));
     return json_->get<int64_t>();
 }
 
@@ -234,6 +237,9 @@ size_t JsonValue::choiceIndex(const std::vector<std::string_view>& names) const 
     }
     std::string list;
     for (const auto& name : names) list += (list.empty() ? "\"" : ", \"") + std::string(name) + "\"";
+    if (json_ && json_->is_string())
+        error("expected one of " + list + ", got " + shortDump(*json_) +
+              didYouMean(json_->get_ref<const std::string&>(), names));
     fail("one of " + list);
 }
 
@@ -244,7 +250,15 @@ JsonObject::JsonObject(const JsonValue& value) : value_(value) {
 JsonValue JsonObject::operator[](const std::string& key) {
     if (std::find(asked_.begin(), asked_.end(), key) == asked_.end()) asked_.push_back(key);
     const auto it = value_.json_->find(key);
-    return value_.child(it == value_.json_->end() ? nullptr : &*it, value_.pointer_ / key);
+    JsonValue v = value_.child(it == value_.json_->end() ? nullptr : &*it, value_.pointer_ / key);
+    if (!v) {
+        // A key of the object not asked for yet may be this one misspelt ("intensty").
+        std::vector<std::string_view> unasked;
+        for (const auto& [k, item] : value_.json_->items())
+            if (std::find(asked_.begin(), asked_.end(), k) == asked_.end()) unasked.push_back(k);
+        v.misspelling_ = nearestName(key, unasked);
+    }
+    return v;
 }
 
 void JsonObject::rejectUnknownKeys() const {
@@ -252,7 +266,8 @@ void JsonObject::rejectUnknownKeys() const {
         if (std::find(asked_.begin(), asked_.end(), key) != asked_.end()) continue;
         std::string allowed;
         for (const auto& k : asked_) allowed += (allowed.empty() ? "" : ", ") + k;
-        value_.child(&item, value_.pointer_ / key).error("unknown key; allowed here: " + allowed);
+        value_.child(&item, value_.pointer_ / key)
+            .error("unknown key" + didYouMean(key, {asked_.begin(), asked_.end()}) + "; allowed here: " + allowed);
     }
 }
 

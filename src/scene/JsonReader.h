@@ -55,7 +55,8 @@ public:
 
     // "<where>: <message>"
     [[noreturn]] void error(const std::string& message) const;
-    // "<where>: expected <expected>, got <value>", or "<where>: missing; expected <expected>".
+    // "<where>: expected <expected>, got <value>", or "<where>: missing; expected <expected>" (and
+    // the key of the object that may be it misspelt).
     [[noreturn]] void fail(const std::string& expected) const;
 
     double number(const Range& range = {}) const;
@@ -85,6 +86,7 @@ private:
     const nlohmann::json* json_;
     nlohmann::json::json_pointer pointer_;
     std::string file_;
+    std::string misspelling_;  // an absent key's: the key of its object nearest its name, if near
 };
 
 // A JSON object that remembers which keys were asked for.
@@ -94,7 +96,8 @@ public:
 
     JsonValue operator[](const std::string& key);  // absent keys give a false JsonValue
     const JsonValue& self() const { return value_; }
-    // Throws for the first key that was never asked for, listing the ones that were.
+    // Throws for the first key that was never asked for, listing the ones that were (and the
+    // nearest of them).
     void rejectUnknownKeys() const;
 
 private:

@@ -72,16 +72,22 @@ MeshFile readMeshFile(const std::string& path, const std::string& node, std::vec
         case Format::Ply: out = parsePly(data, path); break;
         case Format::Stl: out.mesh = parseStl(data, path); break;
         case Format::Gltf:
-            out.mesh = parseSceneMeshes(std::move(data), path, SceneMeshFormat::Gltf, node, warnings);
-            break;
         case Format::Glb:
-            out.mesh = parseSceneMeshes(std::move(data), path, SceneMeshFormat::Glb, node, warnings);
+            out.mesh =
+                parseSceneMeshes(std::move(data), path,
+                                 format == Format::Gltf ? SceneMeshFormat::Gltf : SceneMeshFormat::Glb, node, warnings);
+            out.up = {0, 1, 0};
+            out.upFrom = "glTF is Y-up";
             break;
         case Format::Fbx:
-            out.mesh = parseSceneMeshes(std::move(data), path, SceneMeshFormat::Fbx, node, warnings);
+            out.mesh = parseSceneMeshes(std::move(data), path, SceneMeshFormat::Fbx, node, warnings, &out.up);
+            if (out.up != glm::dvec3(0)) out.upFrom = "the FBX file's UpAxis";
             break;
         case Format::Collada:
             out.mesh = parseSceneMeshes(std::move(data), path, SceneMeshFormat::Collada, node, warnings);
+            // The importer turns a Z-up file to Y-up (its root node's transform), as it does every Collada file.
+            out.up = {0, 1, 0};
+            out.upFrom = "the Collada file's up_axis, which the importer turns to +Y";
             break;
     }
     if (out.mesh.triangles.empty()) throw InputError(path + ": no triangles (empty file or not a mesh)");

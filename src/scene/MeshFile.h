@@ -15,6 +15,10 @@ namespace tetglow {
 struct MeshFile {
     TriangleMesh mesh;
     std::vector<glm::dvec3> normals;  // per vertex where the file gives them (PLY's nx, ny, nz), else empty
+    // The up direction the format or the file states, and where that comes from; zero and "" for
+    // formats with no convention (OBJ, OFF, PLY, STL).
+    glm::dvec3 up{0};
+    std::string upFrom;
 };
 
 // The mesh in the file at `path` (a regular file within kMaxMeshFileBytes, with every file it

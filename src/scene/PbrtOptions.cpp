@@ -104,6 +104,7 @@ IntegratorDesc readIntegrator(PbrtCall* sampler, PbrtCall* integrator, std::vect
     d.spp = 16;  // pbrt-v3's default sampler: "halton", 16 per pixel
     if (sampler) {
         d.spp = samplesPerPixel(*sampler);
+        d.sppGiven = true;
         if (d.spp < 1 || d.spp > kMaxSpp)
             pbrtError(sampler->where, "Sampler: the number of samples per pixel must be in 1.." +
                                           std::to_string(kMaxSpp) + ", got " + std::to_string(d.spp));

@@ -1,5 +1,6 @@
 #include "scene/PlyReader.h"
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -154,6 +155,10 @@ Header readHeader(const std::string& data, const std::string& path) {
         } else if (key == "element") {
             Element e;
             if (!(ls >> e.name >> e.count)) throw bad();
+            // Faces index one vertex list: which of two would be a guess.
+            if (e.name == "vertex" &&
+                std::any_of(h.elements.begin(), h.elements.end(), [](const Element& o) { return o.name == "vertex"; }))
+                throw InputError(path + ": a second 'vertex' element in the header (faces index one vertex list)");
             h.elements.push_back(e);
         } else if (key == "property") {
             if (h.elements.empty()) throw bad();

@@ -153,6 +153,9 @@ std::vector<std::string> namesOf(const NameTable<T, N>& table) {
 struct IntegratorDesc {
     IntegratorType type = IntegratorType::VolPath;
     int spp = 16;
+    // The file named the spp (a pbrt Sampler, a JSON "spp"): it then caps a render that runs for
+    // a time or to a noise target; else those run until their own stop.
+    bool sppGiven = false;
     int maxDepth = 64;  // volpath, photon: scattering and surface events per path
     uint64_t seed = 0;
     // single

@@ -298,7 +298,10 @@ void readLightEmission(JsonObject& o, LightDesc& l) {
 IntegratorDesc readIntegrator(JsonObject& o) {
     IntegratorDesc d;
     if (auto f = o["type"]) d.type = f.choice<IntegratorType>(kIntegratorNames);
-    if (auto f = o["spp"]) d.spp = int(f.integer(1, kMaxSpp));
+    if (auto f = o["spp"]) {
+        d.spp = int(f.integer(1, kMaxSpp));
+        d.sppGiven = true;
+    }
     if (auto f = o["max_depth"]) d.maxDepth = int(f.integer(1, kMaxDepth));
     if (auto f = o["seed"]) d.seed = uint64_t(f.integer(0));
     if (auto f = o["boundary"]) d.boundary = f.choice<BoundaryMode>(kBoundaryNames);
@@ -373,13 +376,17 @@ SceneDesc loadScene(const std::string& path, const std::string& camera) {
         if (looksLikePbrt(text)) return pbrt();
         const nlohmann::json doc = parseJson(text, path);
         if (doc.is_object() && doc.contains("asset") && !doc.contains("camera")) return gltf(std::move(text));
-        return JsonValue(&doc, nlohmann::json::json_pointer(), path).readObject([&](JsonObject& o) {
-            return readScene(o, path);
-        });
+        return loadJsonScene(doc, path);
     };
     SceneDesc scene = read();
     scene.inputs = log.files();
     return scene;
+}
+
+SceneDesc loadJsonScene(const nlohmann::json& doc, const std::string& path) {
+    return JsonValue(&doc, nlohmann::json::json_pointer(), path).readObject([&](JsonObject& o) {
+        return readScene(o, path);
+    });
 }
 
 }  // namespace tetglow

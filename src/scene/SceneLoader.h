@@ -18,6 +18,9 @@ inline constexpr size_t kMaxLabelBytes = 64;  // a medium's "name", in UTF-8
 // "asset" and no "camera", as a glTF 2.0 scene (scene/GltfScene.h), looking through the camera
 // node named `camera` ("" the first); a camera named for another format is an error.
 SceneDesc loadScene(const std::string& path, const std::string& camera = "");
+// A JSON scene as `path` would hold it (its files relative to path's folder), read as loadScene
+// reads one: a scene checked before it is written.
+SceneDesc loadJsonScene(const nlohmann::json& doc, const std::string& path);
 
 // The parts of a scene file the preview re-tunes, with the loader's own checks and errors.
 // A camera's "position", "look_at", "up" and "fov" (up and fov, when absent, keep c's).

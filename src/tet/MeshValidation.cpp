@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <numeric>
 #include <unordered_map>
@@ -34,6 +35,33 @@ void checkFinite(const TriangleMesh& mesh) {
         if (std::abs(p.x) > 1e30 || std::abs(p.y) > 1e30 || std::abs(p.z) > 1e30)
             throw InputError("vertex " + std::to_string(v) + " is too large for float precision " + formatPosition(p));
     }
+    if (const std::string problem = precisionProblem(bounds(mesh)); !problem.empty())
+        throw InputError("the mesh " + problem);
+}
+
+std::string precisionProblem(const Bounds3& box) {
+    if (box.empty()) return "";
+    const glm::dvec3 extent = box.hi - box.lo;
+    const double size = std::max({extent.x, extent.y, extent.z});
+    if (size == 0) return "";  // a point: every triangle has zero area, as validation says
+    char text[256];
+    if (size < kSmallestMesh) {
+        std::snprintf(text, sizeof text,
+                      "is too small to represent: %.3g across (float coordinates shape nothing under %g): scale it up",
+                      size, kSmallestMesh);
+        return text;
+    }
+    const double far = std::max({std::abs(box.lo.x), std::abs(box.lo.y), std::abs(box.lo.z), std::abs(box.hi.x),
+                                 std::abs(box.hi.y), std::abs(box.hi.z)});
+    const double step = far * std::numeric_limits<float>::epsilon();
+    if (size < kFloatStepsAcross * step) {
+        std::snprintf(text, sizeof text,
+                      "is beyond float precision: %.3g across at %.3g from the origin, where floats step by %.3g: "
+                      "move it nearer the origin or scale it up",
+                      size, far, step);
+        return text;
+    }
+    return "";
 }
 
 WeldCounts weldVertices(TriangleMesh& mesh) {

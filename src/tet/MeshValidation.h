@@ -32,8 +32,14 @@ ValidationReport validateAndRepair(TriangleMesh& mesh, bool pinchedEdges = false
 std::string formatPosition(const glm::dvec3& p);
 
 // Its steps, for repairs that go further (see InteriorRepair):
-// InputError unless every coordinate is finite and within float range.
+// InputError unless every coordinate is finite and within float range, and the mesh is one
+// float coordinates can shape (precisionProblem).
 void checkFinite(const TriangleMesh& mesh);
+// Why float coordinates (the tets', Embree's) cannot shape a mesh with these bounds, or "": it is
+// under kSmallestMesh across (its corners would be denormal or zero), or it spans fewer than
+// kFloatStepsAcross float steps where it lies (every corner would snap to a few points).
+std::string precisionProblem(const Bounds3& box);
+inline constexpr double kSmallestMesh = 1e-30, kFloatStepsAcross = 128;
 struct WeldCounts {
     size_t welded = 0, unused = 0;
 };
