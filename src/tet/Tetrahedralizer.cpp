@@ -12,6 +12,7 @@
 #include "base/Hash.h"
 #include "tet/CacheDirectory.h"
 #include "tet/InteriorRepair.h"
+#include "tet/MeshingMemory.h"
 #include "tet/Predicates.h"
 #include "tet/RegionComplex.h"
 #include "tet/TetGenProcess.h"
@@ -236,6 +237,22 @@ uint64_t cacheKey(const RegionComplex& complex, const std::string& switches) {
     return h;
 }
 
+// Before validation allocates anything: the meshes, named, refused when tetrahedralizing them
+// would not fit in memory.
+void checkSurfacesMemory(const std::vector<TriangleMesh>& surfaces, const std::vector<std::string>& names) {
+    size_t triangles = 0;
+    std::string named;
+    for (size_t i = 0; i < surfaces.size(); ++i) {
+        triangles += surfaces[i].triangles.size();
+        if (!names[i].empty()) named += (named.empty() ? "" : " + ") + names[i];
+    }
+    try {
+        checkMeshingMemory(triangles);
+    } catch (const InputError& e) {
+        throw InputError(named.empty() ? e.what() : named + ": " + e.what());
+    }
+}
+
 }  // namespace
 
 void checkTetCount(double volume, double maxVolume) {
@@ -259,6 +276,7 @@ TetMesh tetrahedralize(std::vector<TriangleMesh> surfaces, const std::vector<std
                        const TetOptions& options, TetStats* stats, std::vector<ValidationReport>* reports) {
     const auto start = std::chrono::steady_clock::now();
     if (reports) reports->clear();
+    checkSurfacesMemory(surfaces, names);
     double largestVolume = 0;  // the regions' union holds at least this much
     for (size_t i = 0; i < surfaces.size(); ++i) {
         try {
