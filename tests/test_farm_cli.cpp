@@ -2,7 +2,11 @@
 // (--dry-run), the values it refuses before writing anything, and how it quotes the rest for
 // the two parsers that read a script (sbatch's #SBATCH lines, bash). tests/slurm/farm_test.sh
 // runs it through a real Slurm.
+#include <unistd.h>
+
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
 
 #include <gtest/gtest.h>
 
@@ -142,6 +146,21 @@ TEST(Farm, SbatchQuotingEscapesWhatSbatchUnescapes) {
     EXPECT_EQ(sbatchQuote("a b#c'd"), "\"a b#c'd\"");
     EXPECT_EQ(sbatchQuote("q\"\\"), "\"q\\\"\\\\\"");
     EXPECT_EQ(tetglow::cli::literalOutputPattern("/a/100%/%a"), "/a/100%%/%%a");
+}
+
+// The cache job fills the tet cache for every task: when it cannot, it fails, instead of
+// reporting success and leaving every task to tetrahedralize again.
+TEST(Farm, CacheJobFailsWhenTheCacheCannotBeWritten) {
+    // runTetglow's cache folder, taken by a file.
+    const std::string cache =
+        (std::filesystem::temp_directory_path() / ("tetglow-run-" + std::to_string(::getpid())) / "cache").string();
+    std::filesystem::remove_all(cache);
+    std::filesystem::create_directories(std::filesystem::path(cache).parent_path());
+    std::ofstream(cache) << "not a folder";
+    const auto r = runTetglow("render " + kSphere + " --tetrahedralize-only");
+    std::filesystem::remove(cache);
+    expectOneLineError(r, 1, "render --tetrahedralize-only: medium ");
+    EXPECT_TRUE(contains(r.err, ": cannot fill the tet cache: ")) << r.err;
 }
 
 // Output, parts and cache where other nodes cannot see them: a warning, and the run goes on.

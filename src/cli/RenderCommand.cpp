@@ -71,7 +71,14 @@ void run(const Options& o) {
         std::fprintf(stderr, "medium %s: %zu tets, %zu Steiner points, %s in %.2f s\n", m.name.c_str(),
                      m.media->mesh().tets.size(), m.steinerPoints,
                      m.stats.fromCache ? "read from the cache" : "tetrahedralized", m.stats.seconds);
-    if (o.tetsOnly) return;
+    if (o.tetsOnly) {
+        // The farm's tasks count on this cache: without it each of them tetrahedralizes again.
+        for (const auto& m : scene.volumes())
+            if (m.stats.cacheFile.empty())
+                throw InputError("render --tetrahedralize-only: medium " + m.name +
+                                 ": cannot fill the tet cache: " + m.stats.cacheProblem);
+        return;
+    }
     const auto integrator = makeIntegrator(scene, desc.integrator);
     for (const std::string& w : integrator->warnings()) std::fprintf(stderr, "tetglow: warning: %s\n", w.c_str());
     const auto* photon = dynamic_cast<const PhotonIntegrator*>(integrator.get());

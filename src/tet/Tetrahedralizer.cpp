@@ -299,7 +299,11 @@ TetMesh tetrahedralize(std::vector<TriangleMesh> surfaces, const std::vector<std
             char name[32];
             std::snprintf(name, sizeof name, "%016llx.tet", static_cast<unsigned long long>(key));
             file = dir / name;
+        } else {
+            local.cacheProblem = "no cache folder: none of TETGLOW_CACHE_DIR, XDG_CACHE_HOME and HOME is set";
         }
+    } else {
+        local.cacheProblem = "the cache is off";
     }
     TetMesh mesh;
     std::string problem;
@@ -329,8 +333,9 @@ TetMesh tetrahedralize(std::vector<TriangleMesh> surfaces, const std::vector<std
             try {
                 writeTetMesh(mesh, key, file.string());
                 local.cacheFile = file.string();
-            } catch (const std::exception&) {
+            } catch (const std::exception& e) {
                 // An unwritable cache only costs time on the next run.
+                local.cacheProblem = e.what();
             }
         }
     }
