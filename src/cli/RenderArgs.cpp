@@ -1,6 +1,7 @@
 #include "cli/RenderArgs.h"
 
 #include <charconv>
+#include <filesystem>
 
 #include "cli/Commands.h"
 #include "scene/SceneLoader.h"
@@ -110,6 +111,11 @@ SceneDesc loadSceneWith(const RenderArgs& args) {
     SceneDesc desc = loadScene(args.scene);
     applyOverrides(args, desc);
     return desc;
+}
+
+std::string defaultOutput(const RenderArgs& args, const SceneDesc& scene) {
+    if (!scene.output.empty()) return scene.output;
+    return std::filesystem::path(args.scene).stem().string() + ".exr";
 }
 
 std::pair<int, int> parseRange(const std::string& option, const std::string& text, int total, const std::string& what) {

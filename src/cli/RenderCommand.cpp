@@ -32,9 +32,7 @@ struct Options {
 };
 
 std::string outputPath(const Options& o, const SceneDesc& scene) {
-    if (!o.output.empty()) return o.output;
-    if (!scene.output.empty()) return scene.output;
-    return std::filesystem::path(o.args.scene).stem().string() + ".exr";
+    return o.output.empty() ? defaultOutput(o.args, scene) : o.output;
 }
 
 void run(const Options& o) {
