@@ -18,9 +18,15 @@ class Progress {
 public:
     Progress(std::string label, RenderPlan plan);
     void pass(const PassReport& report);
+    // Work counted otherwise than in passes (photons traced): `done` says how much, e.g.
+    // "photons 1.68e+07 of 1.1e+12", `fraction` is the share of the way done.
+    void work(const std::string& done, double fraction, double seconds);
     void finish();  // ends the line on a terminal
 
 private:
+    // A line, unless it is not a terminal and the tenth of the way has not changed.
+    void show(const std::string& done, double fraction, double seconds, const std::string& tail);
+
     std::string label_;
     RenderPlan plan_;
     bool terminal_;

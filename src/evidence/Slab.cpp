@@ -109,6 +109,8 @@ SlabResult simulateSlab(const SlabParams& p) {
             });
         });
         for (uint64_t b = 0; b < count; ++b) total.add(blockSums[b]);
+        if (p.progress)
+            p.progress(traced.load(), std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     }
     if (stuck)
         throw InputError("slab: a photon scattered " + std::to_string(kMaxSlabEvents) +
