@@ -195,7 +195,7 @@ TEST(Farm, ArrayOverTheLimitIsRefusedBeforeAnythingIsSubmitted) {
     // The cluster's own limit, as scontrol reports it.
     const FakeSlurm slurm("echo 17", "echo 'MaxArraySize            = 3'");
     expectOneLineError(runTetglow("farm " + kSphere + " --parts 4 --spp 8 --dry-run -o " + dir + "/a.exr"), 1,
-                       "more than the 3 a job array may have (the cluster's MaxArraySize (scontrol show config))");
+                       "more than the 3 a job array may have (the cluster's MaxArraySize, from scontrol show config)");
     EXPECT_EQ(runTetglow("farm " + kSphere + " --parts 3 --spp 8 --dry-run -o " + dir + "/a.exr").exitCode, 0);
 }
 

@@ -73,7 +73,7 @@ std::pair<int64_t, std::string> maxArraySize(int given) {
     const auto [out, status] = capture("timeout 10 scontrol show config");
     std::smatch m;
     if (status == 0 && std::regex_search(out, m, std::regex("MaxArraySize\\s*=\\s*([0-9]{1,9})")))
-        return {std::stoll(m[1]), "the cluster's MaxArraySize (scontrol show config)"};
+        return {std::stoll(m[1]), "the cluster's MaxArraySize, from scontrol show config"};
     return {kSlurmDefaultMaxArraySize, "Slurm's default MaxArraySize"};
 }
 
