@@ -2,7 +2,11 @@
 // (--dry-run), the values it refuses before writing anything, and how it quotes the rest for
 // the two parsers that read a script (sbatch's #SBATCH lines, bash). tests/slurm/farm_test.sh
 // runs it through a real Slurm.
+#include <unistd.h>
+
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
 
 #include <gtest/gtest.h>
 
@@ -58,8 +62,16 @@ TEST(Farm, TakesTheOutputFromTheScene) {
     const std::string work = std::filesystem::path(path).parent_path().string() + "/renders/ball.farm";
     EXPECT_TRUE(contains(r.out, " -o '" + work.substr(0, work.size() - 5) + ".exr'")) << r.out;
     EXPECT_TRUE(contains(r.out, "'" + work + "/part-0000-001.exr'")) << r.out;
-    expectOneLineError(runTetglow("farm " + kSphere + " --parts 2 --dry-run"), 1,
-                       "names no \"output\": give -o OUT.exr");
+}
+
+// Without -o and without the scene's "output", the image goes where render puts it: SCENE.exr
+// in the working folder.
+TEST(Farm, DefaultsTheOutputAsRenderDoes) {
+    const auto r = runTetglow("farm " + kSphere + " --parts 2 --spp 2 --dry-run");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const std::string output = (std::filesystem::current_path() / "sphere.exr").string();
+    EXPECT_TRUE(contains(r.out, " -o '" + output + "'")) << r.out;
+    EXPECT_TRUE(contains(r.out, "'" + output.substr(0, output.size() - 4) + ".farm/part-0000-001.exr'")) << r.out;
 }
 
 TEST(Farm, RefusesWhatCannotBeSplit) {
@@ -142,6 +154,125 @@ TEST(Farm, SbatchQuotingEscapesWhatSbatchUnescapes) {
     EXPECT_EQ(sbatchQuote("a b#c'd"), "\"a b#c'd\"");
     EXPECT_EQ(sbatchQuote("q\"\\"), "\"q\\\"\\\\\"");
     EXPECT_EQ(tetglow::cli::literalOutputPattern("/a/100%/%a"), "/a/100%%/%%a");
+}
+
+// sbatch and scontrol as a script that logs each call and answers as told, first on the PATH.
+struct FakeSlurm {
+    std::string dir = tempDir() + "/fake-slurm", log = dir + "/calls", oldPath = std::getenv("PATH");
+    FakeSlurm(const std::string& sbatch, const std::string& scontrol) {
+        writeTemp("fake-slurm/sbatch", "#!/bin/sh\necho \"sbatch $*\" >> '" + log + "'\n" + sbatch + "\n");
+        writeTemp("fake-slurm/scontrol", "#!/bin/sh\n" + scontrol + "\n");
+        writeTemp("fake-slurm/scancel", "#!/bin/sh\necho \"scancel $*\" >> '" + log + "'\n");
+        for (const char* tool : {"/sbatch", "/scontrol", "/scancel"})
+            std::filesystem::permissions(dir + tool, std::filesystem::perms::owner_all);
+        ::setenv("PATH", (dir + ":" + oldPath).c_str(), 1);
+    }
+    ~FakeSlurm() { ::setenv("PATH", oldPath.c_str(), 1); }
+    std::string calls() const { return readFile(log); }
+};
+
+// An array over the cluster's limit used to fail only at the array's sbatch, after the tet cache
+// job was submitted (and that job still ran), with a message that did not name the limit.
+TEST(Farm, ArrayOverTheLimitIsRefusedBeforeAnythingIsSubmitted) {
+    const std::string dir = tempDir();
+    {
+        const FakeSlurm slurm("echo 17", "exit 1");
+        const auto r = runTetglow("farm " + kSphere + " --parts 1002 --spp 2000 -o " + dir + "/a.exr");
+        expectOneLineError(r, 1,
+                           "farm: 1002 tasks (1 frame(s) x 1002 parts) are more than the 1001 a job array may have "
+                           "(Slurm's default MaxArraySize): give fewer --parts or --frames, or --max-array N");
+        EXPECT_EQ(slurm.calls(), "") << "nothing may be submitted";
+        expectOneLineError(runTetglow("farm " + kSphere + " --parts 1002 --spp 2000 --dry-run -o " + dir + "/a.exr"), 1,
+                           "are more than the 1001 a job array may have");
+        const auto raised =
+            runTetglow("farm " + kSphere + " --parts 1002 --spp 2000 --max-array 2000 --dry-run -o " + dir + "/a.exr");
+        EXPECT_EQ(raised.exitCode, 0) << raised.err;
+        EXPECT_TRUE(contains(raised.out, "#SBATCH --array=0-1001\n")) << raised.out;
+        expectOneLineError(
+            runTetglow("farm " + kSphere + " --parts 4 --spp 8 --max-array 3 --dry-run -o " + dir + "/a.exr"), 1,
+            "4 tasks (1 frame(s) x 4 parts) are more than the 3 a job array may have (--max-array): give fewer");
+    }
+    // The cluster's own limit, as scontrol reports it.
+    const FakeSlurm slurm("echo 17", "echo 'MaxArraySize            = 3'");
+    expectOneLineError(runTetglow("farm " + kSphere + " --parts 4 --spp 8 --dry-run -o " + dir + "/a.exr"), 1,
+                       "more than the 3 a job array may have (the cluster's MaxArraySize, from scontrol show config)");
+    EXPECT_EQ(runTetglow("farm " + kSphere + " --parts 3 --spp 8 --dry-run -o " + dir + "/a.exr").exitCode, 0);
+}
+
+// Frames x parts used to be an int: a turntable's million frames in 100000 parts overflowed it.
+TEST(Farm, TaskCountDoesNotOverflow) {
+    cli::FarmPlan p;
+    p.frames = 1000000;
+    p.parts = 100000;
+    EXPECT_EQ(p.tasks(), int64_t(100000000000));
+}
+
+// On a machine without Slurm, sbatch's own error said nothing of what to do instead.
+TEST(Farm, FailedSbatchNamesTheCommandAndSuggestsDryRun) {
+    const std::string dir = tempDir();
+    const FakeSlurm slurm("echo 'sbatch: fatal: Could not establish a configuration source' >&2; exit 1", "exit 1");
+    const auto r = runTetglow("farm " + kSphere + " --parts 2 --spp 2 -o " + dir + "/a.exr");
+    expectOneLineError(r, 1,
+                       "farm: sbatch --parsable '" + dir +
+                           "/a.farm/prepare.sh' failed: sbatch: fatal: Could not establish a configuration source: "
+                           "where Slurm is not set up, --dry-run prints the scripts and the sbatch commands");
+}
+
+// A job submitted before a later submission failed is cancelled, not left to run for nothing.
+TEST(Farm, JobsSubmittedBeforeAFailedSubmissionAreCancelled) {
+    const std::string dir = tempDir();
+    const FakeSlurm slurm(
+        "case \"$*\" in *render.sh*) echo 'sbatch: error: Batch job submission failed' >&2; exit "
+        "1;; esac; echo 41",
+        "exit 1");
+    expectOneLineError(runTetglow("farm " + kSphere + " --parts 2 --spp 2 -o " + dir + "/a.exr"), 1,
+                       "render.sh' failed: sbatch: error: Batch job submission failed");
+    EXPECT_TRUE(contains(slurm.calls(), "scancel 41\n")) << slurm.calls();
+}
+
+// Every real site needs `module load` or environment lines before the job's commands: they
+// come after the #SBATCH lines (sbatch stops reading those at the first command) in every
+// script, as written.
+TEST(Farm, PreambleAndSetupLinesRunFirstInEveryJob) {
+    const std::string dir = tempDir();
+    const std::string preamble = writeTemp("site.sh", "module purge\nexport OMP_PROC_BIND='close'");
+    const auto r = runTetglow("farm " + kSphere + " --parts 2 --spp 2 -o " + dir + "/a.exr --preamble " + preamble +
+                              " --setup 'module load gcc/12' --setup 'export NOTE=\"a b\"$HOME' --dry-run");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const std::string lines =
+        "module purge\nexport OMP_PROC_BIND='close'\nmodule load gcc/12\nexport NOTE=\"a b\"$HOME\n";
+    size_t scripts = 0;
+    for (size_t at = r.out.find("#!/bin/bash\n"); at != std::string::npos; at = r.out.find("#!/bin/bash\n", at + 1)) {
+        ++scripts;
+        const size_t mine = r.out.find(lines, at);
+        ASSERT_NE(mine, std::string::npos) << r.out.substr(at);
+        const size_t lastSbatch = r.out.rfind("\n#SBATCH ", mine);
+        EXPECT_GT(lastSbatch, at);
+        EXPECT_EQ(r.out.find('\n', lastSbatch + 1) + 1, mine) << "right after the #SBATCH lines:\n" << r.out.substr(at);
+    }
+    EXPECT_EQ(scripts, 3u) << r.out;
+    expectOneLineError(runTetglow("farm " + kSphere + " --parts 2 --spp 2 -o " + dir + "/a.exr --setup " +
+                                  cli::shellQuote("module load x\nid") + " --dry-run"),
+                       1, "the --setup line 'module load x\\nid' holds a control character");
+    const std::string carriage = writeTemp("crlf.sh", "module load a\r\n");
+    expectOneLineError(
+        runTetglow("farm " + kSphere + " --parts 2 --spp 2 -o " + dir + "/a.exr --preamble " + carriage + " --dry-run"),
+        1, carriage + ": line 1 holds a control character other than a tab");
+}
+
+// The cache job fills the tet cache for every task: when it cannot, it fails, instead of
+// reporting success and leaving every task to tetrahedralize again.
+TEST(Farm, CacheJobFailsWhenTheCacheCannotBeWritten) {
+    // runTetglow's cache folder, taken by a file.
+    const std::string cache =
+        (std::filesystem::temp_directory_path() / ("tetglow-run-" + std::to_string(::getpid())) / "cache").string();
+    std::filesystem::remove_all(cache);
+    std::filesystem::create_directories(std::filesystem::path(cache).parent_path());
+    std::ofstream(cache) << "not a folder";
+    const auto r = runTetglow("render " + kSphere + " --tetrahedralize-only");
+    std::filesystem::remove(cache);
+    expectOneLineError(r, 1, "render --tetrahedralize-only: medium ");
+    EXPECT_TRUE(contains(r.err, ": cannot fill the tet cache: ")) << r.err;
 }
 
 // Output, parts and cache where other nodes cannot see them: a warning, and the run goes on.

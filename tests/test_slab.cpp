@@ -55,6 +55,18 @@ TEST(Slab, LargestPhotonCountEndsAtItsTimeLimit) {
     EXPECT_NE(r.err.find(" of 1099511627776 photons"), std::string::npos) << r.err;
 }
 
+// A run of days says so at the start, as render does: the photons traced, the seconds so far
+// and the seconds left, on stderr, before --time ends it.
+TEST(Slab, LongRunPrintsProgressAndTimeLeft) {
+    const auto r = runTetglow("validate slab --photons 1099511627776 --time 2");
+    expectOneLineError(r, 1, "photons traced in --time 2 s");
+    const size_t line = r.err.find("validate slab: ");
+    ASSERT_NE(line, std::string::npos) << "no progress line: " << r.err;
+    const std::string progress = r.err.substr(line, r.err.find('\n', line) - line);
+    EXPECT_NE(progress.find(" of 1.1e+12 photons, "), std::string::npos) << progress;
+    EXPECT_NE(progress.find(" s left"), std::string::npos) << progress;
+}
+
 // A slab so thick and forward-scattering that a photon neither leaves nor is absorbed within the
 // event cap: its flux would be missing from every tally, so the run is refused, not reported.
 TEST(Slab, PhotonAtTheEventCapIsAnError) {

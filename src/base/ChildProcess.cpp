@@ -68,12 +68,6 @@ double statmBytes(pid_t pid, int field) {
     return pages[field] * double(::sysconf(_SC_PAGE_SIZE));
 }
 
-std::string gigabytes(double bytes) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.3g GB", bytes / 1e9);
-    return text;
-}
-
 std::string seconds(double s) {
     char text[32];
     std::snprintf(text, sizeof text, "%.3g s", s);
@@ -143,7 +137,7 @@ void endWorkerThreads() {
 
 }  // namespace
 
-double defaultChildMemory() { return physicalMemory() / 2; }
+double defaultChildMemory() { return memoryLimit() / 2; }
 
 void capChildLimits(const ChildLimits& ceiling) {
     ceilingMemory = ceiling.memoryBytes;

@@ -17,7 +17,7 @@ struct ChildLimits {
     double seconds;  // wall-clock time from the fork
 };
 
-// Half the machine's physical memory: the parent keeps the rest for the answer it decodes.
+// Half of memoryLimit() (base/Memory.h): the parent keeps the rest for the answer it decodes.
 double defaultChildMemory();
 
 // From now on every child gets at most `ceiling` (a fuzzer, say, whose own bounds are lower).

@@ -88,6 +88,14 @@ void checkScriptText(const std::string& what, const std::string& value, bool log
             "' holds a backslash, which turns off Slurm's file name patterns (task-%a.log): choose another folder");
 }
 
+void checkPreambleText(const std::string& path, const std::string& text) {
+    const auto bad =
+        std::find_if(text.begin(), text.end(), [](char c) { return c != '\n' && c != '\t' && isControl(c); });
+    if (bad != text.end())
+        throw InputError("farm: " + path + ": line " + std::to_string(std::count(text.begin(), bad, '\n') + 1) +
+                         " holds a control character other than a tab: refusing to write it into a batch script");
+}
+
 std::string localPathWarning(const std::string& what, const std::string& path) {
     namespace fs = std::filesystem;
     std::error_code ec;

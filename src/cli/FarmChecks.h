@@ -19,6 +19,10 @@ extern const CLI::Validator kSbatchArg;  // one long option of sbatch's, not one
 // --output (every task would write one log named task-%a.log).
 void checkScriptText(const std::string& what, const std::string& value, bool logFolder = false);
 
+// InputError "farm: <path>: line 3 holds a control character ..." for a --preamble file: shell
+// lines, with tabs and newlines only (a carriage return would end up in every command it ends).
+void checkPreambleText(const std::string& path, const std::string& text);
+
 // "" or a warning that `path` lies where other nodes do not see it (/tmp, /var/tmp, a tmpfs).
 std::string localPathWarning(const std::string& what, const std::string& path);
 

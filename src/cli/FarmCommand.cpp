@@ -6,8 +6,10 @@
 #include <chrono>
 #include <cstdio>
 #include <fstream>
+#include <regex>
 #include <thread>
 
+#include "base/InputFile.h"
 #include "base/OutputFile.h"
 #include "cli/Commands.h"
 #include "cli/FarmChecks.h"
@@ -29,6 +31,9 @@ struct Options {
     SbatchOptions sbatch;
     int parts = 0, cpusPerTask = 1;
     bool wait = false, dryRun = false;
+    int maxArray = 0;  // 0: the cluster's MaxArraySize
+    std::string preamble;
+    std::vector<std::string> setup;
 };
 
 // stdout of a shell command, and its exit status.
@@ -51,11 +56,41 @@ std::string lastLine(std::string s) {
 
 // Submits a script (sbatchCommand); returns the job id.
 std::string submit(const std::string& script, const std::string& dependency, bool killOnInvalid) {
-    const auto [out, status] = capture(sbatchCommand(script, dependency, killOnInvalid));
-    if (status == 127) throw InputError("farm: sbatch not found: run farm where Slurm's client commands are installed");
-    if (status != 0) throw InputError("farm: sbatch " + script + " failed: " + lastLine(out));
+    const std::string command = sbatchCommand(script, dependency, killOnInvalid);
+    const auto [out, status] = capture(command);
+    const std::string dryRun = ": where Slurm is not set up, --dry-run prints the scripts and the sbatch commands";
+    if (status == 127) throw InputError("farm: sbatch not found (" + command + ")" + dryRun);
+    if (status != 0) throw InputError("farm: " + command + " failed: " + lastLine(out) + dryRun);
     const std::string id = lastLine(out);  // "id" or "id;cluster", after any warnings
     return id.substr(0, id.find(';'));
+}
+
+constexpr int kSlurmDefaultMaxArraySize = 1001;
+
+// The most tasks a job array may have: --max-array, else the cluster's MaxArraySize (the
+// largest task index is one less), else Slurm's default; and where that number comes from.
+std::pair<int64_t, std::string> maxArraySize(int given) {
+    if (given > 0) return {given, "--max-array"};
+    const auto [out, status] = capture("timeout 10 scontrol show config");
+    std::smatch m;
+    if (status == 0 && std::regex_search(out, m, std::regex("MaxArraySize\\s*=\\s*([0-9]{1,9})")))
+        return {std::stoll(m[1]), "the cluster's MaxArraySize, from scontrol show config"};
+    return {kSlurmDefaultMaxArraySize, "Slurm's default MaxArraySize"};
+}
+
+// The shell lines every job runs first: the --preamble file, then each --setup line.
+std::string preamble(const Options& o) {
+    std::string text;
+    if (!o.preamble.empty()) {
+        text = readInputFile(o.preamble, kMaxSceneFileBytes, "a farm preamble");
+        checkPreambleText(o.preamble, text);
+        if (!text.empty() && text.back() != '\n') text += '\n';
+    }
+    for (const auto& line : o.setup) {
+        checkScriptText("the --setup line", line);
+        text += line + "\n";
+    }
+    return text;
 }
 
 std::string slurp(const std::string& path) {
@@ -77,8 +112,7 @@ FarmPlan plan(const Options& o) {
         throw InputError("farm: " + o.args.scene +
                          " renders for a time (\"time\"), which cannot be split into parts: give --spp or --passes");
     printRepairs(desc);  // what every task's render would say, said once here
-    const std::string given = o.output.empty() ? desc.output : o.output;
-    if (given.empty()) throw InputError("farm: " + o.args.scene + " names no \"output\": give -o OUT.exr");
+    const std::string given = o.output.empty() ? defaultOutput(o.args, desc) : o.output;
     if (fs::path(given).extension() != ".exr") throw InputError(given + ": the output must be an .exr file");
     FarmPlan p;
     p.binary = fs::read_symlink("/proc/self/exe").string();
@@ -98,10 +132,16 @@ FarmPlan plan(const Options& o) {
         o.frames.empty() ? std::pair{0, frames} : parseRange("--frames", o.frames, frames, "frames");
     p.firstFrame = first;
     p.frames = end - first;
+    if (const auto [most, source] = maxArraySize(o.maxArray); p.tasks() > most)
+        throw InputError("farm: " + std::to_string(p.tasks()) + " tasks (" + std::to_string(p.frames) + " frame(s) x " +
+                         std::to_string(p.parts) + " parts) are more than the " + std::to_string(most) +
+                         " a job array may have (" + source + "): give fewer --parts or --frames" +
+                         (o.maxArray > 0 ? "" : ", or --max-array N where the cluster allows more"));
     const std::string output = fs::absolute(given).string();
     for (int f = first; f < end; ++f) p.outputs.push_back(frameOutput(output, f, frames > 1));
     p.workDir = fs::path(output).replace_extension(".farm").string();
     p.sbatch = o.sbatch;
+    p.preamble = preamble(o);
     checkScriptText("the tetglow binary", p.binary);
     checkScriptText("the scene path", p.scene);
     checkScriptText("the output path", output, true);
@@ -161,13 +201,24 @@ void run(const Options& o) {
     fs::remove(mergeStatusPath(p), ignored);
     for (const auto& script : {std::pair{prepare, scripts.prepare}, {render, scripts.render}, {merge, scripts.merge}})
         writeStream(script.first, [&](std::ostream& out) { out << script.second; });
-    const std::string prepareJob = submit(prepare, "", false);
-    const std::string renderJob = submit(render, renderAfter(prepareJob), true);
-    const std::string mergeJob = submit(merge, mergeAfter(prepareJob, renderJob), false);
+    // A job submitted before another's submission failed would run for nothing: it is cancelled.
+    std::vector<std::string> submitted;
+    const auto submitAfter = [&](const std::string& script, const std::string& dependency, bool killOnInvalid) {
+        try {
+            submitted.push_back(submit(script, dependency, killOnInvalid));
+            return submitted.back();
+        } catch (const InputError&) {
+            for (const auto& job : submitted) capture("scancel " + job);
+            throw;
+        }
+    };
+    const std::string prepareJob = submitAfter(prepare, "", false);
+    const std::string renderJob = submitAfter(render, renderAfter(prepareJob), true);
+    const std::string mergeJob = submitAfter(merge, mergeAfter(prepareJob, renderJob), false);
     std::printf(
-        "farm: submitted job %s (tet cache), array %s (%d tasks: %d frame(s) x %d parts), merge %s -> %s%s\n"
+        "farm: submitted job %s (tet cache), array %s (%lld tasks: %d frame(s) x %d parts), merge %s -> %s%s\n"
         "farm: scripts and logs in %s; watch with: squeue -j %s,%s,%s\n",
-        prepareJob.c_str(), renderJob.c_str(), p.tasks(), p.frames, p.parts, mergeJob.c_str(),
+        prepareJob.c_str(), renderJob.c_str(), (long long)p.tasks(), p.frames, p.parts, mergeJob.c_str(),
         p.outputs.front().c_str(), p.frames > 1 ? " ..." : "", p.workDir.c_str(), prepareJob.c_str(), renderJob.c_str(),
         mergeJob.c_str());
     if (!o.wait) return;
@@ -199,7 +250,8 @@ void addFarmCommand(CLI::App& app) {
         ->required()
         ->check(CLI::Range(1, 100000));
     cmd->add_option("-o,--output", o->output,
-                    "Output .exr (an animation: OUT.0000.exr, OUT.0001.exr, ...; default: the scene's \"output\")")
+                    "Output .exr (an animation: OUT.0000.exr, OUT.0001.exr, ...; default: the scene's \"output\", "
+                    "else SCENE.exr)")
         ->check(kNonEmpty);
     cmd->add_option("--frames", o->frames, "Frames A..B-1 of the scene's turntable (A:B; default: all)");
     cmd->add_option("--cpus-per-task,--threads", o->cpusPerTask,
@@ -220,6 +272,17 @@ void addFarmCommand(CLI::App& app) {
                     "One more sbatch option for every job, as --sbatch-arg=--NAME=VALUE (repeatable)")
         ->allow_extra_args(false)  // one value each time: the scene after it stays the scene
         ->check(kSbatchArg);
+    cmd->add_option("--max-array", o->maxArray,
+                    "The most tasks a job array may have (default: the cluster's MaxArraySize from scontrol show "
+                    "config, else Slurm's default 1001)")
+        ->check(CLI::Range(1, 4000001));
+    cmd->add_option("--preamble", o->preamble,
+                    "A file of shell lines every job runs first (module load, environment), written into each script")
+        ->check(kNonEmpty);
+    cmd->add_option(
+           "--setup", o->setup,
+           "One shell line every job runs first, after --preamble, e.g. --setup 'module load gcc' (repeatable)")
+        ->allow_extra_args(false);
     cmd->add_flag("--wait", o->wait, "Return when the merge is done; exit 1 if any task or the merge failed");
     cmd->add_flag("--dry-run", o->dryRun, "Print the batch scripts and the sbatch commands, submit nothing");
     cmd->callback([o] { run(*o); });

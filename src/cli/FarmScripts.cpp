@@ -9,6 +9,8 @@ std::string sbatchLine(const std::string& option, const std::string& value) {
     return "#SBATCH " + option + "=" + sbatchQuote(value) + "\n";
 }
 
+// The #SBATCH lines: sbatch reads them up to the first line that is not a comment, so the
+// preamble comes after them.
 std::string header(const FarmPlan& plan, const std::string& name, const std::string& log, int cpus) {
     const SbatchOptions& o = plan.sbatch;
     std::string s = "#!/bin/bash\n";
@@ -81,16 +83,16 @@ std::string sbatchCommand(const std::string& script, const std::string& dependen
 BatchScripts batchScripts(const FarmPlan& plan) {
     BatchScripts b;
     // TetGen runs once, here; every task then reads the tets from the cache.
-    b.prepare =
-        header(plan, "tetglow-prepare", "prepare.log", 1) + "exec " + renderCommand(plan) + " --tetrahedralize-only\n";
+    b.prepare = header(plan, "tetglow-prepare", "prepare.log", 1) + plan.preamble + "exec " + renderCommand(plan) +
+                " --tetrahedralize-only\n";
 
     std::string ranges;
     for (int p = 0; p < plan.parts; ++p) ranges.append(" ").append(range(plan.passRange(p)));
     // The part's name is formatted on its own and appended to the quoted folder: no path is
     // ever a printf format.
     b.render = header(plan, "tetglow-render", "task-%a.log", plan.cpusPerTask) + "#SBATCH --array=0-" +
-               std::to_string(plan.tasks() - 1) +
-               "\n# Task i renders part i % parts of frame first + i / parts.\n"
+               std::to_string(plan.tasks() - 1) + "\n" + plan.preamble +
+               "# Task i renders part i % parts of frame first + i / parts.\n"
                "ranges=(" +
                ranges +
                " )\n"
@@ -109,7 +111,7 @@ BatchScripts batchScripts(const FarmPlan& plan) {
 
     // Runs after every task, failed or not, so that a failed task fails the merge with its own
     // error instead of leaving the farm waiting or a partial image behind.
-    b.merge = header(plan, "tetglow-merge", "merge.log", 1) +
+    b.merge = header(plan, "tetglow-merge", "merge.log", 1) + plan.preamble +
               "status=0\n"
               "missing() {  # task, its log: the task's own error, else why it did not run\n"
               "  why=$(grep -h error \"$2\" 2>/dev/null | tail -n 1)\n"

@@ -5,6 +5,7 @@
 // quoted for the parser that reads its line; checkScriptValue (FarmChecks.h) refuses what
 // neither needs.
 #pragma once
+#include <cstdint>
 #include <string>
 #include <utility>
 #include <vector>
@@ -26,9 +27,12 @@ struct FarmPlan {
     std::vector<std::string> inputs;   // every file the scene reads: no output may name one
     std::string workDir;
     SbatchOptions sbatch;
+    // Shell lines every job runs first (--preamble, --setup: `module load`, environment), each
+    // line ending in a newline; written after the #SBATCH lines, as they are.
+    std::string preamble;
     std::pair<int, int> passRange(int part) const;  // part p of `parts`: passes as even as can be
     std::string partPath(int frame, int part) const;
-    int tasks() const { return frames * parts; }
+    int64_t tasks() const { return int64_t(frames) * parts; }  // frames and parts are ints: no overflow
 };
 
 struct BatchScripts {

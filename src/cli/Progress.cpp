@@ -83,9 +83,24 @@ void Progress::pass(const PassReport& r) {
     shown_ = true;
 }
 
-void Progress::finish(const RenderResult& result) {
+void Progress::work(const std::string& done, double fraction, double seconds) {
+    fraction = std::clamp(fraction, 1e-9, 1.0);
+    const int tenth = int(fraction * 10);
+    if (!terminal_ && tenth == lastTenth_) return;
+    lastTenth_ = tenth;
+    std::fprintf(stderr, "%s%s: %s, %.1f s, %.1f s left%s", terminal_ ? "\r" : "", label_.c_str(), done.c_str(), seconds,
+                 seconds * (1 - fraction) / fraction, terminal_ ? "   " : "\n");
+    std::fflush(stderr);
+    shown_ = true;
+}
+
+void Progress::finish() {
     if (terminal_ && shown_) std::fputc('\n', stderr);
     shown_ = false;
+}
+
+void Progress::finish(const RenderResult& result) {
+    finish();
     if (!openEnded() || result.stop == RenderStop::Cancelled) return;
     const std::string passes = std::to_string(result.passes) + " passes";
     const std::string noise = result.noise ? format("noise %.3g", *result.noise) : "no noise estimate";

@@ -21,6 +21,10 @@ class Progress {
 public:
     Progress(std::string label, RenderPlan plan);  // prints the stops of a timed or noise-driven render
     void pass(const PassReport& report);
+    // Work counted otherwise than in passes (photons traced): `done` says how much, e.g.
+    // "photons 1.68e+07 of 1.1e+12", `fraction` is the share of the way done.
+    void work(const std::string& done, double fraction, double seconds);
+    void finish();                            // ends the line on a terminal
     void finish(const RenderResult& result);  // ends the line on a terminal; says which stop ended it
 
 private:

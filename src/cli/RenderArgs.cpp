@@ -1,6 +1,7 @@
 #include "cli/RenderArgs.h"
 
 #include <charconv>
+#include <filesystem>
 
 #include "cli/Commands.h"
 #include "scene/SceneLoader.h"
@@ -112,6 +113,11 @@ SceneDesc loadSceneWith(const RenderArgs& args) {
     SceneDesc desc = loadScene(args.scene, args.camera);
     applyOverrides(args, desc);
     return desc;
+}
+
+std::string defaultOutput(const RenderArgs& args, const SceneDesc& scene) {
+    if (!scene.output.empty()) return scene.output;
+    return std::filesystem::path(args.scene).stem().string() + ".exr";
 }
 
 std::pair<int, int> parseRange(const std::string& option, const std::string& text, int total, const std::string& what) {

@@ -25,6 +25,10 @@ std::vector<CLI::Option*> addRenderArgs(CLI::App* cmd, RenderArgs& args);
 // The scene file with the options applied. InputError on a bad scene, CLI::ValidationError on a bad option.
 SceneDesc loadSceneWith(const RenderArgs& args);
 
+// Where a render of the scene goes without -o: the scene's "output", else SCENE.exr in the
+// working folder.
+std::string defaultOutput(const RenderArgs& args, const SceneDesc& scene);
+
 // A..B-1 of the scene's `total` passes or frames (`what`), from "A:B" with 0 <= A < B <= total;
 // CLI::ValidationError naming `option` otherwise.
 std::pair<int, int> parseRange(const std::string& option, const std::string& text, int total, const std::string& what);

@@ -33,9 +33,7 @@ struct Options {
 };
 
 std::string outputPath(const Options& o, const SceneDesc& scene) {
-    if (!o.output.empty()) return o.output;
-    if (!scene.output.empty()) return scene.output;
-    return std::filesystem::path(o.args.scene).stem().string() + ".exr";
+    return o.output.empty() ? defaultOutput(o.args, scene) : o.output;
 }
 
 void run(const Options& o) {
@@ -74,7 +72,14 @@ void run(const Options& o) {
 
     const Scene scene(desc);
     printVolumes(scene);
-    if (o.tetsOnly) return;
+    if (o.tetsOnly) {
+        // The farm's tasks count on this cache: without it each of them tetrahedralizes again.
+        for (const auto& m : scene.volumes())
+            if (m.stats.cacheFile.empty())
+                throw InputError("render --tetrahedralize-only: medium " + m.name +
+                                 ": cannot fill the tet cache: " + m.stats.cacheProblem);
+        return;
+    }
     const auto integrator = makeIntegrator(scene, desc.integrator);
     for (const std::string& w : integrator->warnings()) std::fprintf(stderr, "tetglow: warning: %s\n", w.c_str());
     const auto* photon = dynamic_cast<const PhotonIntegrator*>(integrator.get());

@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/Commands.h"
+#include "cli/Progress.h"
 #include "evidence/Slab.h"
 
 namespace tetglow::cli {
@@ -15,7 +16,15 @@ struct Options {
 };
 
 void run(const Options& o) {
-    const SlabResult r = simulateSlab(o.slab);
+    SlabParams params = o.slab;
+    Progress progress("validate slab", {});
+    params.progress = [&](uint64_t traced, double seconds) {
+        char done[64];
+        std::snprintf(done, sizeof done, "%.3g of %.3g photons", double(traced), double(params.photons));
+        progress.work(done, double(traced) / double(params.photons), seconds);
+    };
+    const SlabResult r = simulateSlab(params);
+    progress.finish();
     if (o.json) {
         auto t = [](const Tally& x) { return nlohmann::json{{"mean", x.mean}, {"std_error", x.stdError}}; };
         const nlohmann::json j = {{"tau", o.slab.tau},

@@ -65,9 +65,10 @@ SlabResult simulateSlab(const SlabParams& p) {
     const SurfaceBVH& bvh = medium.volume().bvh();
 
     constexpr uint64_t kBlock = 4096;
-    // Blocks are summed in order, so the sum is the same for any thread count; a few thousand at
-    // a time, so that 2^40 photons do not need 2^28 block sums in memory at once.
-    constexpr uint64_t kBlocksAtOnce = 4096;
+    // Blocks are summed in order, so the sum is the same for any thread count; a few hundred at
+    // a time, so that 2^40 photons do not need 2^28 block sums in memory at once, and progress
+    // is reported every million photons.
+    constexpr uint64_t kBlocksAtOnce = 256;
     const uint64_t blocks = (p.photons + kBlock - 1) / kBlock;
     std::vector<Sums> blockSums(std::min(blocks, kBlocksAtOnce));
     Sums total;
@@ -109,6 +110,8 @@ SlabResult simulateSlab(const SlabParams& p) {
             });
         });
         for (uint64_t b = 0; b < count; ++b) total.add(blockSums[b]);
+        if (p.progress)
+            p.progress(traced.load(), std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     }
     if (stuck)
         throw InputError("slab: a photon scattered " + std::to_string(kMaxSlabEvents) +

@@ -3,6 +3,7 @@
 // photon walk as the renderer, through a tetrahedralized box.
 #pragma once
 #include <cstdint>
+#include <functional>
 
 namespace tetglow {
 
@@ -11,6 +12,8 @@ struct SlabParams {
     uint64_t photons = 1000000, seed = 1;
     int threads = 0;       // 0: all cores
     double timeLimit = 0;  // > 0: an InputError when the photons are not all traced by then (seconds)
+    // Called after every few million photons with the photons traced and the seconds since the start.
+    std::function<void(uint64_t traced, double seconds)> progress;
 };
 
 struct Tally {

@@ -1,6 +1,7 @@
 #include "scene/AssimpReader.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -21,6 +22,7 @@
 #include "scene/MeshWeld.h"
 #include "tet/MeshMessage.h"
 #include "tet/MeshValidation.h"
+#include "tet/MeshingMemory.h"
 
 namespace tetglow {
 namespace {
@@ -181,9 +183,37 @@ TriangleMesh nodeMesh(const aiScene& scene, const aiNode& node, const std::strin
     return local;
 }
 
+// The triangles the nodes within `top` place, and the largest share of them that one node's
+// meshes make by being placed again and again (instancing): counted before anything is
+// flattened, so that 960 triangles at 20000 nodes are refused in a moment.
+void checkInstancing(const aiScene& scene, const std::vector<Placed>& nodes, const aiNode* top,
+                     const std::string& path) {
+    std::map<std::vector<unsigned>, size_t> instances;
+    size_t total = 0;
+    for (const Placed& p : nodes) {
+        if (!p.node->mNumMeshes || !within(p.node, top)) continue;
+        ++instances[std::vector<unsigned>(p.node->mMeshes, p.node->mMeshes + p.node->mNumMeshes)];
+    }
+    std::pair<size_t, size_t> largest{0, 0};  // the triangles of one placing, its instances
+    for (const auto& [meshes, count] : instances) {
+        size_t faces = 0;
+        for (unsigned m : meshes)
+            if (m < scene.mNumMeshes) faces += scene.mMeshes[m]->mNumFaces;
+        total += faces * count;
+        if (faces * count > largest.first * largest.second) largest = {faces, count};
+    }
+    if (largest.second < 2) return;  // nothing is instanced: the flattened mesh is the file's own
+    try {
+        checkMeshingMemory(total);
+    } catch (const InputError& e) {
+        throw InputError(path + ": " + std::to_string(largest.first) + " triangles x " +
+                         std::to_string(largest.second) + " instances: " + e.what());
+    }
+}
+
 // Adds `local` placed by `world`; a mirroring transform reverses the winding (glTF's rule: the
 // sign of the world transform's determinant decides which side is the front).
-void append(TriangleMesh& out, TriangleMesh local, const glm::dmat4& world) {
+void append(TriangleMesh& out, const TriangleMesh& local, const glm::dmat4& world) {
     const uint32_t base = uint32_t(out.positions.size());
     for (const auto& p : local.positions) out.positions.emplace_back(world * glm::dvec4(p, 1));
     const bool mirror = glm::determinant(glm::dmat3(world)) < 0;
@@ -239,6 +269,13 @@ Imported import(std::string data, const std::string& path, SceneMeshFormat forma
     result.files = files->read();
     TriangleMesh& out = result.mesh;
     size_t skipped = 0, singular = 0;
+    checkInstancing(*scene, nodes, top, path);
+    // Each set of meshes is read and welded once, however many nodes place it.
+    struct Local {
+        TriangleMesh mesh;
+        size_t skipped = 0;
+    };
+    std::map<std::vector<unsigned>, Local> locals;
     for (const Placed& p : nodes) {
         if (!p.node->mNumMeshes || !within(p.node, top)) continue;
         const double det = glm::determinant(glm::dmat3(p.world));
@@ -249,12 +286,19 @@ Imported import(std::string data, const std::string& path, SceneMeshFormat forma
             ++singular;
             continue;
         }
-        TriangleMesh local = nodeMesh(*scene, *p.node, path, skipped);
-        if (local.triangles.size() > kMaxSceneMeshTriangles - out.triangles.size())
+        const std::vector<unsigned> key(p.node->mMeshes, p.node->mMeshes + p.node->mNumMeshes);
+        auto local = locals.find(key);
+        if (local == locals.end()) {
+            Local l;
+            l.mesh = nodeMesh(*scene, *p.node, path, l.skipped);
+            local = locals.emplace(key, std::move(l)).first;
+        }
+        skipped += local->second.skipped;
+        if (local->second.mesh.triangles.size() > kMaxSceneMeshTriangles - out.triangles.size())
             throw InputError(path + ": more than " + std::to_string(kMaxSceneMeshTriangles) +
                              " triangles once every node's meshes are placed");
         const size_t first = out.positions.size();
-        append(out, std::move(local), p.world);
+        append(out, local->second.mesh, p.world);
         Bounds3 placed;
         for (size_t v = first; v < out.positions.size(); ++v) placed.extend(out.positions[v]);
         if (const std::string problem = precisionProblem(placed); !problem.empty()) {
@@ -277,21 +321,67 @@ Imported import(std::string data, const std::string& path, SceneMeshFormat forma
     return result;
 }
 
+// "%20" and the like decoded, as a glTF uri is written.
+std::string percentDecoded(const std::string& uri) {
+    std::string out;
+    for (size_t i = 0; i < uri.size(); ++i) {
+        if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit((unsigned char)uri[i + 1]) &&
+            std::isxdigit((unsigned char)uri[i + 2])) {
+            out += char(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
+            i += 2;
+        } else {
+            out += uri[i];
+        }
+    }
+    return out;
+}
+
+// The bytes of the regular files in the model's folder that the file's "uri" members name (a
+// glTF's external buffers), by a scan of the text rather than a parse: the JSON is Assimp's to
+// parse, in its child. Capped at the mesh limit, which readInputFile enforces on them anyway.
+uint64_t externalBytes(const std::string& data, const std::string& path) {
+    namespace fs = std::filesystem;
+    const fs::path folder = fs::path(path).parent_path();
+    uint64_t total = 0;
+    for (size_t at = data.find("\"uri\""); at != std::string::npos; at = data.find("\"uri\"", at + 1)) {
+        size_t i = data.find_first_not_of(" \t\r\n", at + 5);
+        if (i == std::string::npos || data[i] != ':') continue;
+        i = data.find_first_not_of(" \t\r\n", i + 1);
+        if (i == std::string::npos || data[i] != '"') continue;
+        const size_t end = data.find('"', i + 1);
+        if (end == std::string::npos) break;
+        const std::string uri = percentDecoded(data.substr(i + 1, end - i - 1));
+        const fs::path relative = fs::path(uri).lexically_normal();
+        if (uri.starts_with("data:") || relative.is_absolute() || relative.empty() || *relative.begin() == "..")
+            continue;
+        std::error_code ec;
+        const fs::path file = folder / relative;
+        if (fs::is_regular_file(file, ec)) total += fs::file_size(file, ec);
+        if (total >= kMaxMeshFileBytes) return kMaxMeshFileBytes;
+    }
+    return total;
+}
+
 }  // namespace
+
+ChildLimits sceneImportLimits(const std::string& data, const std::string& path) {
+    const double size = double(data.size()) + double(externalBytes(data, path));
+    return {std::min(defaultChildMemory(), 2e9 + 100 * size), 10 + 5 * size / 1e6};
+}
 
 // Assimp's parsers recurse as deep as a file nests (a glTF's JSON, a node hierarchy), and a
 // hostile file can make them allocate or loop without end (a Collada index list that never
 // advances): the import runs in a child process under a memory and a time limit, and its
 // crash or its limit is an error here. The time grows with the file: a 36 MB GLB of 2 million
-// triangles takes 1.5 s a MB on a busy machine (import, placing, welding and the answer), and
-// a file's buffers read in the child are not counted, so 5 s a MB leaves a wide margin. Memory
-// grows with the file too (that GLB's import peaks at 0.3 GB, 8 bytes a byte of file): 2 GB
-// and 100 bytes a byte leave room for external buffers, and a small hostile file that makes
-// Assimp allocate without end is stopped there, not at half the machine.
+// triangles takes 1.5 s a MB on a busy machine (import, placing, welding and the answer), so
+// 5 s a MB leaves a wide margin. Memory grows with the file too (that GLB's import peaks at 0.3
+// GB, 8 bytes a byte of file): 2 GB and 100 bytes a byte, and a small hostile file that makes
+// Assimp allocate without end is stopped there, not at half the machine. A byte is a byte of
+// the file or of the external buffers it names (sceneImportLimits): the same mesh as a .gltf
+// and its .bin gets the limits it gets as one GLB.
 TriangleMesh parseSceneMeshes(std::string data, const std::string& path, SceneMeshFormat format,
                               const std::string& node, std::vector<std::string>* warnings, glm::dvec3* up) {
-    const double size = double(data.size());
-    const ChildLimits limits{std::min(defaultChildMemory(), 2e9 + 100 * size), 10 + 5 * size / 1e6};
+    const ChildLimits limits = sceneImportLimits(data, path);
     const std::string importer = std::string("the ") + extension(format) + " importer (Assimp)";
     std::string answer;
     try {

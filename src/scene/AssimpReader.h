@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "base/ChildProcess.h"
 #include "tet/TriangleMesh.h"
 
 namespace tetglow {
@@ -17,6 +18,10 @@ namespace tetglow {
 // At most this many triangles once every node's meshes are placed (a node may place a mesh many
 // times): about what the largest OBJ file read holds.
 inline constexpr size_t kMaxSceneMeshTriangles = size_t(1) << 27;
+
+// The importer's child's memory and time, which grow with the bytes of the file `data` read
+// from `path` and of the external buffers in its folder that it names (a .gltf's .bin).
+ChildLimits sceneImportLimits(const std::string& data, const std::string& path);
 
 enum class SceneMeshFormat { Gltf, Glb, Fbx, Collada };
 

@@ -12,6 +12,7 @@
 #include "base/Hash.h"
 #include "tet/CacheDirectory.h"
 #include "tet/InteriorRepair.h"
+#include "tet/MeshingMemory.h"
 #include "tet/Predicates.h"
 #include "tet/RegionComplex.h"
 #include "tet/TetGenProcess.h"
@@ -236,6 +237,22 @@ uint64_t cacheKey(const RegionComplex& complex, const std::string& switches) {
     return h;
 }
 
+// Before validation allocates anything: the meshes, named, refused when tetrahedralizing them
+// would not fit in memory.
+void checkSurfacesMemory(const std::vector<TriangleMesh>& surfaces, const std::vector<std::string>& names) {
+    size_t triangles = 0;
+    std::string named;
+    for (size_t i = 0; i < surfaces.size(); ++i) {
+        triangles += surfaces[i].triangles.size();
+        if (!names[i].empty()) named += (named.empty() ? "" : " + ") + names[i];
+    }
+    try {
+        checkMeshingMemory(triangles);
+    } catch (const InputError& e) {
+        throw InputError(named.empty() ? e.what() : named + ": " + e.what());
+    }
+}
+
 }  // namespace
 
 void checkTetCount(double volume, double maxVolume) {
@@ -259,6 +276,7 @@ TetMesh tetrahedralize(std::vector<TriangleMesh> surfaces, const std::vector<std
                        const TetOptions& options, TetStats* stats, std::vector<ValidationReport>* reports) {
     const auto start = std::chrono::steady_clock::now();
     if (reports) reports->clear();
+    checkSurfacesMemory(surfaces, names);
     double largestVolume = 0;  // the regions' union holds at least this much
     for (size_t i = 0; i < surfaces.size(); ++i) {
         try {
@@ -281,7 +299,11 @@ TetMesh tetrahedralize(std::vector<TriangleMesh> surfaces, const std::vector<std
             char name[32];
             std::snprintf(name, sizeof name, "%016llx.tet", static_cast<unsigned long long>(key));
             file = dir / name;
+        } else {
+            local.cacheProblem = "no cache folder: none of TETGLOW_CACHE_DIR, XDG_CACHE_HOME and HOME is set";
         }
+    } else {
+        local.cacheProblem = "the cache is off";
     }
     TetMesh mesh;
     std::string problem;
@@ -311,8 +333,9 @@ TetMesh tetrahedralize(std::vector<TriangleMesh> surfaces, const std::vector<std
             try {
                 writeTetMesh(mesh, key, file.string());
                 local.cacheFile = file.string();
-            } catch (const std::exception&) {
+            } catch (const std::exception& e) {
                 // An unwritable cache only costs time on the next run.
+                local.cacheProblem = e.what();
             }
         }
     }

@@ -24,6 +24,7 @@ struct TetStats {
     double seconds = 0;  // validation + tetrahedralization (or cache read)
     bool fromCache = false;
     std::string cacheFile;     // "" when caching is off or the directory is not writable
+    std::string cacheProblem;  // why cacheFile is "" (no cache folder, the write's error); "" otherwise
     std::string cacheWarning;  // why a cache entry found was not used (also printed to stderr); "" if none
     // Tets larger than TetOptions::maxVolume, and why (also printed to stderr); "" if none.
     std::string maxVolumeWarning;

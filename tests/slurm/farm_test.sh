@@ -6,7 +6,9 @@
 # 4 parts, submitted with an account, a time limit, memory and an extra sbatch option that every
 # job carries, give the image `tetglow render` gives, byte for byte; a turntable's frames split
 # the same way; a task that fails fails the merge job with that task's error and leaves no image,
-# and so does a failed tet-cache job (whose array then never runs).
+# and so does a failed tet-cache job (whose array then never runs); an array over the cluster's
+# MaxArraySize is refused before anything is submitted; --preamble and --setup lines run first
+# in every job, as written.
 #   tests/slurm/farm_test.sh TETGLOW_BINARY SOURCE_DIR
 # Exit 77 (CTest: skipped) with a message where Slurm or munge is not installed, or not as root.
 set -euo pipefail
@@ -62,9 +64,22 @@ for log in task-0.log task-1.log prepare.log merge.log; do
 done
 [ "$(find "$dir" -name 'part-*' | grep -vc "^$odd/sphere.farm/")" -eq 0 ] || fail "parts were written outside the work folder"
 
-echo "== 4 parts through Slurm against one render, with an account, a time limit, memory and an sbatch option"
+echo "== an array over the cluster's MaxArraySize: refused before anything is written or submitted"
+if "$tetglow" farm "$scene" --parts 1002 --spp 2000 -o "$dir/big/sphere.exr" 2> "$dir/big.err"; then
+    fail "farm accepted 1002 tasks"
+fi
+cat "$dir/big.err"
+grep -q "more than the 1001 a job array may have (the cluster's MaxArraySize" "$dir/big.err" || fail "the refusal does not name the limit"
+[ ! -e "$dir/big" ] || fail "farm wrote files for a refused array"
+
+echo "== 4 parts through Slurm against one render, with an account, a time limit, memory, an sbatch option and setup lines"
+printf 'echo "preamble ran in $SLURM_JOB_NAME"\n' > "$dir/site.sh"
 "$tetglow" farm "$scene" --parts 4 "${options[@]}" --account tetglow-test --time 10 --mem 100M --sbatch-arg=--comment=farm-test \
-    -o "$dir/farm/sphere.exr" --wait | tee "$dir/farm.out"
+    --preamble "$dir/site.sh" --setup 'note="it'"'"'s \"set\""; echo "setup: $note"' -o "$dir/farm/sphere.exr" --wait | tee "$dir/farm.out"
+for log in task-0.log task-3.log prepare.log merge.log; do
+    grep -q '^preamble ran in tetglow-' "$dir/farm/sphere.farm/$log" || fail "$log: the preamble did not run"
+    grep -q '^setup: it'"'"'s "set"$' "$dir/farm/sphere.farm/$log" || fail "$log: the setup line did not run as written"
+done
 cmp "$dir/farm/sphere.exr" "$dir/single.exr" || fail "the farm's image differs from the single render"
 [ "$(ls "$dir"/farm/sphere.farm/task-*.log | wc -l)" -eq 4 ] || fail "expected 4 array tasks"
 grep -q "read from the cache" "$dir"/farm/sphere.farm/task-0.log || fail "task 0 ran TetGen instead of reading the cache"
