@@ -343,6 +343,13 @@ bool emitsLight(const SceneDesc& s) {
     return false;
 }
 
+SceneDesc loadJsonSceneText(const std::string& text, const std::string& path) {
+    const nlohmann::json doc = parseJson(text, path);
+    return JsonValue(&doc, nlohmann::json::json_pointer(), path).readObject([&](JsonObject& o) {
+        return readScene(o, path);
+    });
+}
+
 SceneDesc loadScene(const std::string& path) {
     const InputLog log;
     const auto read = [&] {
@@ -354,10 +361,7 @@ SceneDesc loadScene(const std::string& path) {
         if (fs::path(path).extension() == ".pbrt") return pbrt();  // without reading the file here too
         const std::string text = readInputFile(path, kMaxSceneFileBytes, "a scene file");
         if (looksLikePbrt(text)) return pbrt();
-        const nlohmann::json doc = parseJson(text, path);
-        return JsonValue(&doc, nlohmann::json::json_pointer(), path).readObject([&](JsonObject& o) {
-            return readScene(o, path);
-        });
+        return loadJsonSceneText(text, path);
     };
     SceneDesc scene = read();
     scene.inputs = log.files();

@@ -16,6 +16,9 @@ inline constexpr size_t kMaxLabelBytes = 64;  // a medium's "name", in UTF-8
 // A file whose name ends in .pbrt, or whose first token is a pbrt-v3 directive, is read as a
 // pbrt-v3 scene (scene/PbrtParser.h).
 SceneDesc loadScene(const std::string& path);
+// A JSON scene's `text` as loadScene reads it from a file at `path` (its files relative to
+// path's folder, `path` named in messages): a scene about to be saved there is checked with it.
+SceneDesc loadJsonSceneText(const std::string& text, const std::string& path);
 
 // The parts of a scene file the preview re-tunes, with the loader's own checks and errors.
 // A camera's "position", "look_at", "up" and "fov" (up and fov, when absent, keep c's).
