@@ -33,8 +33,9 @@ bool outsideReferencesAllowed() {
 void checkReference(const fs::path& path, const std::string& reference, const fs::path& folder) {
     const fs::path base = folder.empty() ? fs::path(".") : folder;
     if (!outsideReferencesAllowed() && !inside(path, base))
-        throw InputError("'" + shorten(oneLine(reference), 200) + "' lies outside the model's folder " + base.string() +
-                         ": refusing to read it (TETGLOW_ALLOW_OUTSIDE_REFS=1 allows it)");
+        throw InputError(
+            "'" + shorten(oneLine(reference), 200) +
+            "' lies outside the model's folder: refusing to read it (TETGLOW_ALLOW_OUTSIDE_REFS=1 allows it)");
 }
 
 fs::path resolveReference(const fs::path& folder, const std::string& reference) {

@@ -15,7 +15,8 @@ bool outsideReferencesAllowed();
 // The file `reference` names (absolute, or relative to `folder`; "" stands for the working
 // folder). InputError, one line for the caller to prefix with the model's name, when it lies
 // outside `folder` and outsideReferencesAllowed() is false: "'<reference>' lies outside the
-// model's folder <folder>: refusing to read it (TETGLOW_ALLOW_OUTSIDE_REFS=1 allows it)".
+// model's folder: refusing to read it (TETGLOW_ALLOW_OUTSIDE_REFS=1 allows it)" (the model's
+// name before it says which folder, and keeps the line short enough to print whole).
 std::filesystem::path resolveReference(const std::filesystem::path& folder, const std::string& reference);
 // The same check for a reference resolved elsewhere (a pbrt Include, relative to the including
 // file): `path`, what `reference` leads to, must lie in `folder`.
