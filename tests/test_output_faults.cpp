@@ -74,6 +74,36 @@ TEST(OutputFaults, DiskFullAfterTheExrLeavesBothOldOutputs) {
     EXPECT_EQ(temporaries(disk), std::vector<std::string>());
 }
 
+// convert writes a scene's meshes and its JSON all or none: when the disk fills at the second
+// mesh, the first is as it was (it was written, and renamed over the old one, before the second).
+TEST(OutputFaults, DiskFullAtTheSecondMeshOfAConvertLeavesEveryOldFile) {
+    const std::string dir = tempDir(), disk = dir + "/disk";
+    const auto scene = [&](const std::string& name, double radius, int subdivisions) {
+        return writeTemp(name, R"({"camera": {"position": [0, 0, 9], "look_at": [0, 0, 0]},
+          "lights": [{"type": "environment", "radiance": 1}],
+          "media": [{"shape": {"type": "sphere", "center": [0, 0, 0], "radius": )" +
+                                   std::to_string(radius) + R"(, "subdivisions": 0}, "sigma_s": 1},
+                    {"shape": {"type": "sphere", "center": [3, 0, 0], "radius": 1, "subdivisions": )" +
+                                   std::to_string(subdivisions) + R"(}, "sigma_s": 1}]})");
+    };
+    const std::string oldScene = scene("old.json", 1, 0), newScene = scene("new.json", 0.5, 4);
+    ASSERT_EQ(runTetglow("convert " + oldScene + " -o " + dir + "/old/out.json").exitCode, 0);
+    ASSERT_EQ(runTetglow("convert " + newScene + " -o " + dir + "/new/out.json").exitCode, 0);
+    ASSERT_GT(pages(dir + "/new/out-medium-1.obj"), 4u) << "the second mesh must span pages for the disk to fill";
+    // Room for the old files and the new first mesh, not for the new second one.
+    size_t room = pages(dir + "/new/out-medium-0.obj") + 1;
+    for (const char* file : {"out.json", "out-medium-0.obj", "out-medium-1.obj"}) room += pages(dir + "/old/" + file);
+    const Tmpfs tmpfs(disk, "size=" + std::to_string(room * 4096));
+    if (!tmpfs.mounted()) GTEST_SKIP() << "cannot mount a tmpfs here (needs root)";
+    for (const char* file : {"out.json", "out-medium-0.obj", "out-medium-1.obj"})
+        fs::copy_file(dir + "/old/" + file, disk + "/" + file);
+    const auto r = runTetglow("convert " + newScene + " -o " + disk + "/out.json");
+    expectOneLineError(r, 1, disk + "/out-medium-1.obj: cannot write: ");
+    for (const char* file : {"out.json", "out-medium-0.obj", "out-medium-1.obj"})
+        EXPECT_TRUE(readFile(disk + "/" + file) == readFile(dir + "/old/" + file)) << file << " was replaced";
+    EXPECT_EQ(temporaries(disk), std::vector<std::string>());
+}
+
 // Starts `tetglow args...` (the binary runTetglow runs), stderr to `log`; its pid.
 pid_t start(const std::vector<std::string>& args, const std::string& log) {
     std::vector<std::string> argv = {std::getenv("TETGLOW_TEST_BINARY") ? std::getenv("TETGLOW_TEST_BINARY")

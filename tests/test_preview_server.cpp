@@ -50,6 +50,19 @@ protected:
         fs::remove_all(dir_);
     }
 
+    // The preview started again, on `scene` (a file in dir_, or a link to one).
+    void restartOn(const fs::path& scene) {
+        server_.reset();
+        server_ = std::make_unique<PreviewProcess>(scene.string() + " --port 0 --threads 1");
+    }
+    HttpReply post(const std::string& path, const std::string& body) const {
+        return rawHttp(port(), httpRequest("POST", path, port(), {{"Content-Type", "application/json"}}, body));
+    }
+    std::string text(const fs::path& file) const {
+        std::ifstream in(file);
+        return std::string(std::istreambuf_iterator<char>(in), {});
+    }
+
     int port() const { return server_->port(); }
     Json state() const { return Json::parse(rawHttp(port(), httpRequest("GET", "/state", port())).body); }
     size_t files() const { return size_t(std::distance(fs::directory_iterator(dir_), fs::directory_iterator())); }
@@ -438,6 +451,79 @@ TEST_F(PreviewServer, SavesAreBounded) {
                   "not saved: this preview has saved 100 times, its limit (restart it to save more)");
     }
     EXPECT_EQ(files(), before);
+}
+
+// "Save over the original" keeps what is on disk unless the preview read it: an edit made to the
+// scene file while the preview ran was thrown away.
+TEST_F(PreviewServer, SavingOverTheOriginalKeepsAnEditMadeOnDisk) {
+    ASSERT_EQ(change(R"({"media": [{"g": 0.5}]})").status, 200);
+    std::string edited = text(dir_ / "sphere.json");
+    edited.replace(edited.find("\"spp\": 4"), 8, "\"spp\": 9");
+    std::ofstream(dir_ / "sphere.json") << edited;
+    const HttpReply r = post("/save/scene", R"({"overwrite": true})");
+    EXPECT_EQ(r.status, 400);
+    EXPECT_EQ(Json::parse(r.body)["error"],
+              "not saved: " + (dir_ / "sphere.json").string() +
+                  " changed on disk since the preview read it; save a copy, or restart the preview to tune the file as "
+                  "it is now");
+    EXPECT_EQ(text(dir_ / "sphere.json"), edited);
+    // Read again, it is saved over, also a second time (the preview's own save is no change on disk).
+    restartOn(dir_ / "sphere.json");
+    ASSERT_EQ(change(R"({"media": [{"g": 0.5}]})").status, 200);
+    ASSERT_EQ(post("/save/scene", R"({"overwrite": true})").status, 200);
+    ASSERT_EQ(change(R"({"media": [{"g": 0.25}]})").status, 200);
+    ASSERT_EQ(post("/save/scene", R"({"overwrite": true})").status, 200);
+    EXPECT_EQ(Json::parse(text(dir_ / "sphere.json"))["media"][0]["g"], 0.25);
+}
+
+TEST_F(PreviewServer, SavingOverTheOriginalRefusesAReadOnlySceneAndKeepsTheMode) {
+    const fs::path scene = dir_ / "sphere.json";
+    const std::string before = text(scene);
+    fs::permissions(scene, fs::perms::owner_read | fs::perms::group_read | fs::perms::others_read);
+    ASSERT_EQ(change(R"({"media": [{"g": 0.5}]})").status, 200);
+    const HttpReply r = post("/save/scene", R"({"overwrite": true})");
+    EXPECT_EQ(r.status, 400);
+    EXPECT_EQ(Json::parse(r.body)["error"], "not saved: " + scene.string() + " is read-only; save a copy instead");
+    EXPECT_EQ(text(scene), before);
+    EXPECT_EQ(fs::status(scene).permissions(), fs::perms::owner_read | fs::perms::group_read | fs::perms::others_read);
+    // A file one may write keeps its permissions (it became 644 under the usual umask).
+    fs::permissions(scene, fs::perms::owner_read | fs::perms::owner_write);
+    ASSERT_EQ(post("/save/scene", R"({"overwrite": true})").status, 200);
+    EXPECT_EQ(Json::parse(text(scene))["media"][0]["g"], 0.5);
+    EXPECT_EQ(fs::status(scene).permissions(), fs::perms::owner_read | fs::perms::owner_write);
+}
+
+// The link stays and its file takes the values; it was replaced by a file, and the file it led
+// to kept the old values.
+TEST_F(PreviewServer, SavingOverALinkedSceneWritesTheFileItLeadsTo) {
+    fs::create_directories(dir_ / "real");
+    fs::rename(dir_ / "sphere.json", dir_ / "real" / "sphere.json");
+    fs::create_symlink("real/sphere.json", dir_ / "sphere.json");
+    restartOn(dir_ / "sphere.json");
+    ASSERT_EQ(change(R"({"media": [{"g": 0.5}]})").status, 200);
+    const HttpReply r = post("/save/scene", R"({"overwrite": true})");
+    ASSERT_EQ(r.status, 200) << r.body;
+    EXPECT_TRUE(fs::is_symlink(dir_ / "sphere.json")) << "the link was replaced by a file";
+    EXPECT_EQ(Json::parse(text(dir_ / "real" / "sphere.json"))["media"][0]["g"], 0.5);
+}
+
+// A medium whose file scale is 1e-30 and a sigma_s of 1e9 on the page: in the file's units that
+// is 1e39, over the float range, and the saved scene no longer loaded.
+TEST_F(PreviewServer, ASaveNeverWritesAValueTheLoaderRefuses) {
+    std::string scene = text(dir_ / "sphere.json");
+    scene.replace(scene.find("\"sigma_s\": 1.5"), 14, "\"scale\": 1e-30, \"sigma_s\": 1.5");
+    std::ofstream(dir_ / "tiny.json") << scene;
+    restartOn(dir_ / "tiny.json");
+    ASSERT_EQ(change(R"({"media": [{"sigma_s": 1e9}]})").status, 200);
+    for (const std::string body : {"{}", R"({"overwrite": true})"}) {
+        const HttpReply r = post("/save/scene", body);
+        EXPECT_EQ(r.status, 400) << body;
+        const std::string error = Json::parse(r.body).value("error", "");
+        EXPECT_EQ(error.rfind("not saved: the scene would not load: ", 0), 0u) << error;
+        EXPECT_NE(error.find("/media/0/sigma_s: "), std::string::npos) << error;
+    }
+    EXPECT_EQ(text(dir_ / "tiny.json"), scene);
+    EXPECT_FALSE(fs::exists(dir_ / "tiny-tuned-1.json"));
 }
 
 }  // namespace

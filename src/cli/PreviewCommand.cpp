@@ -12,10 +12,13 @@
 #include <thread>
 
 #include <sys/socket.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <httplib.h>
 
 #include "WebFiles.h"
+#include "base/Hash.h"
 #include "base/InputFile.h"
 #include "cli/Commands.h"
 #include "cli/LiveRender.h"
@@ -88,20 +91,41 @@ bool flagOf(const std::string& text, const char* key) {
     });
 }
 
-// The scene file as JSON, keys in their order, or null for a pbrt scene.
-nlohmann::ordered_json jsonScene(const std::string& path) {
-    if (looksLikeGltf(path, "")) return {};  // saved as the scene writer's JSON, as a pbrt scene is
-    const std::string text = readInputFile(path, kMaxSceneFileBytes, "a scene file");
+// The scene file's text as JSON, keys in their order, or null for a pbrt or glTF scene (saved as
+// the scene writer's JSON beside it).
+nlohmann::ordered_json jsonScene(const std::string& path, const std::string& text) {
     nlohmann::ordered_json doc = nlohmann::ordered_json::parse(text, nullptr, false, true);
     const bool gltf = doc.is_object() && doc.contains("asset") && !doc.contains("camera");
     return doc.is_discarded() || gltf || looksLikeGltf(path, text) ? nlohmann::ordered_json() : doc;
 }
 
+// A file as the preview read it, to tell whether it changed on disk since: its time of last
+// change and a hash of its bytes (a change within the clock's resolution keeps the time).
+struct FileVersion {
+    fs::file_time_type time;
+    uint64_t hash = 0;
+    bool operator==(const FileVersion& o) const { return time == o.time && hash == o.hash; }
+};
+
+FileVersion versionOf(const std::string& path, const std::string& text) {
+    std::error_code error;
+    return {fs::last_write_time(path, error), fnv1a(kFnvOffset, text.data(), text.size())};
+}
+
+// A glTF scene is never saved over, and a GLB may be larger than any scene file.
+std::string readScene(const std::string& path) {
+    return looksLikeGltf(path, "") ? "" : readInputFile(path, kMaxSceneFileBytes, "a scene file");
+}
+
 class PreviewServer {
 public:
     PreviewServer(const std::string& scenePath, const SceneDesc& desc)
+        : PreviewServer(scenePath, desc, readScene(scenePath)) {}
+
+    PreviewServer(const std::string& scenePath, const SceneDesc& desc, const std::string& text)
         : scenePath_(fs::absolute(scenePath).string()),
-          original_(jsonScene(scenePath)),
+          original_(jsonScene(scenePath, text)),
+          read_(versionOf(scenePath_, text)),
           saves_(fs::absolute(scenePath).parent_path(), fs::path(scenePath).stem().string(), kMaxSaves),
           settings_(desc, original_),
           good_(settings_),
@@ -301,12 +325,42 @@ private:
         std::lock_guard settingsLock(settingsMutex_);
         if (overwrite && original_.is_null())
             return sendError(res, "not saved: a pbrt or glTF scene is saved as JSON beside it, never over it");
+        if (overwrite) checkOverwrite();
         const std::string path = overwrite ? scenePath_ : saves_.next("tuned", {".json"}) + ".json";
-        if (original_.is_null())
+        if (original_.is_null()) {
             writeScene(settings_.scene(), path);
-        else
-            writeSceneJson(settings_.editedScene(original_), path);
+        } else {
+            const std::string text = sceneJsonText(settings_.editedScene(original_));
+            // The loader's checks on the very text, so that no save leaves a scene it refuses
+            // (a coefficient over the float range once divided by the medium's "scale", say).
+            try {
+                loadJsonSceneText(text, path);
+            } catch (const InputError& e) {
+                throw InputError(std::string("not saved: the scene would not load: ") + e.what());
+            }
+            writeStream(
+                path, [&](std::ostream& out) { out << text; }, overwrite);  // a numbered name: no link
+            if (overwrite) read_ = versionOf(scenePath_, text);
+        }
         sendJson(res, {{"scene", path}});
+    }
+
+    // "Save over the original" keeps what is on disk unless the preview read it: an edit made to
+    // the file while the preview ran, and a file made read-only, are refused, not overwritten.
+    void checkOverwrite() const {
+        std::string text;
+        try {
+            text = readScene(scenePath_);
+        } catch (const InputError& e) {
+            throw InputError(std::string("not saved: cannot read the scene again: ") + e.what());
+        }
+        if (!(versionOf(scenePath_, text) == read_))
+            throw InputError("not saved: " + scenePath_ +
+                             " changed on disk since the preview read it; save a copy, or restart the preview to "
+                             "tune the file as it is now");
+        struct stat st {};
+        if (::access(scenePath_.c_str(), W_OK) != 0 || (::stat(scenePath_.c_str(), &st) == 0 && !(st.st_mode & 0222)))
+            throw InputError("not saved: " + scenePath_ + " is read-only; save a copy instead");
     }
 
     void saveImage(const std::string& body, httplib::Response& res) {
@@ -315,14 +369,14 @@ private:
         if (!live) return sendError(res, "no image yet", 503);
         std::lock_guard lock(saveMutex_);
         const std::string exr = saves_.next("image", {".exr", ".png"}) + ".exr";
-        writeExr(exr, live->image);
-        writePng(previewPath(exr), live->image, exposure);
+        writeExrAndPng(exr, live->image, exposure);
         sendJson(res,
                  {{"exr", exr}, {"png", previewPath(exr)}, {"passes", live->passes}, {"generation", live->generation}});
     }
 
     const std::string scenePath_;
     const nlohmann::ordered_json original_;  // the JSON scene file as read; null for pbrt and glTF
+    FileVersion read_;                       // the scene file as read, or as last saved over
     PreviewSaves saves_;
     std::string host_;  // what the server is bound to, from bind() on
     int port_ = 0;

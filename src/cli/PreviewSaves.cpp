@@ -35,10 +35,13 @@ std::string PreviewSaves::next(const std::string& kind, const std::vector<std::s
     const std::string base = stem_ + "-" + kind + "-";
     auto found = last_.find(kind);
     if (found == last_.end()) found = last_.emplace(kind, largestTaken(base)).first;
-    // Another program may have made a file since: a stat per extension, not a listing.
+    // Another program may have made a file since: a stat per extension, not a listing. Any
+    // entry counts, a link to nothing too (a save would otherwise write where it leads).
     const auto taken = [&](const std::string& path) {
-        return std::any_of(extensions.begin(), extensions.end(),
-                           [&](const std::string& ext) { return fs::exists(path + ext); });
+        return std::any_of(extensions.begin(), extensions.end(), [&](const std::string& ext) {
+            std::error_code error;
+            return fs::exists(fs::symlink_status(path + ext, error));
+        });
     };
     std::string path;
     do path = (dir_ / (base + std::to_string(++found->second))).string();

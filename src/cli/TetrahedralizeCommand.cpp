@@ -140,7 +140,7 @@ void run(const Options& o) {
         if (ext == ".vtk")
             writeStream(o.output, [&](std::ostream& out) { writeVtk(mesh, spannedFaces(mesh, reports), out); });
         else
-            writeAtomically(o.output, [&](const std::string& temporary) { writeTetMesh(mesh, 0, temporary); });
+            writeTetMesh(mesh, 0, o.output);
     }
     const size_t steiner = mesh.vertices.size() - mesh.surfaceVertexCount;
     if (o.json) {

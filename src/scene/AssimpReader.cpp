@@ -18,6 +18,7 @@
 #include <glm/matrix.hpp>
 
 #include "base/ChildProcess.h"
+#include "base/ExternalReference.h"
 #include "base/InputFile.h"
 #include "scene/MeshWeld.h"
 #include "tet/MeshMessage.h"
@@ -55,17 +56,25 @@ private:
 };
 
 // The files Assimp may open: the mesh file itself (already read, under a name of our own whose
-// extension picks the importer) and, read on demand through readInputFile, the files it names.
-// Opening fails (and the first reason is kept) for anything readInputFile refuses, for writing,
-// and once all files together exceed the mesh limit.
+// extension picks the importer) and, read on demand through readInputFile, the files it names
+// inside the mesh's folder (base/ExternalReference.h). Opening fails (and the first reason is
+// kept) for a file outside that folder, for anything readInputFile refuses, for writing, and
+// once all files together exceed the mesh limit.
 class FileSystem : public Assimp::IOSystem {
 public:
-    FileSystem(const std::string& mainName, std::string data) : total_(data.size()) {
+    // `mainName`: ours for the mesh file, in its folder.
+    FileSystem(const std::string& mainName, std::string data)
+        : folder_(std::filesystem::path(mainName).parent_path().string()), total_(data.size()) {
         files_[mainName] = std::move(data);
     }
     bool Exists(const char* name) const override {
         std::error_code ec;
-        return files_.count(name) || std::filesystem::exists(name, ec);
+        if (files_.count(name)) return true;
+        try {
+            return std::filesystem::exists(resolve(name), ec);
+        } catch (const InputError&) {
+            return false;
+        }
     }
     char getOsSeparator() const override { return '/'; }
     Assimp::IOStream* Open(const char* name, const char* mode) override {
@@ -73,10 +82,11 @@ public:
         auto it = files_.find(name);
         if (it == files_.end()) {
             try {
-                std::string data = readInputFile(name, kMaxMeshFileBytes - std::min(kMaxMeshFileBytes, total_),
+                const std::string file = resolve(name).string();
+                std::string data = readInputFile(file, kMaxMeshFileBytes - std::min(kMaxMeshFileBytes, total_),
                                                  "the rest of a mesh's files (1024 MiB in all)");
                 total_ += data.size();
-                read_.push_back(name);
+                read_.push_back(file);
                 it = files_.emplace(name, std::move(data)).first;
             } catch (const InputError& e) {
                 if (problem_.empty()) problem_ = e.what();
@@ -92,6 +102,16 @@ public:
     const std::vector<std::string>& read() const { return read_; }
 
 private:
+    // The file a name Assimp asks for leads to. Assimp glues the reference, as the file wrote it,
+    // to the folder ("<folder>/" + uri, an absolute uri too): taken off again, it is what the
+    // message names and what is resolved.
+    std::filesystem::path resolve(const std::string& name) const {
+        std::string reference = name;
+        if (!folder_.empty() && reference.rfind(folder_ + "/", 0) == 0) reference.erase(0, folder_.size() + 1);
+        return resolveReference(folder_, reference);
+    }
+
+    const std::string folder_;
     std::string problem_;
     std::vector<std::string> read_;
     std::map<std::string, std::string> files_;

@@ -11,6 +11,7 @@
 #include <glm/gtc/type_ptr.hpp>
 #include <glm/matrix.hpp>
 
+#include "base/ExternalReference.h"
 #include "scene/PbrtOptions.h"
 #include "scene/PbrtTokenizer.h"
 #include "scene/PbrtTransform.h"
@@ -377,15 +378,24 @@ void Parser::reverseOrientation(const PbrtToken& d) {
 // Relative to the including file's folder. pbrt-v3 itself resolves every name against the first
 // file's folder: the same for includes from the first file; otherwise that file is the fallback,
 // and a warning says so where both exist.
+// Either way, the file must lie in the first file's folder (base/ExternalReference.h).
 void Parser::include(const PbrtToken& d) {
     const fs::path file = string(d);
-    if (file.is_absolute()) return tokens_.include(file.string(), d.where);
+    const auto read = [&](const fs::path& path) {
+        try {
+            checkReference(path, file.string(), searchDir_);
+        } catch (const InputError& e) {
+            pbrtError(d.where, std::string("Include: ") + e.what());
+        }
+        tokens_.include(path.string(), d.where);
+    };
+    if (file.is_absolute()) return read(file);
     const fs::path beside = fs::path(d.where.file).parent_path() / file, pbrtV3 = searchDir_ / file;
     std::error_code ec;
     const bool besideExists = fs::exists(beside, ec), pbrtV3Exists = fs::exists(pbrtV3, ec);
     if (besideExists && pbrtV3Exists && !fs::equivalent(beside, pbrtV3, ec))
         pbrtWarn(warnings_, d.where, "Include reads " + beside.string() + "; pbrt-v3 would read " + pbrtV3.string());
-    tokens_.include((besideExists || !pbrtV3Exists ? beside : pbrtV3).string(), d.where);
+    read(besideExists || !pbrtV3Exists ? beside : pbrtV3);
 }
 
 void Parser::unsupported(const PbrtToken& d) { pbrtError(d.where, d.text + " is not supported"); }

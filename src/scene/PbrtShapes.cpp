@@ -5,6 +5,7 @@
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 
+#include "base/ExternalReference.h"
 #include "scene/MeshFile.h"
 #include "scene/PbrtTransform.h"
 #include "scene/SceneShapes.h"
@@ -60,7 +61,7 @@ ObjectMesh readPlyMesh(PbrtParams& p, const PbrtLocation& where, const std::file
     if (const PbrtParam* map = p.find("displacementmap", Class::Texture)) p.fail(*map, "displacement is not supported");
     p.find("discarddegenerateUVs", Class::Bool);  // uv only feed textures
     try {
-        MeshFile read = readMeshFile((searchDir / file).string(), "", &warnings);
+        MeshFile read = readMeshFile(resolveReference(searchDir, file).string(), "", &warnings);
         return {std::move(read.mesh), std::move(read.normals)};
     } catch (const InputError& e) {
         pbrtError(where, p.directive() + ": " + e.what());

@@ -352,6 +352,10 @@ bool emitsLight(const SceneDesc& s) {
     return false;
 }
 
+SceneDesc loadJsonSceneText(const std::string& text, const std::string& path) {
+    return loadJsonScene(parseJson(text, path), path);
+}
+
 SceneDesc loadScene(const std::string& path, const std::string& camera) {
     const InputLog log;
     const auto read = [&] {

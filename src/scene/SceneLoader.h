@@ -21,6 +21,9 @@ SceneDesc loadScene(const std::string& path, const std::string& camera = "");
 // A JSON scene as `path` would hold it (its files relative to path's folder), read as loadScene
 // reads one: a scene checked before it is written.
 SceneDesc loadJsonScene(const nlohmann::json& doc, const std::string& path);
+// The same from a JSON scene's `text` (`path` named in messages): a scene about to be saved
+// there is checked with it.
+SceneDesc loadJsonSceneText(const std::string& text, const std::string& path);
 
 // The parts of a scene file the preview re-tunes, with the loader's own checks and errors.
 // A camera's "position", "look_at", "up" and "fov" (up and fov, when absent, keep c's).

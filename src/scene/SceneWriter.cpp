@@ -89,6 +89,7 @@ public:
     }
 
     std::vector<std::string> written;
+    std::vector<OutputWrite> writes;  // of the files in `written`, for writeTogether
 
 private:
     static Json material(const MaterialDesc& m) {
@@ -104,8 +105,9 @@ private:
     Json mesh(const TriangleMesh& m, const std::string& role, size_t index) {
         const std::string file = stem_ + "-" + role + "-" + std::to_string(index) + ".obj";
         prepareOutput((dir_ / file).string(), scene_.inputs);
-        writeObj(m, (dir_ / file).string(),
-                 "# " + role + " " + std::to_string(index) + " of " + scene_.path + ", world space\n");
+        const std::string header = "# " + role + " " + std::to_string(index) + " of " + scene_.path + ", world space\n";
+        writes.push_back(
+            streamWrite((dir_ / file).string(), [&m, header](std::ostream& out) { writeObj(m, out, header); }, false));
         written.push_back((dir_ / file).string());
         return {{"type", "mesh"}, {"file", file}};
     }
@@ -198,14 +200,23 @@ Json mediumCoefficientsJson(const MediumDesc& m) {
 
 std::vector<std::string> writeScene(const SceneDesc& scene, const std::string& jsonPath) {
     Writer writer(scene, jsonPath);
-    writeSceneJson(writer.scene(), jsonPath);
+    const std::string text = sceneJsonText(writer.scene());
+    // All or nothing: a failure at the last mesh leaves the earlier ones as they were.
+    std::vector<OutputWrite> files = std::move(writer.writes);
+    files.push_back(streamWrite(jsonPath, [&](std::ostream& out) { out << text; }));
+    writeTogether(files);
     return writer.written;
 }
 
-void writeSceneJson(const nlohmann::ordered_json& scene, const std::string& jsonPath) {
+std::string sceneJsonText(const nlohmann::ordered_json& scene) {
     std::string text;
     print(scene, "", text);
-    writeStream(jsonPath, [&](std::ostream& out) { out << text << '\n'; });
+    return text + '\n';
+}
+
+void writeSceneJson(const nlohmann::ordered_json& scene, const std::string& jsonPath) {
+    const std::string text = sceneJsonText(scene);
+    writeStream(jsonPath, [&](std::ostream& out) { out << text; });
 }
 
 }  // namespace tetglow

@@ -167,7 +167,7 @@ std::string inconsistency(const TetMesh& m) {
 
 }  // namespace
 
-void writeTetMesh(const TetMesh& mesh, uint64_t key, const std::string& path) {
+void writeTetMesh(const TetMesh& mesh, uint64_t key, const std::string& path, bool named) {
     std::string body;
     put(body, uint64_t(mesh.surfaceVertexCount));
     put(body, mesh.vertices);
@@ -184,7 +184,8 @@ void writeTetMesh(const TetMesh& mesh, uint64_t key, const std::string& path) {
     put(header, key);
     put(header, fnv1a(kFnvOffset, body.data(), body.size()));
     // Written beside the target and renamed, so a reader never sees half a file.
-    writeStream(path, [&](std::ostream& out) { out << header << body; });
+    writeStream(
+        path, [&](std::ostream& out) { out << header << body; }, named);
 }
 
 CacheRead readTetMesh(TetMesh& mesh, uint64_t key, const std::string& path, std::string* problem) {

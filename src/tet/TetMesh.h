@@ -69,8 +69,9 @@ struct TetMesh {
 };
 
 // Binary cache file: a header (version, key, checksum of the rest) and the arrays. Writing goes
-// through a temporary file and a rename, so a reader never sees half an entry.
-void writeTetMesh(const TetMesh& mesh, uint64_t key, const std::string& path);
+// through a temporary file and a rename, so a reader never sees half an entry. `named`: as
+// OutputWrite's (false for a cache entry, whose name the program chose).
+void writeTetMesh(const TetMesh& mesh, uint64_t key, const std::string& path, bool named = true);
 
 enum class CacheRead {
     Used,          // `mesh` holds the entry

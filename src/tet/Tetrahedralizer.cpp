@@ -331,7 +331,7 @@ TetMesh tetrahedralize(std::vector<TriangleMesh> surfaces, const std::vector<std
             std::error_code ec;
             std::filesystem::create_directories(file.parent_path(), ec);
             try {
-                writeTetMesh(mesh, key, file.string());
+                writeTetMesh(mesh, key, file.string(), false);
                 local.cacheFile = file.string();
             } catch (const std::exception& e) {
                 // An unwritable cache only costs time on the next run.

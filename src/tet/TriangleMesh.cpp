@@ -174,13 +174,15 @@ TriangleMesh parseOff(const std::string& data, const std::string& path) {
     return mesh;
 }
 
+void writeObj(const TriangleMesh& mesh, std::ostream& out, const std::string& header) {
+    if (!header.empty()) out << header;
+    out.precision(9);  // enough to round-trip float positions exactly (validation snaps to float)
+    for (const auto& p : mesh.positions) out << "v " << p.x << ' ' << p.y << ' ' << p.z << '\n';
+    for (const auto& t : mesh.triangles) out << "f " << t[0] + 1 << ' ' << t[1] + 1 << ' ' << t[2] + 1 << '\n';
+}
+
 void writeObj(const TriangleMesh& mesh, const std::string& path, const std::string& header) {
-    writeStream(path, [&](std::ostream& out) {
-        if (!header.empty()) out << header;
-        out.precision(9);  // enough to round-trip float positions exactly (validation snaps to float)
-        for (const auto& p : mesh.positions) out << "v " << p.x << ' ' << p.y << ' ' << p.z << '\n';
-        for (const auto& t : mesh.triangles) out << "f " << t[0] + 1 << ' ' << t[1] + 1 << ' ' << t[2] + 1 << '\n';
-    });
+    writeStream(path, [&](std::ostream& out) { writeObj(mesh, out, header); });
 }
 
 }  // namespace tetglow

@@ -2,6 +2,7 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <iosfwd>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -67,5 +68,7 @@ TriangleMesh parseOff(const std::string& text, const std::string& path);
 // starting with `where` ("file:line: ").
 void addPolygon(TriangleMesh& mesh, const std::vector<uint32_t>& polygon, const std::string& where);
 void writeObj(const TriangleMesh& mesh, const std::string& path, const std::string& header = "");
+// The same text to a stream (for a file written together with others: writeTogether).
+void writeObj(const TriangleMesh& mesh, std::ostream& out, const std::string& header = "");
 
 }  // namespace tetglow
