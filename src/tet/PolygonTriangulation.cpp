@@ -168,10 +168,11 @@ void triangulatePolygon(const std::vector<glm::dvec3>& positions, const std::vec
     auto fan = [&] {
         for (size_t k = 1; k + 1 < polygon.size(); ++k) triangles.push_back({polygon[0], polygon[k], polygon[k + 1]});
     };
+    if (polygon.size() == 3) return fan();
     const glm::dvec3 n = newellNormal(positions, polygon);
     // A polygon with a coordinate that is not finite is fanned for validation to name; one with
     // no area (its corners on a line) is fanned into triangles of no area, which the repair drops.
-    if (polygon.size() == 3 || !std::isfinite(n.x + n.y + n.z) || n == glm::dvec3(0)) return fan();
+    if (!std::isfinite(n.x + n.y + n.z) || n == glm::dvec3(0)) return fan();
     const Outline o = project(positions, polygon, n);
     if (o.points.size() < 3 || convex(o)) return fan();
     if (o.points.size() > kMaxConcavePolygonCorners)
