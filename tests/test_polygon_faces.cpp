@@ -1,6 +1,9 @@
 // Polygons of more than three corners in OBJ, OFF and PLY: a convex one is its fan, a concave
 // one is clipped into ears that neither overlap nor leave gaps (as Assimp triangulates Collada's),
 // and one whose outline crosses itself is an error naming file and line.
+#include <cmath>
+#include <random>
+
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>
 
@@ -122,6 +125,49 @@ TEST(PolygonFaces, AConcavePolygonOfManyCornersIsClipped) {
     double area = 0;
     for (uint32_t t = 0; t < mesh.triangles.size(); ++t) area += triangleArea(mesh, t);
     EXPECT_EQ(area, teeth * 10.0 + 2 * teeth);  // the teeth, 2 x 10 / 2 each, and the base strip
+}
+
+// The triangles of a polygon in the plane z = 0, each counter-clockwise with area, summed; a
+// triangle of no area or turned over fails.
+double clippedArea(const std::vector<glm::dvec3>& positions, const std::vector<std::array<uint32_t, 3>>& triangles) {
+    double area = 0;
+    for (const auto& t : triangles) {
+        const glm::dvec3 n = glm::cross(positions[t[1]] - positions[t[0]], positions[t[2]] - positions[t[0]]);
+        EXPECT_GT(n.z, 0);
+        area += n.z / 2;
+    }
+    return area;
+}
+
+// Random star-shaped polygons (simple, with many reflex corners), and an L with corners in the
+// middle of its edges: covered once, by triangles that all have area.
+TEST(PolygonFaces, EarsCoverSimplePolygonsOnce) {
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> radius(0.2, 1);
+    for (int trial = 0; trial < 200; ++trial) {
+        const size_t n = 4 + trial % 40;
+        std::vector<glm::dvec3> positions;
+        for (size_t i = 0; i < n; ++i) {
+            const double a = 2 * M_PI * double(i) / double(n), r = radius(rng);
+            positions.emplace_back(r * std::cos(a), r * std::sin(a), 0);
+        }
+        std::vector<uint32_t> polygon(n);
+        double shoelace = 0;
+        for (uint32_t i = 0; i < n; ++i) {
+            polygon[i] = i;
+            const glm::dvec3 &p = positions[i], &q = positions[(i + 1) % n];
+            shoelace += (p.x * q.y - q.x * p.y) / 2;
+        }
+        std::vector<std::array<uint32_t, 3>> triangles;
+        triangulatePolygon(positions, polygon, triangles, "star: ");
+        EXPECT_EQ(triangles.size(), n - 2) << trial;
+        EXPECT_NEAR(clippedArea(positions, triangles), shoelace, 1e-12) << trial;
+    }
+    const std::vector<glm::dvec3> l = {{0, 0, 0}, {2, 0, 0}, {4, 0, 0}, {4, 1, 0}, {2, 1, 0},
+                                       {1, 1, 0}, {1, 2, 0}, {1, 3, 0}, {0, 3, 0}, {0, 1, 0}};
+    std::vector<std::array<uint32_t, 3>> triangles;
+    triangulatePolygon(l, {0, 1, 2, 3, 4, 5, 6, 7, 8, 9}, triangles, "l: ");
+    EXPECT_EQ(clippedArea(l, triangles), 6);
 }
 
 }  // namespace

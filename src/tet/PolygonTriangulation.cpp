@@ -113,9 +113,12 @@ bool inClosedTriangle(const glm::dvec2& p, const glm::dvec2& a, const glm::dvec2
 
 // Ear clipping of a simple counter-clockwise outline. A corner is an ear when it turns left and
 // no other corner lies in or on its triangle; only corners that do not turn left can (a convex
-// corner never becomes reflex as ears are cut), so only those are tested. False when no ear is
-// left before the end (an outline the exact tests find degenerate).
-bool clipEars(const Outline& o, std::vector<std::array<uint32_t, 3>>& triangles) {
+// corner never becomes reflex as ears are cut), so only those are tested. An InputError starting
+// with `where` when no ear is left before the end (an outline the exact tests find degenerate),
+// or when the tests exceed their bound (a second or so: a hostile outline cannot hang the reader).
+void clipEars(const Outline& o, std::vector<std::array<uint32_t, 3>>& triangles, const std::string& where) {
+    constexpr size_t kMaxTests = size_t(1) << 28;
+    size_t tests = 0;
     const size_t n = o.points.size();
     std::vector<size_t> prev(n), next(n);
     std::vector<char> removed(n, 0), reflex(n, 0);
@@ -133,6 +136,10 @@ bool clipEars(const Outline& o, std::vector<std::array<uint32_t, 3>>& triangles)
     auto isEar = [&](size_t i) {
         if (reflex[i]) return false;
         const size_t a = prev[i], c = next[i];
+        tests += reflexList.size();
+        if (tests > kMaxTests)
+            throw InputError(where + "the concave polygon of " + std::to_string(n) +
+                             " corners is too intricate to clip into ears within the reader's bound");
         for (size_t r : reflexList)
             if (!removed[r] && reflex[r] && r != a && r != c &&
                 inClosedTriangle(o.points[r], o.points[a], o.points[i], o.points[c]))
@@ -143,7 +150,8 @@ bool clipEars(const Outline& o, std::vector<std::array<uint32_t, 3>>& triangles)
     while (left > 3) {
         if (!isEar(cur)) {
             cur = next[cur];
-            if (++tried > left) return false;
+            if (++tried > left)
+                throw InputError(where + "the polygon is too degenerate to triangulate (no ear left to clip)");
             continue;
         }
         const size_t a = prev[cur], c = next[cur];
@@ -158,7 +166,6 @@ bool clipEars(const Outline& o, std::vector<std::array<uint32_t, 3>>& triangles)
         tried = 0;
     }
     if (turn(cur) > 0) triangles.push_back({o.vertex[prev[cur]], o.vertex[cur], o.vertex[next[cur]]});
-    return true;
 }
 
 }  // namespace
@@ -182,8 +189,7 @@ void triangulatePolygon(const std::vector<glm::dvec3>& positions, const std::vec
     if (i >= 0)
         throw InputError(where + "the polygon's outline crosses or touches itself (its edges " + std::to_string(i + 1) +
                          " and " + std::to_string(j + 1) + "), so it has no triangulation without overlap");
-    if (!clipEars(o, triangles))
-        throw InputError(where + "the polygon is too degenerate to triangulate (no ear left to clip)");
+    clipEars(o, triangles, where);
 }
 
 }  // namespace tetglow
