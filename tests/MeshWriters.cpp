@@ -192,6 +192,14 @@ std::string glb(const Gltf& g) {
 }
 
 std::string collada(const TriangleMesh& m, const std::string& upAxis) {
+    PolygonMesh polygons;
+    polygons.positions = m.positions;
+    for (const auto& t : m.triangles) polygons.faces.push_back({t[0], t[1], t[2]});
+    return collada(polygons, upAxis);
+}
+
+std::string collada(const PolygonMesh& m, const std::string& upAxis, const std::string& bindShape) {
+    const std::string identity = "1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1";
     std::ostringstream s;
     s << "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n"
       << "<COLLADA xmlns=\"http://www.collada.org/2005/11/COLLADASchema\" version=\"1.4.1\">\n"
@@ -206,15 +214,46 @@ std::string collada(const TriangleMesh& m, const std::string& upAxis) {
          "type=\"float\"/>"
       << "</accessor></technique_common></source>\n"
       << "    <vertices id=\"box-vertices\"><input semantic=\"POSITION\" source=\"#box-positions\"/></vertices>\n"
-      << "    <triangles count=\"" << m.triangles.size()
-      << "\"><input semantic=\"VERTEX\" source=\"#box-vertices\" offset=\"0\"/><p>";
-    for (const auto& t : m.triangles) s << t[0] << ' ' << t[1] << ' ' << t[2] << ' ';
-    s << "</p></triangles>\n  </mesh></geometry></library_geometries>\n"
-      << "  <library_visual_scenes><visual_scene id=\"Scene\" name=\"Scene\">\n"
-      << "    <node id=\"Box\" name=\"Box\" type=\"NODE\"><matrix sid=\"transform\">1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 "
-         "1</matrix>"
-      << "<instance_geometry url=\"#box-mesh\" name=\"Box\"/></node>\n"
-      << "  </visual_scene></library_visual_scenes>\n"
+      << "    <polylist count=\"" << m.faces.size()
+      << "\"><input semantic=\"VERTEX\" source=\"#box-vertices\" offset=\"0\"/><vcount>";
+    for (const auto& f : m.faces) s << f.size() << ' ';
+    s << "</vcount><p>";
+    for (const auto& f : m.faces)
+        for (uint32_t v : f) s << v << ' ';
+    s << "</p></polylist>\n  </mesh></geometry></library_geometries>\n";
+    if (!bindShape.empty()) {
+        // One joint at the origin, bound where it stands, every vertex wholly its own.
+        s << "  <library_controllers><controller id=\"box-skin\"><skin source=\"#box-mesh\">"
+          << "<bind_shape_matrix>" << bindShape << "</bind_shape_matrix>\n"
+          << "    <source id=\"joints\"><Name_array id=\"joints-array\" count=\"1\">Bone</Name_array>"
+          << "<technique_common><accessor source=\"#joints-array\" count=\"1\" stride=\"1\"><param name=\"JOINT\" "
+             "type=\"name\"/></accessor></technique_common></source>\n"
+          << "    <source id=\"binds\"><float_array id=\"binds-array\" count=\"16\">" << identity
+          << "</float_array><technique_common><accessor source=\"#binds-array\" count=\"1\" stride=\"16\"><param "
+             "name=\"TRANSFORM\" type=\"float4x4\"/></accessor></technique_common></source>\n"
+          << "    <source id=\"weights\"><float_array id=\"weights-array\" count=\"1\">1</float_array>"
+          << "<technique_common><accessor source=\"#weights-array\" count=\"1\" stride=\"1\"><param name=\"WEIGHT\" "
+             "type=\"float\"/></accessor></technique_common></source>\n"
+          << "    <joints><input semantic=\"JOINT\" source=\"#joints\"/><input semantic=\"INV_BIND_MATRIX\" "
+             "source=\"#binds\"/></joints>\n"
+          << "    <vertex_weights count=\"" << m.positions.size()
+          << "\"><input semantic=\"JOINT\" source=\"#joints\" offset=\"0\"/><input semantic=\"WEIGHT\" "
+             "source=\"#weights\" offset=\"1\"/><vcount>";
+        for (size_t i = 0; i < m.positions.size(); ++i) s << "1 ";
+        s << "</vcount><v>";
+        for (size_t i = 0; i < m.positions.size(); ++i) s << "0 0 ";
+        s << "</v></vertex_weights>\n  </skin></controller></library_controllers>\n";
+    }
+    s << "  <library_visual_scenes><visual_scene id=\"Scene\" name=\"Scene\">\n";
+    if (bindShape.empty())
+        s << "    <node id=\"Box\" name=\"Box\" type=\"NODE\"><matrix sid=\"transform\">" << identity << "</matrix>"
+          << "<instance_geometry url=\"#box-mesh\" name=\"Box\"/></node>\n";
+    else
+        s << "    <node id=\"Bone\" sid=\"Bone\" name=\"Bone\" type=\"JOINT\"><matrix sid=\"transform\">" << identity
+          << "</matrix></node>\n"
+          << "    <node id=\"Box\" name=\"Box\" type=\"NODE\"><matrix sid=\"transform\">" << identity << "</matrix>"
+          << "<instance_controller url=\"#box-skin\"><skeleton>#Bone</skeleton></instance_controller></node>\n";
+    s << "  </visual_scene></library_visual_scenes>\n"
       << "  <scene><instance_visual_scene url=\"#Scene\"/></scene>\n</COLLADA>\n";
     return s.str();
 }

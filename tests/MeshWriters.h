@@ -42,7 +42,10 @@ struct Gltf {
 Gltf gltf(const std::vector<TriangleMesh>& meshes, const std::vector<GltfNode>& nodes, const std::vector<int>& roots,
           const std::string& binUri);
 std::string glb(const Gltf& g);  // g made with binUri ""
-// Collada 1.4.1 with one node instancing the mesh; `upAxis` "Y_UP" or "Z_UP".
+// Collada 1.4.1 with one node instancing the mesh as a polylist; `upAxis` "Y_UP" or "Z_UP".
+// `bindShape` (16 numbers, row-major): the mesh instanced as a skin of one joint at the origin,
+// with that bind-shape matrix ("" for a plain geometry).
+std::string collada(const PolygonMesh& m, const std::string& upAxis, const std::string& bindShape = "");
 std::string collada(const TriangleMesh& m, const std::string& upAxis);
 // ASCII FBX 7.4 with one model holding the polygons.
 std::string fbxAscii(const PolygonMesh& m);

@@ -1,4 +1,4 @@
-// tetglow tetrahedralize MESH... [-o FILE] [--json]: validate, tetrahedralize (several meshes
+// tetglow tetrahedralize MESH... [--node NAME] [-o FILE] [--json]: validate, tetrahedralize (several meshes
 // together, as regions), report.
 #include <cmath>
 #include <cstdio>
@@ -18,7 +18,7 @@ namespace {
 
 struct Options {
     std::vector<std::string> meshes;
-    std::string output;
+    std::string output, node;
     bool json = false, noCache = false;
     TetOptions tet;
 };
@@ -116,7 +116,7 @@ void run(const Options& o) {
     std::vector<TriangleMesh> surfaces;
     for (const auto& path : o.meshes) {
         std::vector<std::string> warnings;
-        surfaces.push_back(readMesh(path, &warnings));
+        surfaces.push_back(readMesh(path, &warnings, o.node));
         for (const auto& w : warnings) std::fprintf(stderr, "tetglow: warning: %s\n", w.c_str());
     }
     TetOptions tetOptions = o.tet;
@@ -214,6 +214,10 @@ void addTetrahedralizeCommand(CLI::App& app) {
         ->required();
     cmd->add_option("-o,--output", o->output,
                     "Write the tet mesh (.vtk: legacy VTK for ParaView; else tetglow's binary)")
+        ->check(kNonEmpty);
+    cmd->add_option("--node", o->node,
+                    "Only the meshes of this node and the nodes below it (glTF, GLB, FBX, Collada), as a scene "
+                    "file's \"node\"")
         ->check(kNonEmpty);
     cmd->add_flag("--json", o->json, "Print the report as one JSON object");
     cmd->add_option("--quality", o->tet.radiusEdgeRatio, "Radius-edge ratio bound (TetGen -q); adds Steiner points")

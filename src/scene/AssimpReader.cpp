@@ -174,8 +174,44 @@ const aiNode* findNode(const std::vector<Placed>& nodes, const std::string& name
     return found;
 }
 
-// The triangles of the node's meshes in the node's own coordinates; counts other faces in `skipped`.
-TriangleMesh nodeMesh(const aiScene& scene, const aiNode& node, const std::string& path, size_t& skipped) {
+// The world transform of each bone's node, by name.
+using BoneWorlds = std::map<std::string, glm::dmat4>;
+
+// A skinned mesh's positions as its skin places them, in the coordinates of the node at `world`:
+// each vertex by its bones' node transforms times their offsets (the inverse bind matrices, with
+// Collada's bind-shape matrix, which Assimp folds into them), weighted: linear blend skinning, as
+// Blender and glTF place a skin. A vertex that no bone found in the scene weighs stays as it is.
+std::vector<glm::dvec3> skinnedPositions(const aiMesh& m, const BoneWorlds& bones, const glm::dmat4& world,
+                                         const std::string& path) {
+    std::vector<glm::dvec3> sum(m.mNumVertices, glm::dvec3(0));
+    std::vector<double> weight(m.mNumVertices, 0);
+    for (unsigned b = 0; b < m.mNumBones; ++b) {
+        const aiBone* bone = m.mBones[b];
+        const auto it = bone ? bones.find(bone->mName.C_Str()) : bones.end();
+        if (it == bones.end()) continue;
+        const glm::dmat4 pose = it->second * toGlm(bone->mOffsetMatrix);
+        for (unsigned k = 0; k < bone->mNumWeights; ++k) {
+            const aiVertexWeight& w = bone->mWeights[k];
+            if (w.mVertexId >= m.mNumVertices || !std::isfinite(w.mWeight))
+                throw InputError(path + ": mesh '" + shorten(m.mName.C_Str()) + "': bone '" +
+                                 shorten(bone->mName.C_Str()) + "' weighs a vertex that is not there");
+            const aiVector3D& p = m.mVertices[w.mVertexId];
+            sum[w.mVertexId] += double(w.mWeight) * glm::dvec3(pose * glm::dvec4(p.x, p.y, p.z, 1));
+            weight[w.mVertexId] += w.mWeight;
+        }
+    }
+    const glm::dmat4 toNode = glm::inverse(world);
+    std::vector<glm::dvec3> out(m.mNumVertices);
+    for (unsigned v = 0; v < m.mNumVertices; ++v)
+        out[v] = weight[v] > 0 ? glm::dvec3(toNode * glm::dvec4(sum[v] / weight[v], 1))
+                               : glm::dvec3(m.mVertices[v].x, m.mVertices[v].y, m.mVertices[v].z);
+    return out;
+}
+
+// The triangles of the node's meshes in the node's own coordinates (the node at `world`, skins
+// posed); counts other faces in `skipped`.
+TriangleMesh nodeMesh(const aiScene& scene, const aiNode& node, const glm::dmat4& world, const BoneWorlds& bones,
+                      const std::string& path, size_t& skipped) {
     TriangleMesh local;
     for (unsigned i = 0; i < node.mNumMeshes; ++i) {
         if (node.mMeshes[i] >= scene.mNumMeshes)
@@ -183,8 +219,13 @@ TriangleMesh nodeMesh(const aiScene& scene, const aiNode& node, const std::strin
                              std::to_string(scene.mNumMeshes));
         const aiMesh& m = *scene.mMeshes[node.mMeshes[i]];
         const uint32_t base = uint32_t(local.positions.size());
-        for (unsigned v = 0; v < m.mNumVertices; ++v)
-            local.positions.emplace_back(m.mVertices[v].x, m.mVertices[v].y, m.mVertices[v].z);
+        if (m.mNumBones) {
+            const std::vector<glm::dvec3> posed = skinnedPositions(m, bones, world, path);
+            local.positions.insert(local.positions.end(), posed.begin(), posed.end());
+        } else {
+            for (unsigned v = 0; v < m.mNumVertices; ++v)
+                local.positions.emplace_back(m.mVertices[v].x, m.mVertices[v].y, m.mVertices[v].z);
+        }
         for (unsigned f = 0; f < m.mNumFaces; ++f) {
             const aiFace& face = m.mFaces[f];
             if (face.mNumIndices != 3) {
@@ -286,6 +327,10 @@ Imported import(std::string data, const std::string& path, SceneMeshFormat forma
         result.up[upAxis] = upSign;
     const std::vector<Placed> nodes = placeNodes(scene->mRootNode, path);
     const aiNode* top = node.empty() ? scene->mRootNode : findNode(nodes, node, path);
+    BoneWorlds bones;  // only where a mesh has a skin
+    for (unsigned i = 0; i < scene->mNumMeshes && bones.empty(); ++i)
+        if (scene->mMeshes[i] && scene->mMeshes[i]->mNumBones)
+            for (const Placed& p : nodes) bones.emplace(p.node->mName.C_Str(), p.world);
     result.files = files->read();
     TriangleMesh& out = result.mesh;
     size_t skipped = 0, singular = 0;
@@ -307,18 +352,29 @@ Imported import(std::string data, const std::string& path, SceneMeshFormat forma
             continue;
         }
         const std::vector<unsigned> key(p.node->mMeshes, p.node->mMeshes + p.node->mNumMeshes);
-        auto local = locals.find(key);
-        if (local == locals.end()) {
-            Local l;
-            l.mesh = nodeMesh(*scene, *p.node, path, l.skipped);
-            local = locals.emplace(key, std::move(l)).first;
+        // A skinned mesh is posed by its bones for this node alone; other sets are shared.
+        const bool skinned = std::any_of(key.begin(), key.end(), [&](unsigned m) {
+            return m < scene->mNumMeshes && scene->mMeshes[m]->mNumBones;
+        });
+        Local posed;
+        const Local* local = &posed;
+        if (skinned) {
+            posed.mesh = nodeMesh(*scene, *p.node, p.world, bones, path, posed.skipped);
+        } else {
+            auto shared = locals.find(key);
+            if (shared == locals.end()) {
+                Local l;
+                l.mesh = nodeMesh(*scene, *p.node, p.world, bones, path, l.skipped);
+                shared = locals.emplace(key, std::move(l)).first;
+            }
+            local = &shared->second;
         }
-        skipped += local->second.skipped;
-        if (local->second.mesh.triangles.size() > kMaxSceneMeshTriangles - out.triangles.size())
+        skipped += local->skipped;
+        if (local->mesh.triangles.size() > kMaxSceneMeshTriangles - out.triangles.size())
             throw InputError(path + ": more than " + std::to_string(kMaxSceneMeshTriangles) +
                              " triangles once every node's meshes are placed");
         const size_t first = out.positions.size();
-        append(out, local->second.mesh, p.world);
+        append(out, local->mesh, p.world);
         Bounds3 placed;
         for (size_t v = first; v < out.positions.size(); ++v) placed.extend(out.positions[v]);
         if (const std::string problem = precisionProblem(placed); !problem.empty()) {

@@ -2,10 +2,12 @@
 // the file is placed by its node's world transform (the product of the transforms of the node and
 // its ancestors, as Assimp's importer builds the hierarchy: glTF and FBX as written, Collada
 // turned from Z-up to Y-up), its winding reversed under a mirroring transform (glTF's rule), and
-// its equal positions welded per node. Points and lines are skipped with a warning. Every file
-// Assimp opens (a glTF's .bin buffers, say) lies in the mesh's folder (base/ExternalReference.h)
-// and goes through readInputFile: a regular file, and all of them together within the mesh limit. Assimp runs in a
-// child process bounded in memory and time (base/ChildProcess.h): a crash or a limit reached is an InputError.
+// its equal positions welded per node; a skinned mesh posed by its bones' nodes (linear blend
+// skinning, Collada's bind-shape matrix included). Points and lines are skipped with a warning.
+// Every file Assimp opens (a glTF's .bin buffers, say) lies in the mesh's folder
+// (base/ExternalReference.h) and goes through readInputFile: a regular file, and all of them
+// together within the mesh limit. Assimp runs in a child process bounded in memory and time
+// (base/ChildProcess.h): a crash or a limit reached is an InputError.
 #pragma once
 #include <string>
 #include <vector>

@@ -6,8 +6,10 @@
 
 #include "base/InputFile.h"
 #include "scene/AssimpReader.h"
+#include "scene/GltfVersion.h"
 #include "scene/PlyReader.h"
 #include "scene/StlReader.h"
+#include "scene/TextEncoding.h"
 
 namespace tetglow {
 namespace {
@@ -61,7 +63,9 @@ Format formatOf(const std::string& data, const std::string& path) {
 
 MeshFile readMeshFile(const std::string& path, const std::string& node, std::vector<std::string>* warnings) {
     std::string data = readInputFile(path, kMaxMeshFileBytes, "a mesh");
+    if (!isBinaryStl(data)) data = utf8Text(std::move(data), path);  // a binary STL's header is free
     const Format format = formatOf(data, path);
+    if (format == Format::Gltf || format == Format::Glb) refuseGltf1(data, path, format == Format::Glb);
     if (format < Format::Gltf && !node.empty())
         throw InputError(path + ": " + name(format) + " file has no nodes to choose '" + shorten(node) +
                          "' from (only glTF, GLB, FBX and Collada files have)");
@@ -69,7 +73,7 @@ MeshFile readMeshFile(const std::string& path, const std::string& node, std::vec
     switch (format) {
         case Format::Obj: out.mesh = parseObj(data, path, warnings); break;
         case Format::Off: out.mesh = parseOff(data, path); break;
-        case Format::Ply: out = parsePly(data, path); break;
+        case Format::Ply: out = parsePly(data, path, warnings); break;
         case Format::Stl: out.mesh = parseStl(data, path); break;
         case Format::Gltf:
         case Format::Glb:

@@ -122,7 +122,7 @@ struct Header {
     size_t bodyStart = 0;
 };
 
-Header readHeader(const std::string& data, const std::string& path) {
+Header readHeader(const std::string& data, const std::string& path, std::vector<std::string>* warnings) {
     Header h;
     size_t pos = 0;
     bool sawFormat = false;
@@ -178,8 +178,9 @@ Header readHeader(const std::string& data, const std::string& path) {
             h.elements.back().properties.push_back(p);
         } else if (key == "end_header") {
             break;
-        } else if (key != "comment" && key != "obj_info" && !key.empty()) {
-            throw bad();
+        } else if (key != "comment" && key != "obj_info" && !key.empty() && warnings) {
+            addWarning(*warnings, path + ":" + std::to_string(lineNo) + ": PLY header: skipped the line '" +
+                                      shorten(line) + "' (not format, element, property or end_header)");
         }
     }
     if (!sawFormat) throw InputError(path + ": PLY header without a 'format' line");
@@ -228,10 +229,12 @@ size_t smallestElement(const Element& e, bool ascii) {
 
 }  // namespace
 
-MeshFile parsePly(const std::string& data, const std::string& path) {
-    const Header header = readHeader(data, path);
+MeshFile parsePly(const std::string& data, const std::string& path, std::vector<std::string>* warnings) {
+    const Header header = readHeader(data, path, warnings);
     Body body(data, header.bodyStart, header.format, path);
     MeshFile out;
+    // Faces listed before the vertices, triangulated once the positions are read.
+    std::vector<std::pair<std::vector<uint32_t>, size_t>> pending;
     size_t vertexCount = 0;
     for (const Element& e : header.elements)
         if (e.name == "vertex") vertexCount = e.count;
@@ -279,11 +282,15 @@ MeshFile parsePly(const std::string& data, const std::string& path) {
             if (faces) {
                 face.clear();
                 for (double v : list) face.push_back(vertexIndex(v, vertexCount, "face", i, path));
-                addPolygon(out.mesh, face, path + ": face " + std::to_string(i) + ": ");
+                if (out.mesh.positions.size() < vertexCount)
+                    pending.push_back({face, i});
+                else
+                    addPolygon(out.mesh, face, path + ": face " + std::to_string(i) + ": ");
             }
             if (strips) addStrip(out.mesh, list, vertexCount, i, path);
         }
     }
+    for (const auto& [polygon, i] : pending) addPolygon(out.mesh, polygon, path + ": face " + std::to_string(i) + ": ");
     if (out.mesh.triangles.empty())
         throw InputError(path + ": no triangles (a PLY mesh needs 'vertex' and 'face' or 'tristrips' elements)");
     return out;

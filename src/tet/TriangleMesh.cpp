@@ -10,6 +10,7 @@
 
 #include "base/InputFile.h"
 #include "base/OutputFile.h"
+#include "tet/PolygonTriangulation.h"
 
 namespace tetglow {
 
@@ -81,7 +82,7 @@ uint32_t objIndex(const std::string& tok, size_t vertexCount, const std::string&
 
 void addPolygon(TriangleMesh& mesh, const std::vector<uint32_t>& poly, const std::string& where) {
     if (poly.size() < 3) throw InputError(where + "face with " + std::to_string(poly.size()) + " vertices");
-    for (size_t k = 1; k + 1 < poly.size(); ++k) mesh.triangles.push_back({poly[0], poly[k], poly[k + 1]});
+    triangulatePolygon(mesh.positions, poly, mesh.triangles, where);
 }
 
 TriangleMesh parseObj(const std::string& data, const std::string& path, std::vector<std::string>* warnings) {

@@ -64,8 +64,8 @@ double signedVolume(const TriangleMesh& mesh);
 // and line. Warnings (such as a missing mtllib) go to `warnings`.
 TriangleMesh parseObj(const std::string& text, const std::string& path, std::vector<std::string>* warnings);
 TriangleMesh parseOff(const std::string& text, const std::string& path);
-// Polygon (v0 v1 ... vn-1) as the fan (v0 vk vk+1); fewer than 3 vertices is an InputError
-// starting with `where` ("file:line: ").
+// Polygon (v0 ... vn-1) of the mesh's positions as triangles (tet/PolygonTriangulation.h); fewer
+// than 3 vertices, or a self-crossing outline, is an InputError starting with `where` ("file:line: ").
 void addPolygon(TriangleMesh& mesh, const std::vector<uint32_t>& polygon, const std::string& where);
 void writeObj(const TriangleMesh& mesh, const std::string& path, const std::string& header = "");
 // The same text to a stream (for a file written together with others: writeTogether).
