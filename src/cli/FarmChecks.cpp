@@ -88,7 +88,7 @@ void checkScriptText(const std::string& what, const std::string& value, bool log
             "' holds a backslash, which turns off Slurm's file name patterns (task-%a.log): choose another folder");
 }
 
-std::string localPathWarning(const std::string& what, const std::string& path) {
+std::string localPathWarning(const std::string& what, const std::string& path, std::istream& mounts) {
     namespace fs = std::filesystem;
     std::error_code ec;
     fs::path p = fs::weakly_canonical(path, ec);
@@ -99,7 +99,6 @@ std::string localPathWarning(const std::string& what, const std::string& path) {
     for (const char* dir : {"/tmp", "/var/tmp", "/dev/shm"})
         if (under(dir)) why = std::string("in ") + dir;
     // The longest mount point that holds the path says which file system it is on.
-    std::ifstream mounts("/proc/mounts");
     std::string line, device, mountPoint, type, deepest, deepestType;
     while (std::getline(mounts, line)) {
         std::istringstream fields(line);
@@ -114,6 +113,11 @@ std::string localPathWarning(const std::string& what, const std::string& path) {
     if (why.empty()) return {};
     return "farm: warning: " + what + " " + s + " lies " + why +
            ", which is local to each node: tasks on other nodes will not see it";
+}
+
+std::string localPathWarning(const std::string& what, const std::string& path) {
+    std::ifstream mounts("/proc/mounts");
+    return localPathWarning(what, path, mounts);
 }
 
 }  // namespace tetglow::cli

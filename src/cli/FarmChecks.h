@@ -2,6 +2,7 @@
 // user needs there (a newline in a path or a partition name) is refused with one line rather
 // than escaped, and a path that the nodes may not share is warned about.
 #pragma once
+#include <istream>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -19,7 +20,10 @@ extern const CLI::Validator kSbatchArg;  // one long option of sbatch's, not one
 // --output (every task would write one log named task-%a.log).
 void checkScriptText(const std::string& what, const std::string& value, bool logFolder = false);
 
-// "" or a warning that `path` lies where other nodes do not see it (/tmp, /var/tmp, a tmpfs).
+// "" or a warning that `path` lies where other nodes do not see it (/tmp, /var/tmp, a tmpfs),
+// the file systems read from `mounts` (lines as /proc/mounts gives them: DEVICE MOUNT-POINT TYPE
+// ...), or from /proc/mounts itself.
+std::string localPathWarning(const std::string& what, const std::string& path, std::istream& mounts);
 std::string localPathWarning(const std::string& what, const std::string& path);
 
 }  // namespace tetglow::cli
