@@ -15,6 +15,8 @@
 #include <stdexcept>
 #include <thread>
 
+#include "TestMeshes.h"
+
 namespace tetglow::test {
 
 PreviewProcess::PreviewProcess(const std::string& args, const std::string& errPath) {
@@ -38,7 +40,7 @@ PreviewProcess::PreviewProcess(const std::string& args, const std::string& errPa
     // "preview: http://127.0.0.1:PORT/ (Ctrl-C stops)"
     std::string line;
     pollfd p{out[0], POLLIN, 0};
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(120 * testTimeScale());
     char c = 0;
     while (line.find('\n') == std::string::npos && std::chrono::steady_clock::now() < deadline) {
         if (poll(&p, 1, 100) > 0 && read(out[0], &c, 1) == 1)

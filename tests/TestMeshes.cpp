@@ -9,6 +9,7 @@
 #include <fstream>
 #include <numbers>
 #include <sstream>
+#include <thread>
 
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>
@@ -102,6 +103,13 @@ CommandResult runTetglow(const std::string& args, int timeoutSeconds) {
     const int status = std::system(cmd.c_str());
     const int code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
     return {code, readFile(out), readFile(err)};
+}
+
+double testTimeScale() {
+    const char* given = std::getenv("TETGLOW_TEST_TIME_SCALE");
+    double load[1] = {0};
+    const double busy = getloadavg(load, 1) == 1 ? load[0] / std::max(1u, std::thread::hardware_concurrency()) : 1.0;
+    return (given ? std::atof(given) : 1.0) * std::max(1.0, busy);
 }
 
 void expectOneLineError(const CommandResult& r, int code, const std::string& expected) {

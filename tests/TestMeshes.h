@@ -48,6 +48,10 @@ struct CommandResult {
 // Runs the tetglow binary with the given arguments (shell-quoted by the caller); with a timeout,
 // a run that takes longer is killed (exit code 137), so that a test of a hang cannot hang.
 CommandResult runTetglow(const std::string& args, int timeoutSeconds = 0);
+// How much longer than on a quiet machine a wait for a render may take: TETGLOW_TEST_TIME_SCALE
+// (the sanitizer build sets it) times the load average over the cores, when above 1. Waits are
+// bounds for something stuck, not measurements.
+double testTimeScale();
 // A failed command: exit code `code` and one line on stderr that contains `expected`.
 void expectOneLineError(const CommandResult& r, int code, const std::string& expected);
 

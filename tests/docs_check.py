@@ -5,6 +5,8 @@
       date or clock time; no doc, code or script names an issue number or a session
   tests/docs_check.py links [--root DIR]   every relative link in README.md, bench/README.md and
       docs/**/*.md points to a file that exists (and, with #anchor, to a heading in it)
+  tests/docs_check.py readme [--root DIR]  README.md is a door, not a manual: at most 150 lines,
+      and its first command for one's own mesh (`tetglow init`) within its first 60
 
 Prints one line per problem (file:line: what) and exits 1 when there is any.
 """
@@ -107,12 +109,29 @@ def check_links(root):
     return problems
 
 
+README_LINES, FIRST_SCENE_BY = 150, 60
+
+
+def check_readme(root):
+    with open(os.path.join(root, "README.md"), encoding="utf-8") as f:
+        lines = f.read().splitlines()
+    problems = []
+    if len(lines) > README_LINES:
+        problems.append(f"README.md: {len(lines)} lines, more than {README_LINES}: move the detail to docs/")
+    init = next((n for n, line in enumerate(lines, 1) if re.match(r"\s*build/tetglow init ", line)), None)
+    if init is None:
+        problems.append("README.md: no command for one's own mesh (build/tetglow init MESH ...)")
+    elif init > FIRST_SCENE_BY:
+        problems.append(f"README.md:{init}: the first command for one's own mesh comes after line {FIRST_SCENE_BY}")
+    return problems
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("check", choices=["names", "links"])
+    parser.add_argument("check", choices=["names", "links", "readme"])
     parser.add_argument("--root", default=os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
     a = parser.parse_args()
-    problems = check_names(a.root) if a.check == "names" else check_links(a.root)
+    problems = {"names": check_names, "links": check_links, "readme": check_readme}[a.check](a.root)
     for p in problems:
         print(p)
     if problems:

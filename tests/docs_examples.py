@@ -7,7 +7,10 @@ source tree (the files git tracks, and the build's tetglow at build/tetglow):
 A code block is a command when its first word is a program or a path to one: each of its lines
 runs in the copy's root (a trailing "# ..." is a comment) and must exit 0. A JSON block holding a
 scene (an object with "camera" or "media") is saved, under the name of a preceding
-`<!-- file: NAME -->` or one of its own, and rendered small. A block right after
+`<!-- file: NAME -->` or one of its own, and rendered small, without a warning. A JSON block after
+`<!-- fragment: NAME -->` is part of a scene (an object, or its keys without the braces): its
+keys replace those of the scene an earlier block saved as NAME, and that is rendered small. Any
+other JSON block that is not an object is an error, so that fragments stay marked. A block right after
 `<!-- synopsis -->` is a synopsis (placeholders, a cluster, an installer) and is not run; any
 other command that is not `build/tetglow` is an error, so that such blocks stay marked and rare.
 Blocks run in the order of the files, each file in its own copy. With --section, only the blocks
@@ -23,7 +26,7 @@ import sys
 import tempfile
 
 COMMAND = re.compile(r"^(\./|build/|bench/|fuzz/|tests/|tetglow\s|cmake\b|ctest\b|python3?\b|sudo\b|apt(-get)?\b|git\b|cd\b)")
-MARK = re.compile(r"<!--\s*(synopsis|file:\s*(\S+))\s*-->")
+MARK = re.compile(r"<!--\s*(synopsis|(?:file|fragment):\s*(\S+))\s*-->")
 
 
 def blocks(text):
@@ -56,7 +59,9 @@ def blocks(text):
 
 
 def fresh_copy(root, tetglow, into):
-    r = subprocess.run(["git", "-C", root, "ls-files", "--cached", "--others", "--exclude-standard"], capture_output=True, text=True)
+    # Only what git tracks: a reader's own files (mine/, out/, a mesh beside the checkout) stay
+    # out of the copy, so that the examples neither see nor depend on them.
+    r = subprocess.run(["git", "-C", root, "ls-files", "--cached"], capture_output=True, text=True)
     if r.returncode != 0:
         sys.exit(f"{root}: not a git checkout: {r.stderr.strip()}")
     for f in r.stdout.splitlines():
@@ -74,6 +79,17 @@ def run(cmd, cwd):
     if r.returncode != 0:
         print(r.stdout + r.stderr)
     return r.returncode == 0
+
+
+def render_scene(name, n, cwd):
+    """"" when the scene renders without a warning, else what went wrong."""
+    cmd = f"build/tetglow render {name} --resolution 24x18 --spp 1 -o out/docs-block-{n}.exr"
+    print("$", cmd, flush=True)
+    r = subprocess.run(cmd, shell=True, cwd=cwd, capture_output=True, text=True, timeout=600)
+    if r.returncode != 0:
+        return "does not render: " + (r.stdout + r.stderr).strip()
+    warnings = [line for line in r.stderr.splitlines() if "warning:" in line]
+    return "renders with a warning: " + warnings[0] if warnings else ""
 
 
 def main():
@@ -98,19 +114,36 @@ def main():
                 if mark == "synopsis":
                     continue
                 first = body.strip().split("\n")[0] if body.strip() else ""
-                if kind == "fenced-json":
+                if kind == "fenced-json" and mark and mark.startswith("fragment:"):
+                    whole = mark[len("fragment:"):].strip()
+                    try:
+                        part = json.loads(body if body.lstrip().startswith("{") else "{" + body + "}")
+                        with open(os.path.join(copy, whole)) as f:
+                            scene = json.load(f)
+                    except (ValueError, OSError) as e:
+                        failures.append(f"{where}: a fragment of {whole}: {e}")
+                        continue
+                    scene.update(part)
+                    name = f"docs-block-{n}.json"
+                    with open(os.path.join(copy, name), "w") as f:
+                        json.dump(scene, f)
+                    ran += 1
+                    if problem := render_scene(name, n, copy):
+                        failures.append(f"{where}: {whole} with this fragment {problem}")
+                elif kind == "fenced-json":
                     try:
                         scene = json.loads(body)
-                    except ValueError:
-                        continue  # a fragment
+                    except ValueError as e:
+                        failures.append(f"{where}: not a JSON object ({e}): mark a fragment <!-- fragment: FILE -->")
+                        continue
                     if not isinstance(scene, dict) or not ("camera" in scene or "media" in scene):
                         continue
                     name = mark[len("file:"):].strip() if mark and mark.startswith("file:") else f"docs-block-{n}.json"
                     with open(os.path.join(copy, name), "w") as f:
                         f.write(body)
                     ran += 1
-                    if not run(f"build/tetglow render {name} --resolution 24x18 --spp 1 -o out/docs-block-{n}.exr", copy):
-                        failures.append(where + ": the scene does not render")
+                    if problem := render_scene(name, n, copy):
+                        failures.append(f"{where}: the scene {problem}")
                 elif COMMAND.match(first):
                     for line in body.split("\n"):
                         cmd = re.sub(r"\s+#.*$", "", line).strip()

@@ -22,6 +22,7 @@ The test relies on the demo fish having a camera, a light and glowing media, not
 Exits 77 (CTest: skipped), saying so, when chromium is not installed.
 """
 import argparse
+import functools
 import json
 import os
 import select
@@ -43,19 +44,31 @@ def check(condition, message):
         raise AssertionError(message)
 
 
-# The sanitizer build runs tetglow several times slower (.ci/sanitize.sh sets the scale); the
-# waits are bounds for a stuck server, not measurements.
+# The waits are bounds for a stuck server, not measurements. The sanitizer build runs tetglow
+# several times slower (.ci/sanitize.sh sets TETGLOW_TEST_TIME_SCALE), and a machine busy with
+# other work by its load over its cores.
 TIME_SCALE = float(os.environ.get("TETGLOW_TEST_TIME_SCALE", "1"))
 
 
-def wait_for(what, condition, timeout=20):
-    deadline = time.time() + timeout * TIME_SCALE
-    while time.time() < deadline:
+def time_scale():
+    return TIME_SCALE * max(1.0, os.getloadavg()[0] / (os.cpu_count() or 1))
+
+
+def wait_for(what, condition, timeout=20, progress=None):
+    """Polls `condition` until it gives a true value, which it returns. The wait fails when
+    `timeout` seconds (scaled) pass without it, counted from the last change of `progress()`
+    when given: a render that is slow but moving is waited for."""
+    last, deadline = None, 0
+    while True:
+        mark = progress() if progress else None
+        if last is None or mark != last:
+            last, deadline = mark, time.time() + timeout * time_scale()
         value = condition()
         if value:
             return value
+        if time.time() >= deadline:
+            raise AssertionError(f"timed out waiting for {what} ({timeout * time_scale():.0f} s without progress)")
         time.sleep(0.05)
-    raise AssertionError("timed out waiting for " + what)
 
 
 def free_port():
@@ -101,7 +114,7 @@ class Server:
     def __init__(self, tetglow, scene):
         self.process = subprocess.Popen([tetglow, "preview", scene, "--port", str(free_port())],
                                         stdout=subprocess.PIPE, text=True)
-        ready, _, _ = select.select([self.process.stdout], [], [], 60)
+        ready, _, _ = select.select([self.process.stdout], [], [], 60 * time_scale())
         line = self.process.stdout.readline() if ready else ""
         check(line.startswith("preview: http://127.0.0.1:"), "no URL printed: " + repr(line))
         self.url = line.split()[1].rstrip("/")
@@ -111,7 +124,7 @@ class Server:
         data = None if body is None else body.encode()
         headers = {} if body is None else {"Content-Type": "application/json"}  # the only body the server takes
         try:
-            with urllib.request.urlopen(urllib.request.Request(self.url + path, data=data, headers=headers), timeout=10 * TIME_SCALE) as r:
+            with urllib.request.urlopen(urllib.request.Request(self.url + path, data=data, headers=headers), timeout=10 * time_scale()) as r:
                 return r.status, r.read()
         except urllib.error.HTTPError as e:
             return e.code, e.read()
@@ -123,9 +136,14 @@ class Server:
     def state(self):
         return self.json("/state")[1]
 
+    def progress(self):
+        """What moves while the server renders: the settings' generation and the image's passes."""
+        s = self.state()
+        return s["generation"], s["image"] and (s["image"]["generation"], s["image"]["passes"])
+
     def stop(self):
         self.process.terminate()
-        return self.process.wait(10)
+        return self.process.wait(10 * time_scale())
 
 
 # A sphere under one point light, nothing glowing: a light made black leaves nothing emitting.
@@ -153,12 +171,13 @@ def check_choices(browser, tetglow, folder):
     with open(path, "w") as f:
         json.dump(ONE_LIGHT, f)
     server = Server(tetglow, path)
+    wait = functools.partial(wait_for, progress=server.progress)
     try:
         browser.get(server.url + "/")
         js = browser.execute_script
         errors = lambda: js("return [...document.querySelectorAll('#error li')].map((e) => e.textContent)")
         colour = lambda: js("const c = document.querySelector('.light .light-colour'); return c && c.value")  # once built
-        wait_for("the light's colour in the page", lambda: colour() == "#ffffff")
+        wait("the light's colour in the page", lambda: colour() == "#ffffff")
         # The absorption colour: sigma_a over the largest coefficient (sigma_s, 1.5).
         absorb = js("return document.querySelector('.medium .absorb-colour').value")
         expected = srgb_hex([0.3 / 1.5, 0.06 / 1.5, 0.03 / 1.5])
@@ -170,12 +189,12 @@ def check_choices(browser, tetglow, folder):
         pick = "const c = document.querySelector('.light .light-colour'); c.value = arguments[0]; c.dispatchEvent(new Event('change'));"
         generation = server.state()["generation"]
         js(pick, "#000000")
-        wait_for("the refusal shown", lambda: errors() == [
+        wait("the refusal shown", lambda: errors() == [
             "point · colour #000000: request: nothing emits light: turn a light on, or give it or a medium an emission"])
         check(colour() == "#ffffff", f"the picker shows {colour()}, not the good colour")
         check(server.state()["generation"] == generation, "a refused colour restarted the render")
         js(pick, "#ff0000")
-        wait_for("the error cleared by a good colour", lambda: errors() == [])
+        wait("the error cleared by a good colour", lambda: errors() == [])
         light = server.state()["settings"]["lights"][0]["intensity"]
         check(light == [20, 0, 0], f"the red light is {light}")
     finally:
@@ -239,6 +258,7 @@ def main():
     os.makedirs(a.out, exist_ok=True)
     work = tempfile.mkdtemp(prefix="tetglow-preview-")
     server = Server(a.tetglow, test_scene(work))
+    wait = functools.partial(wait_for, progress=server.progress)  # a slow render is waited for while it moves
     options = webdriver.ChromeOptions()
     options.binary_location = chromium
     for arg in ["--headless=new", "--no-sandbox", "--disable-gpu", "--window-size=1000,820", f"--user-data-dir={work}/chromium"]:
@@ -252,25 +272,25 @@ def main():
         js = browser.execute_script
         progress = lambda: (js("return document.getElementById('progress').dataset.passes"), js("return document.getElementById('progress').dataset.generation"))
         finished = lambda: server.state()["image"]["passes"] == PASSES
-        wait_for("the first image in the page", lambda: js("return document.getElementById('image').naturalWidth") == 128)
-        wait_for("the first render to finish", finished)
+        wait("the first image in the page", lambda: js("return document.getElementById('image').naturalWidth") == 128)
+        wait("the first render to finish", finished)
         _, first = server.request("/image.png")
         check(server.request("/image.png?exposure=2")[1] != first, "exposure does not change the PNG")
         exposure = browser.find_element(By.ID, "exposure")
         exposure.send_keys(Keys.ARROW_RIGHT)  # one step: 0.1 stops
-        wait_for("the page's image at the new exposure", lambda: "exposure=0.1&" in browser.find_element(By.ID, "image").get_attribute("src"))
+        wait("the page's image at the new exposure", lambda: "exposure=0.1&" in browser.find_element(By.ID, "image").get_attribute("src"))
         exposure.send_keys(Keys.ARROW_LEFT)
         first_generation = server.state()["generation"]
 
         # Drag the g slider: the render starts again from its first pass, and the image changes.
         slider = browser.find_element(By.CSS_SELECTOR, ".medium .g-slider")
         ActionChains(browser).drag_and_drop_by_offset(slider, 30, 0).perform()
-        generation = wait_for("the slider's change", lambda: server.state()["generation"] > first_generation and server.state()["generation"])
+        generation = wait("the slider's change", lambda: server.state()["generation"] > first_generation and server.state()["generation"])
         g = server.state()["settings"]["media"][0]["g"]
         check(abs(g - 0.3) > 0.01, f"the slider left g at {g}")
-        seen = wait_for("the page to show the new render", lambda: progress()[1] == str(server.state()["generation"]) and progress())
+        seen = wait("the page to show the new render", lambda: progress()[1] == str(server.state()["generation"]) and progress())
         check(int(seen[0]) < PASSES, f"the pass counter did not start again: {seen}")
-        wait_for("the new render to finish", lambda: finished() and server.state()["image"]["generation"] == server.state()["generation"])
+        wait("the new render to finish", lambda: finished() and server.state()["image"]["generation"] == server.state()["generation"])
         _, second = server.request("/image.png")
         check(second != first, "the image did not change with g")
 
@@ -279,7 +299,7 @@ def main():
         box = browser.find_element(By.CSS_SELECTOR, ".medium .g")
         box.send_keys(Keys.CONTROL, "a")  # not clear(): it sends a change of its own
         box.send_keys("1.5", Keys.TAB)
-        shown = wait_for("the error in the page", lambda: browser.find_element(By.ID, "error").text)
+        shown = wait("the error in the page", lambda: browser.find_element(By.ID, "error").text)
         # The media are named as the scene names them, else by their mesh files.
         with open(server.scene) as f:
             body = json.load(f)["media"][0]
@@ -287,13 +307,13 @@ def main():
         check(server.state()["media_names"][0] == name, f"the body is named {server.state()['media_names'][0]!r}, not {name!r}")
         check(js("return document.querySelector('.medium legend').textContent") == name, "the page does not show the medium's name")
         check(shown == name + " · g: 1.5 is outside the range allowed, a number (-1, 1)", "page error: " + shown)
-        wait_for("the good g back in the page", lambda: float(box.get_attribute("value")) == g)
+        wait("the good g back in the page", lambda: float(box.get_attribute("value")) == g)
         check(server.state()["generation"] == generation, "a bad value restarted the render")
         g = round(g - 0.05, 2)  # another value: typing the one shown again changes nothing
         box.send_keys(Keys.CONTROL, "a")
         box.send_keys(str(g), Keys.TAB)
-        wait_for("the error cleared by a good g", lambda: browser.find_element(By.ID, "error").text == "")
-        wait_for("the good g sent", lambda: server.state()["settings"]["media"][0]["g"] == g)
+        wait("the error cleared by a good g", lambda: browser.find_element(By.ID, "error").text == "")
+        wait("the good g sent", lambda: server.state()["settings"]["media"][0]["g"] == g)
 
         # Two bad values in turn: an emission that overflows the film (the server's render fails,
         # names the medium and field, and goes back to the last good values) and a negative
@@ -307,31 +327,31 @@ def main():
         strength = browser.find_element(By.CSS_SELECTOR, ".medium .emission-strength").get_attribute("value")
         photons_before = server.state()["settings"]["integrator"]["photons"]
         type_into(".medium .emission-strength", "1e30")
-        wait_for("the overflow named", lambda: any(e.startswith(name + " · emission ") and "beyond the film's range" in e for e in errors()))
+        wait("the overflow named", lambda: any(e.startswith(name + " · emission ") and "beyond the film's range" in e for e in errors()))
         type_into("[data-key=photons]", "-5")
-        wait_for("both errors", lambda: len(errors()) == 2)
+        wait("both errors", lambda: len(errors()) == 2)
         check(any(e == "photons per pass: -5 is outside the range allowed, an integer [1, 1099511627776]" for e in errors()), f"errors: {errors()}")
-        state = wait_for("the render going on with the good values",
+        state = wait("the render going on with the good values",
                          lambda: server.state()["image"]["generation"] == server.state()["generation"] and server.state())
         check(state["settings"]["integrator"]["photons"] == photons_before, "the bad photon count was sent")
         check(max(state["settings"]["media"][0]["emission"]) < 1e29 if isinstance(state["settings"]["media"][0]["emission"], list)
               else state["settings"]["media"][0]["emission"] < 1e29, "the overflowing emission stayed")
         type_into(".medium .emission-strength", "0.5" if strength != "0.5" else "0.25")  # not the value shown: no change
-        wait_for("the overflow's error cleared", lambda: len(errors()) == 1)
+        wait("the overflow's error cleared", lambda: len(errors()) == 1)
         type_into("[data-key=photons]", str(photons_before // 2))
-        wait_for("every error cleared", lambda: errors() == [])
+        wait("every error cleared", lambda: errors() == [])
 
         # The camera. Each gesture is checked on the server for what it must do to the view, once
         # the page has sent all it had (no pass is assumed rendered in between).
         settled = lambda: finished() and server.state()["image"]["generation"] == server.state()["generation"]
-        wait_for("the render to finish", settled)
+        wait("the render to finish", settled)
         _, before_camera = server.request("/image.png")
         idle = lambda: js("return !sending && queued === null")
         camera = lambda: server.state()["settings"]["camera"]
         def gesture(what, actions, moved):
             start = camera()
             actions.perform()
-            return wait_for(what, lambda: idle() and moved(start, camera()) and camera())
+            return wait(what, lambda: idle() and moved(start, camera()) and camera())
         image = browser.find_element(By.ID, "image")
         offset = lambda c: [p - l for p, l in zip(c["position"], c["look_at"])]
         # Orbit: about the look-at point, at the same distance.
@@ -348,14 +368,14 @@ def main():
                          and close([x / distance(a["position"], a["look_at"]) for x in offset(a)], [x / distance(b["position"], b["look_at"]) for x in offset(b)]))
         # The field of view, typed: out of range refused in the page in its words, then a good one.
         type_into("#camera .fov", "200")
-        wait_for("the fov refused", lambda: errors() == ["camera · field of view: 200 is outside the range allowed, a number (0, 180)"])
+        wait("the fov refused", lambda: errors() == ["camera · field of view: 200 is outside the range allowed, a number (0, 180)"])
         fov = zoomed["fov"] + 5 if zoomed["fov"] < 170 else zoomed["fov"] - 5
         type_into("#camera .fov", f"{fov:g}")
-        wait_for("the fov sent", lambda: camera()["fov"] == fov and errors() == [])
-        wait_for("the position's field to follow",  # shown to 6 digits
+        wait("the fov sent", lambda: camera()["fov"] == fov and errors() == [])
+        wait("the position's field to follow",  # shown to 6 digits
                  lambda: abs(float(js("return document.querySelector('#camera .position').value")) - camera()["position"][0]) <= 1e-5 * distance(camera()["position"], [0, 0, 0]))
-        wait_for("the render of the new view", settled)
-        wait_for("the page to show it", lambda: progress() == (str(PASSES), str(server.state()["generation"])))
+        wait("the render of the new view", settled)
+        wait("the page to show it", lambda: progress() == (str(PASSES), str(server.state()["generation"])))
         _, moved = server.request("/image.png")
         check(moved != before_camera, "the image did not follow the camera")
 
@@ -364,45 +384,45 @@ def main():
         key = next(k for k in ("intensity", "irradiance", "radiance") if k in light)
         check(js("return document.querySelector('.light legend').textContent") == "Light · " + server.state()["light_names"][0], "the light is not named")
         browser.find_element(By.CSS_SELECTOR, ".light .on").click()
-        wait_for("the light off", lambda: server.state()["settings"]["lights"][0]["on"] is False)
-        wait_for("the render without it", settled)
+        wait("the light off", lambda: server.state()["settings"]["lights"][0]["on"] is False)
+        wait("the render without it", settled)
         _, dark = server.request("/image.png")
         check(dark != moved, "the image did not follow the light turned off")
         browser.find_element(By.CSS_SELECTOR, ".light .on").click()
         strength = max(light[key]) * 2 if max(light[key]) > 0 else 1
         type_into(".light .strength", f"{strength:g}")
-        wait_for("the light on, at the new strength", lambda: server.state()["settings"]["lights"][0]["on"] is True
+        wait("the light on, at the new strength", lambda: server.state()["settings"]["lights"][0]["on"] is True
                  and max(server.state()["settings"]["lights"][0][key]) == float(f"{strength:g}"))
-        wait_for("the render with it", settled)
+        wait("the render with it", settled)
         _, lit = server.request("/image.png")
         check(lit not in (moved, dark), "the image did not follow the light's strength")
 
         # A second tab sees the same render; a change made there shows in the first.
         browser.switch_to.new_window("tab")
         browser.get(server.url + "/")
-        wait_for("the second tab's image", lambda: js("return document.getElementById('image').naturalWidth") == 128)
-        wait_for("the second tab's g", lambda: float(browser.find_element(By.CSS_SELECTOR, ".medium .g").get_attribute("value")) == g)
+        wait("the second tab's image", lambda: js("return document.getElementById('image').naturalWidth") == 128)
+        wait("the second tab's g", lambda: float(browser.find_element(By.CSS_SELECTOR, ".medium .g").get_attribute("value")) == g)
         photons = browser.find_element(By.CSS_SELECTOR, "[data-key=photons]")
         photons.send_keys(Keys.CONTROL, "a")
         photons.send_keys("12000", Keys.TAB)
-        wait_for("the second tab's change", lambda: server.state()["settings"]["integrator"]["photons"] == 12000)
+        wait("the second tab's change", lambda: server.state()["settings"]["integrator"]["photons"] == 12000)
         browser.close()
         browser.switch_to.window(browser.window_handles[0])
-        wait_for("the change in the first tab",
+        wait("the change in the first tab",
                  lambda: browser.find_element(By.CSS_SELECTOR, "[data-key=photons]").get_attribute("value") == "12000")
-        wait_for("the render to finish", lambda: finished() and server.state()["image"]["generation"] == server.state()["generation"])
-        wait_for("the page to show it", lambda: progress() == (str(PASSES), str(server.state()["generation"])))
+        wait("the render to finish", lambda: finished() and server.state()["image"]["generation"] == server.state()["generation"])
+        wait("the page to show it", lambda: progress() == (str(PASSES), str(server.state()["generation"])))
         time.sleep(0.3)  # the last image loads
         browser.save_screenshot(os.path.join(a.out, "preview.png"))
 
         # Save the scene twice (a new name each time) and the image; the saved scene renders the same.
         saved = lambda: browser.find_element(By.ID, "saved").text
         browser.find_element(By.ID, "save-scene").click()
-        text = wait_for("the scene saved", lambda: saved().startswith("saved ") and saved())
+        text = wait("the scene saved", lambda: saved().startswith("saved ") and saved())
         scene = text.split(" ", 1)[1]
         check(scene == os.path.join(work, "fish-tuned-1.json"), "saved as " + scene)
         browser.find_element(By.ID, "save-scene").click()
-        wait_for("the second save", lambda: saved() == "saved " + os.path.join(work, "fish-tuned-2.json"))
+        wait("the second save", lambda: saved() == "saved " + os.path.join(work, "fish-tuned-2.json"))
         with open(scene) as f:
             tuned = json.load(f)
         check(tuned["media"][0]["g"] == g and tuned["integrator"]["photons"] == 12000, f"the saved scene holds {tuned['media'][0]}")
@@ -416,7 +436,7 @@ def main():
         check(changed == expected, f"the saved scene differs at {changed}, not {expected}")
         check(not [n for n in os.listdir(work) if n.endswith(".obj")], "a mesh was copied beside the saved scene")
         browser.find_element(By.ID, "save-image").click()
-        wait_for("the image saved", lambda: f"({PASSES} passes)" in saved())
+        wait("the image saved", lambda: f"({PASSES} passes)" in saved())
         exr = os.path.join(work, "fish-image-1.exr")
         check(os.path.isfile(exr) and os.path.isfile(exr[:-4] + ".png"), "no EXR + PNG saved")
         rendered = os.path.join(work, "rendered.exr")

@@ -286,15 +286,64 @@ TEST(InteriorRepair, FlippedAndDuplicatedFaces) {
     TriangleMesh m = box();
     std::swap(m.triangles[0][1], m.triangles[0][2]);
     std::swap(m.triangles[5][1], m.triangles[5][2]);
-    m.triangles.push_back(m.triangles[7]);                                             // the same face again
-    m.triangles.push_back({m.triangles[3][0], m.triangles[3][2], m.triangles[3][1]});  // and reversed
+    m.triangles.push_back(m.triangles[7]);  // the same face again
+    // And one reversed: the pair cancels, as in the winding number, and the hole it leaves is
+    // spanned flat.
+    m.triangles.push_back({m.triangles[3][0], m.triangles[3][2], m.triangles[3][1]});
     ValidationReport report;
     const TetMesh mesh = tets(m, &report);
     ASSERT_TRUE(report.repair.applied);
-    EXPECT_EQ(report.repair.duplicatesDropped, 2u);
+    EXPECT_EQ(report.oppositePairs, 1u);
+    EXPECT_EQ(report.repair.duplicatesDropped, 1u);
+    EXPECT_EQ(report.repair.holes.size(), 1u);
     EXPECT_EQ(report.repair.flippedTriangles, 2u);
     EXPECT_DOUBLE_EQ(mesh.volume(), 1);
     EXPECT_EQ(mesh.surface.size(), 12u);
+}
+
+// A volume mesh saved as every cell's faces: a 3x3x3 grid of cubes, each wound outward on its
+// own, so that every inner face is there twice, wound opposite ways. The pairs cancel, as they do
+// in the winding number, and the grid is its outer solid, exactly, without a repair.
+TriangleMesh cubeGrid() {
+    TriangleMesh grid;
+    for (int i = 0; i < 27; ++i) {
+        const glm::dvec3 lo(i % 3, i / 3 % 3, i / 9);
+        grid = merge(grid, box(lo, lo + 1.0));
+    }
+    return grid;
+}
+
+TEST(InteriorRepair, OppositePairsOfFacesCancel) {
+    ValidationReport report;
+    const TetMesh mesh = tets(cubeGrid(), &report);
+    EXPECT_FALSE(report.repair.applied) << report.repair.summary();
+    EXPECT_EQ(report.oppositePairs, 108u);  // 6 inner planes of 9 squares, 2 triangles each
+    EXPECT_EQ(mesh.surface.size(), 108u);   // 6 sides of 9 squares
+    EXPECT_DOUBLE_EQ(mesh.surfaceVolume(), 27);
+    EXPECT_NEAR(mesh.volume(), 27, 1e-12);  // summed over the tets
+    // A face there three times, twice one way: one pair cancels, the face stays.
+    TriangleMesh m = box();
+    m.triangles.push_back({m.triangles[4][0], m.triangles[4][2], m.triangles[4][1]});
+    m.triangles.push_back(m.triangles[4]);
+    const TetMesh cube = tets(m, &report);
+    EXPECT_EQ(report.oppositePairs, 1u);
+    EXPECT_DOUBLE_EQ(cube.volume(), 1);
+}
+
+// The same grid as a file: `tetrahedralize` reads it as the solid, and says what it removed.
+TEST(InteriorRepair, CommandTakesAVolumeMeshAsItsOuterSolid) {
+    const std::string obj = test::tempDir() + "/grid.obj";
+    writeObj(cubeGrid(), obj);
+    const auto r = test::runTetglow("tetrahedralize " + obj + " --no-cache --json");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["mesh_volume"], 27.0);
+    EXPECT_NEAR(j["tet_volume"].get<double>(), 27, 1e-12);
+    EXPECT_EQ(j["boundary_faces"], 108);
+    EXPECT_TRUE(j["regions"][0]["repair"].is_null()) << r.out;  // the exact path, not a repair
+    EXPECT_NE(j["repairs"].dump().find("removed 108 pairs of faces with the same corners wound opposite ways"),
+              std::string::npos)
+        << r.out;
 }
 
 TEST(InteriorRepair, NonManifoldFinEnclosesNothing) {

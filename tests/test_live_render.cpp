@@ -1,10 +1,10 @@
 // The preview's render follows a change at once, also in the middle of a long photon pass.
 #include <chrono>
-#include <cstdlib>
 #include <thread>
 
 #include <gtest/gtest.h>
 
+#include "TestMeshes.h"
 #include "TestScenes.h"
 #include "cli/LiveRender.h"
 
@@ -27,9 +27,7 @@ TEST(LiveRender, AChangeInterruptsAPhotonPass) {
     live.restart(slow);
     std::this_thread::sleep_for(std::chrono::milliseconds(500));  // well into the first photon pass
     const uint64_t generation = live.restart(quick);
-    const double scale =
-        std::getenv("TETGLOW_TEST_TIME_SCALE") ? std::atof(std::getenv("TETGLOW_TEST_TIME_SCALE")) : 1.0;
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(20 * scale);
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(20 * testTimeScale());
     while (std::chrono::steady_clock::now() < deadline && !(live.latest() && live.latest()->generation == generation))
         std::this_thread::sleep_for(std::chrono::milliseconds(50));
     ASSERT_TRUE(live.latest() && live.latest()->generation == generation)

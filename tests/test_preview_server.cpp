@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "PreviewProcess.h"
+#include "TestMeshes.h"
 #include "render/ImageIO.h"
 
 namespace tetglow::test {
@@ -22,11 +23,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using Json = nlohmann::json;
-
-// The sanitizer build runs several times slower; waits are bounds for a stuck server.
-double timeScale() {
-    return std::getenv("TETGLOW_TEST_TIME_SCALE") ? std::atof(std::getenv("TETGLOW_TEST_TIME_SCALE")) : 1.0;
-}
 
 // A small sphere scene in a folder of its own (saves go beside the scene).
 class PreviewServer : public ::testing::Test {
@@ -73,7 +69,7 @@ protected:
     // Polls the state until `condition` holds (true) or a bound for a stuck server passes (false).
     template <class Condition>
     bool waitFor(const Condition& condition) const {
-        for (int i = 0; i < 600 * timeScale() && !condition(state()); ++i)
+        for (int i = 0; i < 600 * testTimeScale() && !condition(state()); ++i)
             std::this_thread::sleep_for(std::chrono::milliseconds(50));
         return condition(state());
     }
@@ -105,7 +101,7 @@ TEST_F(PreviewServer, AStopAsSoonAsTheURLIsPrintedEndsTheServer) {
     int hung = 0;
     for (int i = 0; i < 40; ++i) {
         PreviewProcess p((dir_ / "sphere.json").string() + " --port 0 --threads 1");
-        hung += p.stop(10 * timeScale()) == -2;
+        hung += p.stop(10 * testTimeScale()) == -2;
     }
     done = true;
     for (std::thread& t : busy) t.join();
@@ -238,7 +234,7 @@ TEST_F(PreviewServer, SlowClientsLeaveThreadsForOthers) {
         }
     });
     std::this_thread::sleep_for(std::chrono::milliseconds(500));  // every slow client accepted
-    const HttpReply r = rawHttp(port(), httpRequest("GET", "/state", port()), 4 * timeScale());
+    const HttpReply r = rawHttp(port(), httpRequest("GET", "/state", port()), 4 * testTimeScale());
     done = true;
     trickle.join();
     for (const int s : slow) close(s);
@@ -361,7 +357,7 @@ TEST_F(PreviewServer, TheImageFollowsTheCameraAndTheLights) {
         return rawHttp(port(), httpRequest("POST", "/settings", port(), {{"Content-Type", "application/json"}}, patch));
     };
     const auto finished = [&] {
-        for (int i = 0; i < 600 * timeScale(); ++i) {
+        for (int i = 0; i < 600 * testTimeScale(); ++i) {
             const Json s = state();
             if (!s["image"].is_null() && s["image"]["generation"] == s["generation"] && s["image"]["passes"] == 4)
                 return true;

@@ -1,11 +1,11 @@
 #!/usr/bin/env python3
-"""The README gallery: the demo fish with a close-up of its head and lure at a higher resolution,
+"""The gallery (docs/GALLERY.md): the demo fish with a close-up of its head and lure at a higher resolution,
 and the figures of the report tetglow grew from remade by tetglow (the white and the blue cloud,
 each with single scattering beside multiple scattering, and the inside/outside debug picture of
 the tets against the parity test). Every image is rendered here by the command printed under it;
 the PNG previews tetglow writes beside its EXRs are copied to docs/images/ as 256-colour PNGs
-(pngquant), and the gallery section of README.md is rewritten with each command and its
-whole-process time.
+(pngquant), and the gallery section of docs/GALLERY.md is rewritten with each command, its
+whole-process time and the machine's load average while it ran.
 
   bench/results/gallery.py [--build DIR]
 """
@@ -93,7 +93,7 @@ def main():
         quantize(os.path.join(ROOT, os.path.splitext(exr)[0] + ".png"), os.path.join(IMAGES, name + ".png"))
         timing = f"{seconds:.1f} s, CPU {cpu:.1f} s" + (f" (tetrahedralization {tets:.2f} s of it)" if tets is not None else "")
         print(f"gallery: {name}: {timing}")
-        cells.append(f"![{caption}](docs/images/{name}.png)<br>{caption}.<br>`build/tetglow {' '.join(command)}`<br>{timing}")
+        cells.append(f"![{caption}](images/{name}.png)<br>{caption}.<br>`build/tetglow {' '.join(command)}`<br>{timing}")
     total = sum(os.path.getsize(os.path.join(IMAGES, name + ".png")) for name, _, _ in GALLERY)
     if total > LIMIT:
         fail(f"the gallery's images take {total} bytes, over the {LIMIT} allowed")
@@ -101,9 +101,10 @@ def main():
     for i in range(0, len(cells), 2):
         rows.append("| " + " | ".join(cells[i:i + 2] + [""] * (2 - len(cells[i:i + 2]))) + " |")
     note = (f"Rendered by `bench/results/gallery.py` on {machine_line}; times are whole-process wall times and "
-            f"CPU times of all threads (the first render of a mesh includes its tetrahedralization, cached after). "
+            f"CPU times of all threads (the first render of a mesh includes its tetrahedralization, cached after), "
+            f"measured at that load: where it exceeds the cores, the wall times grow with it. "
             f"Images: {total // 1024} KiB in all.")
-    replace_section("gallery", "\n".join(rows) + "\n\n" + note, os.path.join(ROOT, "README.md"))
+    replace_section("gallery", "\n".join(rows) + "\n\n" + note, os.path.join(ROOT, "docs", "GALLERY.md"))
 
 
 if __name__ == "__main__":

@@ -1,6 +1,6 @@
 // Input files, read whole, for every reader. Only a regular file no larger than its limit is
 // read: a FIFO or a device (/dev/zero) would block or never end, and a huge file would take the
-// machine's memory. The limits are documented in docs/FORMAT.md and README.md.
+// machine's memory. The limits are documented in docs/FORMAT.md and docs/USAGE.md.
 #pragma once
 #include <cstdint>
 #include <string>

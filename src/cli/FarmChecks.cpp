@@ -96,7 +96,7 @@ void checkPreambleText(const std::string& path, const std::string& text) {
                          " holds a control character other than a tab: refusing to write it into a batch script");
 }
 
-std::string localPathWarning(const std::string& what, const std::string& path) {
+std::string localPathWarning(const std::string& what, const std::string& path, std::istream& mounts) {
     namespace fs = std::filesystem;
     std::error_code ec;
     fs::path p = fs::weakly_canonical(path, ec);
@@ -107,7 +107,6 @@ std::string localPathWarning(const std::string& what, const std::string& path) {
     for (const char* dir : {"/tmp", "/var/tmp", "/dev/shm"})
         if (under(dir)) why = std::string("in ") + dir;
     // The longest mount point that holds the path says which file system it is on.
-    std::ifstream mounts("/proc/mounts");
     std::string line, device, mountPoint, type, deepest, deepestType;
     while (std::getline(mounts, line)) {
         std::istringstream fields(line);
@@ -122,6 +121,11 @@ std::string localPathWarning(const std::string& what, const std::string& path) {
     if (why.empty()) return {};
     return "farm: warning: " + what + " " + s + " lies " + why +
            ", which is local to each node: tasks on other nodes will not see it";
+}
+
+std::string localPathWarning(const std::string& what, const std::string& path) {
+    std::ifstream mounts("/proc/mounts");
+    return localPathWarning(what, path, mounts);
 }
 
 }  // namespace tetglow::cli

@@ -2,6 +2,7 @@
 // user needs there (a newline in a path or a partition name) is refused with one line rather
 // than escaped, and a path that the nodes may not share is warned about.
 #pragma once
+#include <istream>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -23,7 +24,10 @@ void checkScriptText(const std::string& what, const std::string& value, bool log
 // lines, with tabs and newlines only (a carriage return would end up in every command it ends).
 void checkPreambleText(const std::string& path, const std::string& text);
 
-// "" or a warning that `path` lies where other nodes do not see it (/tmp, /var/tmp, a tmpfs).
+// "" or a warning that `path` lies where other nodes do not see it (/tmp, /var/tmp, a tmpfs),
+// the file systems read from `mounts` (lines as /proc/mounts gives them: DEVICE MOUNT-POINT TYPE
+// ...), or from /proc/mounts itself.
+std::string localPathWarning(const std::string& what, const std::string& path, std::istream& mounts);
 std::string localPathWarning(const std::string& what, const std::string& path);
 
 }  // namespace tetglow::cli

@@ -27,9 +27,10 @@ int main(int argc, char** argv) {
         if (e.get_exit_code() == 0) return app.exit(e);  // --help
         return fail(2, e.what());
     } catch (const std::bad_alloc&) {
-        return fail(1,
-                    "out of memory: the scene or the options ask for more memory than this machine has (see README.md, "
-                    "\"Limits\")");
+        return fail(
+            1,
+            "out of memory: the scene or the options ask for more memory than this machine has (see docs/USAGE.md, "
+            "\"Limits\")");
     } catch (const std::exception& e) {
         return fail(1, e.what());
     }

@@ -490,9 +490,18 @@ std::string surveyProblems(const TriangleMesh& input) {
 ValidationReport prepareSurface(TriangleMesh& mesh, bool strict) {
     if (mesh.triangles.empty()) throw InputError("mesh has no triangles");
     checkFinite(mesh);
+    const size_t oppositePairs = cancelOppositeFaces(mesh);
+    if (mesh.triangles.empty()) throw InputError("mesh has no triangles once its opposite pairs of faces cancel");
+    const auto noteCancelled = [&](ValidationReport report) {
+        report.oppositePairs = oppositePairs;
+        if (oppositePairs)
+            report.notes.push_back("removed " + std::to_string(oppositePairs) +
+                                   " pairs of faces with the same corners wound opposite ways (they cancel)");
+        return report;
+    };
     TriangleMesh original = mesh;
     try {
-        return validateAndRepair(mesh);
+        return noteCancelled(validateAndRepair(mesh));
     } catch (const InputError& refusal) {
         if (strict) {
             const std::string all = surveyProblems(original);
@@ -510,7 +519,7 @@ ValidationReport prepareSurface(TriangleMesh& mesh, bool strict) {
         }
         report.repair = std::move(repair);
         report.notes = {report.repair.summary()};
-        return report;
+        return noteCancelled(std::move(report));
     }
 }
 

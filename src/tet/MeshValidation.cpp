@@ -96,6 +96,38 @@ WeldCounts weldVertices(TriangleMesh& mesh) {
     return report;
 }
 
+size_t cancelOppositeFaces(TriangleMesh& mesh) {
+    TriangleMesh welded = mesh;
+    weldVertices(welded);
+    // Per set of corners, the faces on it wound each way: a face is "even" when its corners run
+    // in the cyclic order of the sorted corners.
+    std::map<std::array<uint32_t, 3>, std::array<std::vector<uint32_t>, 2>> faces;
+    for (uint32_t t = 0; t < welded.triangles.size(); ++t) {
+        const auto& v = welded.triangles[t];
+        const int first = int(std::min_element(v.begin(), v.end()) - v.begin());
+        auto key = v;
+        std::sort(key.begin(), key.end());
+        faces[key][v[(first + 1) % 3] < v[(first + 2) % 3] ? 0 : 1].push_back(t);
+    }
+    std::vector<char> cancelled(welded.triangles.size(), 0);
+    size_t pairs = 0;
+    for (const auto& [key, ways] : faces) {
+        const size_t n = std::min(ways[0].size(), ways[1].size());
+        // The first faces of the way that outnumbers the other stay.
+        for (const auto& way : ways)
+            for (size_t i = way.size() - n; i < way.size(); ++i) cancelled[way[i]] = 1;
+        pairs += n;
+    }
+    if (pairs == 0) return 0;  // the mesh as it was, not even welded
+    std::vector<std::array<uint32_t, 3>> kept;
+    for (uint32_t t = 0; t < welded.triangles.size(); ++t)
+        if (!cancelled[t]) kept.push_back(welded.triangles[t]);
+    welded.triangles = std::move(kept);
+    weldVertices(welded);  // drops the vertices only cancelled faces used
+    mesh = std::move(welded);
+    return pairs;
+}
+
 bool collinear(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
     // Collinear in 3D exactly when collinear in all three coordinate-plane projections.
     return orient2d({a.x, a.y}, {b.x, b.y}, {c.x, c.y}) == 0 && orient2d({a.y, a.z}, {b.y, b.z}, {c.y, c.z}) == 0 &&

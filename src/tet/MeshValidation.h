@@ -13,6 +13,7 @@ struct ValidationReport {
     size_t weldedVertices = 0;       // exact duplicate positions merged
     size_t unusedVertices = 0;       // vertices no triangle references, removed
     size_t flippedTriangles = 0;     // inward or inconsistent winding, fixed
+    size_t oppositePairs = 0;        // faces that cancel (cancelOppositeFaces), removed
     size_t components = 0;           // closed shells
     double volume = 0;               // enclosed volume after repair
     std::vector<std::string> notes;  // what was repaired, one line each
@@ -45,6 +46,12 @@ struct WeldCounts {
 };
 // Snaps positions to float, merges identical positions and drops unreferenced vertices.
 WeldCounts weldVertices(TriangleMesh& mesh);
+// Two faces with the same three corners (once welded) wound opposite ways add nothing to the
+// generalized winding number, so the solid is the same without them; a volume mesh saved as
+// every cell's faces has each inner face twice, so. Removes every such pair (of a face there
+// more often one way, the first ones that way stay) and the vertices only they used; returns
+// the number of pairs. A mesh without such pairs is left exactly as it is.
+size_t cancelOppositeFaces(TriangleMesh& mesh);
 // Exactly collinear corners (a zero-area triangle).
 bool collinear(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c);
 

@@ -60,6 +60,32 @@ std::array<uint32_t, 3> sortedFace(const std::array<uint32_t, 4>& v, int j) {
     return f;
 }
 
+// The refusal of a space between the surfaces that two of their faces put in different regions:
+// the mesh, both faces' positions and sides, and what makes that happen.
+struct SideOfFace {
+    uint32_t triangle;
+    bool behind;
+    int region;
+};
+std::string inconsistentRegions(const RegionComplex& complex, const std::vector<std::string>& names,
+                                const SideOfFace& a, const SideOfFace& b) {
+    const auto mesh = [&](int surface) {
+        if (size_t(surface) < names.size() && !names[size_t(surface)].empty()) return names[size_t(surface)];
+        return names.size() == 1 ? std::string("the mesh") : "mesh " + std::to_string(surface);
+    };
+    const auto side = [&](const SideOfFace& f) {
+        const TriangleMesh& m = complex.surface;
+        const glm::dvec3 centre = (m.corner(f.triangle, 0) + m.corner(f.triangle, 1) + m.corner(f.triangle, 2)) / 3.0;
+        return (f.region < 0 ? std::string("outside every mesh") : "inside " + mesh(f.region)) +
+               (f.behind ? " behind the face at " : " in front of the face at ") + formatPosition(centre) + " of " +
+               mesh(int(complex.source[f.triangle][0]));
+    };
+    const std::string name = names.size() == 1 ? names[0] : mesh(int(complex.source[b.triangle][0]));
+    return (name.empty() ? "" : name + ": ") +
+           "the surfaces do not separate the regions consistently: one space between them is " + side(a) + " and " +
+           side(b) + ", so one of these faces lies inside a solid or two surfaces meet without sharing faces";
+}
+
 // Builds the TetMesh: positive orientation, encoded adjacency, boundary faces <-> surface
 // triangles, tets grouped by region. TetGen fills every space the triangles enclose; the
 // connected pieces between triangles (cells) take their region from the side of a triangle
@@ -67,7 +93,7 @@ std::array<uint32_t, 3> sortedFace(const std::array<uint32_t, 4>& v, int j) {
 // are removed. With -A, TetGen's attribute of each kept tet must agree: the inside point's region + 1,
 // or a number of TetGen's own (0 or above the regions') for a cell that no inside point reaches, such as
 // a second shell of one mesh.
-TetMesh assemble(const RegionComplex& complex, const RawTets& raw) {
+TetMesh assemble(const RegionComplex& complex, const RawTets& raw, const std::vector<std::string>& names) {
     const TriangleMesh& surface = complex.surface;
     const size_t nv = raw.points.size() / 3, nt = raw.tets.size() / 4, nr = complex.regionCount();
     if (nt == 0) throw InputError("TetGen produced no tetrahedra (is the mesh closed?)");
@@ -119,11 +145,13 @@ TetMesh assemble(const RegionComplex& complex, const RawTets& raw) {
     // Flood cells across faces that are not surface triangles; each takes its region from them.
     constexpr int kUndecided = -2;
     std::vector<int> cell(nt, -1), cellRegion;
+    std::vector<SideOfFace> decidedBy;  // per cell: the face that gave it its region
     std::vector<uint32_t> stack;
     for (uint32_t start = 0; start < nt; ++start) {
         if (cell[start] >= 0) continue;
         const int id = int(cellRegion.size());
         cellRegion.push_back(kUndecided);
+        decidedBy.push_back({});
         cell[start] = id;
         stack.push_back(start);
         while (!stack.empty()) {
@@ -131,10 +159,14 @@ TetMesh assemble(const RegionComplex& complex, const RawTets& raw) {
             stack.pop_back();
             for (int j = 0; j < 4; ++j) {
                 if (onSurface[t][j] >= 0) {
-                    const int r = complex.sides[size_t(onSurface[t][j])][behind(t, j) ? 0 : 1];
-                    if (cellRegion[id] != kUndecided && cellRegion[id] != r)
-                        throw InputError("the surfaces do not separate the regions consistently");
-                    cellRegion[id] = r;
+                    const auto s = uint32_t(onSurface[t][j]);
+                    const bool back = behind(t, j);
+                    const SideOfFace side{s, back, complex.sides[s][back ? 0 : 1]};
+                    if (cellRegion[id] == kUndecided) {
+                        cellRegion[id] = side.region;
+                        decidedBy[id] = side;
+                    } else if (cellRegion[id] != side.region)
+                        throw InputError(inconsistentRegions(complex, names, decidedBy[id], side));
                 } else if (nbr[t][j] >= 0 && cell[nbr[t][j]] < 0) {
                     cell[nbr[t][j]] = id;
                     stack.push_back(uint32_t(nbr[t][j]));
@@ -269,7 +301,7 @@ void checkTetCount(double volume, double maxVolume) {
 
 TetMesh tetrahedralizeUnchecked(const TriangleMesh& surface, const std::string& switches) {
     const RegionComplex complex = singleRegion(surface);
-    return assemble(complex, runIsolated(complex, switches));
+    return assemble(complex, runIsolated(complex, switches), {""});
 }
 
 TetMesh tetrahedralize(std::vector<TriangleMesh> surfaces, const std::vector<std::string>& names,
@@ -326,7 +358,7 @@ TetMesh tetrahedralize(std::vector<TriangleMesh> surfaces, const std::vector<std
                 file.string() + ": damaged tet cache entry (" + problem + "); not used, tetrahedralizing again";
             std::fprintf(stderr, "tetglow: warning: %s\n", local.cacheWarning.c_str());
         }
-        mesh = assemble(complex, runIsolated(complex, switches));
+        mesh = assemble(complex, runIsolated(complex, switches), names);
         if (!file.empty()) {
             std::error_code ec;
             std::filesystem::create_directories(file.parent_path(), ec);
