@@ -226,6 +226,10 @@ Imported import(std::string data, const std::string& path, SceneMeshFormat forma
         for (size_t at; (at = why.find(name)) != std::string::npos;) why.replace(at, name.size(), path);
         throw InputError(path + ": cannot read the " + extension(format) + " file: " + shorten(why, 200));
     }
+    // Without a mesh, Assimp's Collada, FBX and BVH importers build a placeholder skeleton mesh
+    // from the nodes and flag the scene incomplete: that skeleton is no geometry of the file.
+    if (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE)
+        throw InputError(path + ": no triangles: the file holds no mesh (only cameras, lights or empty nodes)");
     const std::vector<Placed> nodes = placeNodes(scene->mRootNode, path);
     const aiNode* top = node.empty() ? scene->mRootNode : findNode(nodes, node, path);
     Imported result;
