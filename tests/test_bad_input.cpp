@@ -117,14 +117,61 @@ TEST(ValidInput, InwardWindingIsFixed) {
     EXPECT_EQ(validateAndRepair(m).flippedTriangles, 0u);  // now consistent and outward
 }
 
+TriangleMesh inward(TriangleMesh m) {
+    for (auto& t : m.triangles) std::swap(t[1], t[2]);
+    return m;
+}
+
 TEST(ValidInput, CavityIsNotMedium) {
-    // A box with a spherical hole inside: the tets fill only the space between them.
-    TriangleMesh cavity = icosphere(2, 0.3, glm::dvec3(0.5));
+    // A box with a spherical hole inside, wound inward as a cavity's surface is: the tets fill
+    // only the space between them. The whole mesh wound the other way round is the same solid.
+    const TriangleMesh cavity = icosphere(2, 0.3, glm::dvec3(0.5));
+    TriangleMesh snapped = cavity;
+    const double expected = 1.0 - validateAndRepair(snapped).volume;  // float-snapped, as the tets see it
     TetOptions o;
     o.useCache = false;
-    const TetMesh tets = tetrahedralize(merge(box(), cavity), o);
-    const double expected = 1.0 - validateAndRepair(cavity).volume;  // float-snapped, as the tets see it
-    EXPECT_NEAR(tets.volume(), expected, 1e-9);
+    for (const TriangleMesh& m : {merge(box(), inward(cavity)), inward(merge(box(), inward(cavity)))}) {
+        TriangleMesh checked = m;
+        EXPECT_EQ(validateAndRepair(checked).droppedShells, 0u);
+        EXPECT_NEAR(tetrahedralize(m, o).volume(), expected, 1e-9);
+    }
+}
+
+TEST(ValidInput, NestedShellsWoundAlikeStaySolid) {
+    // Inside a box, a sphere wound as the box is: winding number 2 within it, inside by the rule
+    // (above 1/2), so the sphere bounds nothing and the whole box is medium. It was a cavity,
+    // losing the sphere's volume.
+    TriangleMesh m = merge(box(), icosphere(2, 0.3, glm::dvec3(0.5)));
+    const ValidationReport report = validateAndRepair(m);
+    EXPECT_EQ(report.droppedShells, 1u);
+    EXPECT_EQ(report.flippedTriangles, 0u);
+    EXPECT_NEAR(report.volume, 1.0, 1e-12);
+    EXPECT_EQ(m.triangles.size(), box().triangles.size());
+    EXPECT_EQ(m.positions.size(), 8u);
+    TetOptions o;
+    o.useCache = false;
+    EXPECT_NEAR(tetrahedralize(merge(box(), icosphere(2, 0.3, glm::dvec3(0.5))), o).volume(), 1.0, 1e-12);
+}
+
+TEST(ValidInput, ManyShellsNestAsTheirWindingSays) {
+    // 1000 boxes on a grid, each holding a smaller box: wound inward in the even ones (cavities),
+    // outward in the odd ones (inside on both sides, dropped); the whole wound inward in every
+    // third (the same solid). Volume and notes follow from each pair's own winding.
+    TriangleMesh m;
+    double expected = 0;
+    size_t dropped = 0;
+    for (int i = 0; i < 1000; ++i) {
+        const glm::dvec3 lo(2.0 * (i % 10), 2.0 * (i / 10 % 10), 2.0 * (i / 100));
+        TriangleMesh inner = box(lo + 0.25, lo + 0.75);
+        TriangleMesh pair = merge(box(lo, lo + 1.0), i % 2 ? inner : inward(inner));
+        m = merge(m, i % 3 ? pair : inward(pair));
+        expected += i % 2 ? 1.0 : 1.0 - 0.125;
+        dropped += i % 2;
+    }
+    const ValidationReport report = validateAndRepair(m);
+    EXPECT_EQ(report.components, 2000u);
+    EXPECT_EQ(report.droppedShells, dropped);
+    EXPECT_NEAR(report.volume, expected, 1e-9);
 }
 
 // TetGen itself, without tetglow's validation: its three failure modes become errors.

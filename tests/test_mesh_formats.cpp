@@ -281,6 +281,32 @@ TEST(MeshFormats, BrokenFilesAreOneLineErrors) {
     }
 }
 
+// A file with cameras and lights but no mesh, as a modelling tool exports an empty scene: Assimp
+// stands a placeholder skeleton mesh in for its nodes (and marks the scene incomplete), which
+// became a medium of that skeleton's volume. It is a file with no triangles.
+TEST(MeshFormats, AFileWithoutMeshesHasNoTriangles) {
+    const std::string dae =
+        "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n"
+        "<COLLADA xmlns=\"http://www.collada.org/2005/11/COLLADASchema\" version=\"1.4.1\">\n"
+        "  <asset><unit name=\"meter\" meter=\"1\"/><up_axis>Z_UP</up_axis></asset>\n"
+        "  <library_cameras><camera id=\"Camera-camera\" name=\"Camera\"><optics><technique_common><perspective>"
+        "<xfov>39.6</xfov><aspect_ratio>1.78</aspect_ratio><znear>0.1</znear><zfar>100</zfar></perspective>"
+        "</technique_common></optics></camera></library_cameras>\n"
+        "  <library_lights><light id=\"Light-light\" name=\"Light\"><technique_common><point>"
+        "<color>1000 1000 1000</color></point></technique_common></light></library_lights>\n"
+        "  <library_visual_scenes><visual_scene id=\"Scene\" name=\"Scene\">\n"
+        "    <node id=\"Camera\" name=\"Camera\" type=\"NODE\"><matrix sid=\"transform\">1 0 0 7 0 1 0 -6 0 0 1 5 0 0 "
+        "0 1"
+        "</matrix><instance_camera url=\"#Camera-camera\"/></node>\n"
+        "    <node id=\"Light\" name=\"Light\" type=\"NODE\"><matrix sid=\"transform\">1 0 0 4 0 1 0 1 0 0 1 6 0 0 0 1"
+        "</matrix><instance_light url=\"#Light-light\"/></node>\n"
+        "  </visual_scene></library_visual_scenes>\n"
+        "  <scene><instance_visual_scene url=\"#Scene\"/></scene>\n</COLLADA>\n";
+    const std::string path = test::writeTemp("empty/camera.dae", dae);
+    const std::string m = readError(path);
+    EXPECT_EQ(m, path + ": no triangles: the file holds no mesh (only cameras, lights or empty nodes)");
+}
+
 // A node name for a format without nodes is an error, not ignored.
 TEST(MeshFormats, OnlySceneFormatsHaveNodes) {
     const std::string path = test::writeTemp("box.obj", test::objText(test::boxQuads()));

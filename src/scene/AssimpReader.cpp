@@ -320,6 +320,10 @@ Imported import(std::string data, const std::string& path, SceneMeshFormat forma
         for (size_t at; (at = why.find(name)) != std::string::npos;) why.replace(at, name.size(), path);
         throw InputError(path + ": cannot read the " + extension(format) + " file: " + shorten(why, 200));
     }
+    // Without a mesh, Assimp's Collada, FBX and BVH importers build a placeholder skeleton mesh
+    // from the nodes and flag the scene incomplete: that skeleton is no geometry of the file.
+    if (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE)
+        throw InputError(path + ": no triangles: the file holds no mesh (only cameras, lights or empty nodes)");
     Imported result;
     int32_t upAxis = -1, upSign = 0;
     if (scene->mMetaData && scene->mMetaData->Get("UpAxis", upAxis) && scene->mMetaData->Get("UpAxisSign", upSign) &&

@@ -29,9 +29,8 @@ inline std::array<uint32_t, 3> faceOf(const std::array<uint32_t, 4>& tet, int j)
 // 1 everywhere) is labelled as by the threshold, the graph holds only the tets near holes and
 // where parts cross, and no input triangle leaves the boundary or joins it (with those tets
 // free, the cut shaved three triangles off the jagged rim of
-// InteriorRepair.PunchedHolesLoseAtMostTheirCap to shorten the spanning surface). 1/4 is
-// kInsideWinding's margin: a tet at 3/4 or above stays inside, so a mesh that encloses volume
-// keeps some.
+// InteriorRepair.PunchedHolesLoseAtMostTheirCap to shorten the spanning surface). A tet at 3/4
+// or above stays inside, so a closed part keeps its inside whatever holes the rest has.
 inline constexpr double kUncertainWinding = 0.25;
 
 // gamma in units of the mean edge length of the uncertain tets: the data term is a volume and

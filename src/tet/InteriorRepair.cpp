@@ -396,6 +396,10 @@ RepairReport repairInterior(TriangleMesh& mesh) {
     plc.surface = std::move(resolved.surface);
     report.unsplitTriangles = resolved.unsplit;
     report.unsplitReason = resolved.unsplitReason;
+    if (plc.surface.triangles.empty())
+        throw InputError(
+            "cannot repair the crossing parts: every triangle crosses another and they could not be split (" +
+            resolved.unsplitReason + ")");
     std::set<std::array<uint32_t, 3>> constraints;
     for (auto f : plc.surface.triangles) {
         std::sort(f.begin(), f.end());
@@ -436,17 +440,17 @@ RepairReport repairInterior(TriangleMesh& mesh) {
     });
     report.minWinding = *std::min_element(w.begin(), w.end());
     report.maxWinding = *std::max_element(w.begin(), w.end());
-    if (report.maxWinding < kInsideWinding) {
+    const std::vector<char> inside = report.maxWinding > 0.5 ? insideLabels(tets.points, tets.tets, tets.neighbours, w,
+                                                                            constraints, kCutGammaPerEdge)
+                                                             : std::vector<char>(w.size(), 0);
+    if (std::find(inside.begin(), inside.end(), 1) == inside.end()) {
         char text[200];
-        std::snprintf(
-            text, sizeof text,
-            "mesh encloses no volume: its winding number stays below %.2f everywhere (at most %.3f), so it is "
-            "an open sheet or shell, not a closed surface with holes",
-            kInsideWinding, report.maxWinding);
+        std::snprintf(text, sizeof text,
+                      "mesh encloses no volume: its winding number stays at or below 1/2 everywhere (at most %.3f), "
+                      "so it is an open sheet, not a closed surface with holes",
+                      report.maxWinding);
         throw InputError(text);
     }
-    const std::vector<char> inside =
-        insideLabels(tets.points, tets.tets, tets.neighbours, w, constraints, kCutGammaPerEdge);
     mesh = boundaryOf(tets, inside, constraints, report.spannedTriangles);
     describeHoles(mesh, report.spannedTriangles, report);
     return report;

@@ -13,13 +13,10 @@ namespace tetglow {
 
 // Replaces `mesh` by the closed, outward boundary of its inside tets (float vertices, no
 // crossings: it then passes validateAndRepair, parts that touch along an edge kept as they are,
-// pinchedEdges). Throws InputError when the mesh encloses no
-// volume (a sheet, an open shell: no tet's winding number reaches kInsideWinding).
+// pinchedEdges). Throws InputError when the mesh encloses no volume: no tet is inside, as for a
+// flat sheet, whose winding number stays below 1/2 on both sides. A curved open shell (a dome)
+// encloses the lens between it and the surface spanning its rim, where its winding number exceeds 1/2.
 RepairReport repairInterior(TriangleMesh& mesh);
-
-// A tet is inside where the winding number exceeds 1/2; a mesh encloses volume where some tet's
-// reaches this (a closed part gives 1; a sheet stays below 1/2 on both sides).
-inline constexpr double kInsideWinding = 0.75;
 
 // validateAndRepair; where that refuses the mesh (other than for non-finite coordinates or no
 // triangles), repairInterior and then validateAndRepair, unless `strict`: then the refusal,

@@ -11,7 +11,7 @@
 
 #include "tet/Predicates.h"
 #include "tet/SelfIntersection.h"
-#include "tet/WindingNumber.h"
+#include "tet/ShellNesting.h"
 
 namespace tetglow {
 
@@ -231,37 +231,50 @@ std::vector<uint32_t> orientShells(TriangleMesh& mesh, const std::unordered_map<
     return shell;
 }
 
-// Generalized winding number of the given triangles around p: +-1 inside a closed shell, 0
-// outside, robust for p off the surface.
-double windingNumber(const TriangleMesh& mesh, const std::vector<uint32_t>& tris, const glm::dvec3& p) {
-    double omega = 0;
-    for (uint32_t t : tris) omega += solidAngle(mesh.corner(t, 0), mesh.corner(t, 1), mesh.corner(t, 2), p);
-    return omega / (4 * M_PI);
+double shellVolume(const TriangleMesh& mesh, const std::vector<uint32_t>& shell) {
+    double volume = 0;
+    const glm::dvec3 o = mesh.corner(shell[0], 0);
+    for (uint32_t t : shell)
+        volume += glm::dot(mesh.corner(t, 0) - o, glm::cross(mesh.corner(t, 1) - o, mesh.corner(t, 2) - o));
+    return volume;
 }
 
-// Shell nesting: a shell inside an odd number of others bounds a cavity and must wind inward.
+// Inside is where the winding number of the mesh as given is above 1/2, the sign taken from the
+// outermost shell around (so a mesh wound inward throughout is the same solid). Each shell then
+// winds outward from the inside it bounds: a cavity is one whose own winding says so (inward in
+// an outward shell). A shell with inside on both sides (nested shells wound alike: winding
+// number 2) bounds nothing and is dropped.
 void orientOutward(TriangleMesh& mesh, const std::vector<uint32_t>& shell, ValidationReport& report) {
     std::vector<std::vector<uint32_t>> members(report.components);
     for (uint32_t t = 0; t < mesh.triangles.size(); ++t) members[shell[t]].push_back(t);
-    std::vector<int> depth(members.size(), 0);
-    if (members.size() > 1)
-        for (size_t s = 0; s < members.size(); ++s) {
-            // Shells meet at most at shared corners and edges, so a centroid is off the others.
-            const uint32_t t = members[s][0];
-            const glm::dvec3 probe = (mesh.corner(t, 0) + mesh.corner(t, 1) + mesh.corner(t, 2)) / 3.0;
-            for (size_t o = 0; o < members.size(); ++o)
-                depth[s] += o != s && std::abs(windingNumber(mesh, members[o], probe)) > 0.5;
-        }
+    std::vector<double> volume(members.size());
+    for (size_t s = 0; s < members.size(); ++s) volume[s] = shellVolume(mesh, members[s]);
+    const auto sign = [&](size_t s) { return volume[s] > 0 ? 1 : -1; };
+    const auto containers = containingShells(mesh, members);
+    std::vector<char> dropped(members.size(), 0);
     for (size_t s = 0; s < members.size(); ++s) {
-        double volume = 0;
-        const glm::dvec3 o = mesh.corner(members[s][0], 0);
-        for (uint32_t t : members[s])
-            volume += glm::dot(mesh.corner(t, 0) - o, glm::cross(mesh.corner(t, 1) - o, mesh.corner(t, 2) - o));
-        if ((volume > 0) != (depth[s] % 2 == 0)) {
+        int windingOutside = 0;
+        size_t outermost = s;
+        for (uint32_t o : containers[s]) {
+            windingOutside += sign(o);
+            if (std::abs(volume[o]) > std::abs(volume[outermost])) outermost = o;
+        }
+        const bool insideOutside = sign(outermost) * windingOutside >= 1;
+        const bool insideInside = sign(outermost) * (windingOutside + sign(s)) >= 1;
+        if (insideOutside == insideInside) {
+            dropped[s] = 1;
+            ++report.droppedShells;
+        } else if ((volume[s] > 0) != insideInside) {
             for (uint32_t t : members[s]) std::swap(mesh.triangles[t][1], mesh.triangles[t][2]);
             report.flippedTriangles += members[s].size();
         }
     }
+    if (!report.droppedShells) return;
+    std::vector<std::array<uint32_t, 3>> kept;
+    for (uint32_t t = 0; t < mesh.triangles.size(); ++t)
+        if (!dropped[shell[t]]) kept.push_back(mesh.triangles[t]);
+    mesh.triangles = std::move(kept);
+    weldVertices(mesh);  // the dropped shells' vertices
 }
 
 }  // namespace
@@ -290,6 +303,10 @@ ValidationReport validateAndRepair(TriangleMesh& mesh, bool pinchedEdges) {
         report.notes.push_back("removed " + std::to_string(report.unusedVertices) + " unused vertices");
     if (report.flippedTriangles)
         report.notes.push_back("flipped " + std::to_string(report.flippedTriangles) + " inward-wound triangles");
+    if (report.droppedShells)
+        report.notes.push_back(
+            "dropped " + std::to_string(report.droppedShells) + (report.droppedShells == 1 ? " shell" : " shells") +
+            " inside the solid, wound as the shell around it (winding number 2: inside on both sides)");
     return report;
 }
 

@@ -15,6 +15,7 @@ struct ValidationReport {
     size_t flippedTriangles = 0;     // inward or inconsistent winding, fixed
     size_t oppositePairs = 0;        // faces that cancel (cancelOppositeFaces), removed
     size_t components = 0;           // closed shells
+    size_t droppedShells = 0;        // shells with inside on both sides (nested, wound alike)
     double volume = 0;               // enclosed volume after repair
     std::vector<std::string> notes;  // what was repaired, one line each
     RepairReport repair;             // a broken mesh's repair (see InteriorRepair.h)
@@ -23,10 +24,12 @@ struct ValidationReport {
 // In order: finite coordinates; positions snapped to float (Embree's precision, so Embree and
 // the tets see bit-identical vertices); exact duplicate vertices welded; unused vertices
 // removed; no degenerate (repeated or collinear corners) or duplicate triangles; every edge
-// shared by exactly two triangles; no self-intersections; consistent, outward winding per
-// shell (fixed, not rejected); positive volume. With `pinchedEdges`, an edge may also have an
-// even number of triangles, at least four: closed parts that touch along it, as a repaired
-// surface has them (a clean mesh with such an edge is refused, and repaired).
+// shared by exactly two triangles; no self-intersections; each shell wound consistently and
+// outward from the inside it bounds, inside being where the winding number of the mesh as given
+// exceeds 1/2 (fixed, not rejected; a shell with inside on both sides is dropped); positive
+// volume. With `pinchedEdges`, an edge may also have an even number of triangles, at least
+// four: closed parts that touch along it, as a repaired surface has them (a clean mesh with such
+// an edge is refused, and repaired).
 ValidationReport validateAndRepair(TriangleMesh& mesh, bool pinchedEdges = false);
 
 // "(x, y, z)", as messages give positions.

@@ -2,6 +2,9 @@
 
 #include <unistd.h>
 
+#include <cmath>
+#include <stdexcept>
+
 #include <fcntl.h>
 #include <tetgen.h>
 
@@ -76,6 +79,10 @@ std::string runTetGen(const RegionComplex& complex, const std::string& switches)
 }  // namespace
 
 RawTets runIsolated(const RegionComplex& complex, const std::string& switches) {
+    // TetGen 1.5's Hilbert sort loops without end on an infinite or NaN point.
+    for (const glm::dvec3& p : complex.surface.positions)
+        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+            throw std::logic_error("a point of TetGen's input is not finite");
     std::string answer;
     try {
         answer =

@@ -1,0 +1,100 @@
+#!/usr/bin/env python3
+"""Cost of validation and repair against the number of shells and of crossings: `tetglow
+tetrahedralize --no-cache` on N disjoint tetrahedra (the exact path: every shell's nesting is
+decided) and on K thin boxes turned about a common axis in general position (the repair: every
+box crosses every other). Prints a docs/RESULTS.md table.
+
+    bench/results/repair_cost.py [--build DIR] [--shells N ...] [--boxes K ...]"""
+import argparse
+import math
+import os
+import re
+import subprocess
+import sys
+import tempfile
+import time
+
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))  # bench/, for benchlib
+from benchlib import fail, machine  # noqa: E402
+
+FACES = [(0, 2, 1), (0, 1, 3), (0, 3, 2), (1, 2, 3)]
+BOX_FACES = [(0, 2, 3), (0, 3, 1), (4, 5, 7), (4, 7, 6), (0, 1, 5), (0, 5, 4),
+             (2, 6, 7), (2, 7, 3), (0, 4, 6), (0, 6, 2), (1, 3, 7), (1, 7, 5)]
+
+
+def write_obj(path, parts, faces):
+    with open(path, "w") as f:
+        base = 1
+        for corners in parts:
+            for p in corners:
+                f.write("v %.9g %.9g %.9g\n" % p)
+            for t in faces:
+                f.write("f %d %d %d\n" % tuple(base + i for i in t))
+            base += len(corners)
+
+
+def tetrahedra(n):
+    side = math.ceil(n ** (1 / 3))
+    parts = []
+    for i in range(n):
+        x, y, z = 2.0 * (i % side), 2.0 * (i // side % side), 2.0 * (i // side // side)
+        parts.append([(x, y, z), (x + 1, y, z), (x, y + 1, z), (x, y, z + 1)])
+    return parts
+
+
+def boxes(k):
+    """Thin boxes through the z axis, each turned by a different angle and tilted a little, so that
+    every pair crosses in general position (no three faces through one point)."""
+    parts = []
+    for i in range(k):
+        a, tilt = math.pi * (i + 0.37) / k, 0.05 * math.sin(7.3 * i)
+        c, s = math.cos(a), math.sin(a)
+        corners = []
+        for bits in range(8):
+            u = 1.0 if bits & 1 else -1.0       # along the box's length
+            v = 0.04 if bits & 2 else -0.04     # across
+            w = 0.5 if bits & 4 else -0.5       # height
+            x, y = u * c - v * s, u * s + v * c
+            corners.append((x + tilt * w, y + 0.013 * i, w + 0.011 * i))
+        parts.append(corners)
+    return parts
+
+
+def run(binary, mesh):
+    start = time.monotonic()
+    r = subprocess.run(["/usr/bin/time", "-f", "%U %S", binary, "tetrahedralize", mesh, "--no-cache"],
+                       capture_output=True, text=True)
+    seconds = time.monotonic() - start
+    if r.returncode != 0:
+        fail(f"tetrahedralize {mesh}: {r.stderr.strip()[-300:]}")
+    user, system = r.stderr.strip().splitlines()[-1].split()
+    crossings = re.search(r"(\d+) crossing pairs? resolved", r.stdout)
+    return seconds, float(user) + float(system), int(crossings.group(1)) if crossings else 0
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--build", default="build")
+    ap.add_argument("--shells", type=int, nargs="*", default=[1000, 5000, 20000])
+    ap.add_argument("--boxes", type=int, nargs="*", default=[5, 10, 20, 40])
+    a = ap.parse_args()
+    binary = os.path.join(a.build, "tetglow")
+    rows = []
+    with tempfile.TemporaryDirectory() as work:
+        for n in a.shells:
+            mesh = os.path.join(work, f"tets{n}.obj")
+            write_obj(mesh, tetrahedra(n), FACES)
+            rows.append((f"{n} disjoint tetrahedra", 4 * n, n, *run(binary, mesh)))
+        for k in a.boxes:
+            mesh = os.path.join(work, f"boxes{k}.obj")
+            write_obj(mesh, boxes(k), BOX_FACES)
+            rows.append((f"{k} crossing boxes", 12 * k, k, *run(binary, mesh)))
+    print(f"machine: {machine()}\n")
+    print("| mesh | triangles | shells | crossing pairs | wall seconds | CPU seconds |")
+    print("|------|-----------|--------|----------------|--------------|-------------|")
+    for name, tris, shells, sec, cpu, crossings in rows:
+        print(f"| {name} | {tris} | {shells} | {crossings} | {sec:.2f} | {cpu:.2f} |")
+
+
+if __name__ == "__main__":
+    main()
