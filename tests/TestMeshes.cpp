@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>
 
+#include "scene/MeshFile.h"
 #include "tet/Predicates.h"
 
 namespace tetglow::test {
@@ -88,6 +89,19 @@ std::string readFile(const std::string& path) {
     std::stringstream ss;
     ss << in.rdbuf();
     return ss.str();
+}
+
+std::string errorOf(const std::function<void()>& call) {
+    try {
+        call();
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    return "no error";
+}
+
+std::string readError(const std::string& path, const std::string& node) {
+    return errorOf([&] { readMesh(path, nullptr, node); });
 }
 
 CommandResult runTetglow(const std::string& args, int timeoutSeconds) {

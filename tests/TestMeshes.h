@@ -1,5 +1,6 @@
 // Meshes the tests build themselves, and where to find the others.
 #pragma once
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -40,6 +41,11 @@ std::string writeTemp(const std::string& name, const std::string& contents);
 
 // The bytes of a file ("" when it cannot be read).
 std::string readFile(const std::string& path);
+
+// The message of the InputError `call` throws, or "no error".
+std::string errorOf(const std::function<void()>& call);
+// readMesh's error message on `path` (only the meshes of `node` where given), or "no error".
+std::string readError(const std::string& path, const std::string& node = "");
 
 struct CommandResult {
     int exitCode;

@@ -18,15 +18,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string readError(const std::string& path) {
-    try {
-        readMesh(path);
-    } catch (const InputError& e) {
-        return e.what();
-    }
-    return "no error";
-}
-
 std::string refusal(const std::string& reference) {
     return "'" + reference +
            "' lies outside the model's folder: refusing to read it (TETGLOW_ALLOW_OUTSIDE_REFS=1 allows it)";
@@ -101,12 +92,7 @@ TEST(ExternalReferences, ConvertRefusesAModelThatReadsOutside) {
 }
 
 std::string pbrtError(const std::string& path) {
-    try {
-        loadScene(path);
-    } catch (const InputError& e) {
-        return e.what();
-    }
-    return "no error";
+    return errorOf([&] { loadScene(path); });
 }
 
 TEST(ExternalReferences, PbrtIncludesAndPlymeshesStayInTheFirstFilesFolder) {

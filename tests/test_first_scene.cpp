@@ -8,6 +8,7 @@
 #include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
 
+#include "JsonFiles.h"
 #include "TestMeshes.h"
 #include "TestScenes.h"
 #include "integrators/Integrator.h"
@@ -17,13 +18,6 @@
 
 namespace tetglow::test {
 namespace {
-
-nlohmann::json readJson(const std::string& path) {
-    std::ifstream in(path);
-    return nlohmann::json::parse(in);
-}
-
-glm::dvec3 vec(const nlohmann::json& j) { return {j[0].get<double>(), j[1].get<double>(), j[2].get<double>()}; }
 
 // The mesh in one folder, the scene in another, rendered from a third: the mesh is named
 // relative to the scene, and the render succeeds.

@@ -9,6 +9,7 @@
 #include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
 
+#include "JsonFiles.h"
 #include "MeshWriters.h"
 #include "TestMeshes.h"
 #include "scene/SceneLoader.h"
@@ -16,13 +17,6 @@
 
 namespace tetglow::test {
 namespace {
-
-nlohmann::json readJson(const std::string& path) {
-    std::ifstream in(path);
-    return nlohmann::json::parse(in);
-}
-
-glm::dvec3 vec(const nlohmann::json& j) { return {j[0].get<double>(), j[1].get<double>(), j[2].get<double>()}; }
 
 // boxQuads (0..2, 0..3, 0..4) scaled by `s`, as OBJ text, with `extra` lines after it.
 std::string boxObj(double s, const std::string& extra = "") {

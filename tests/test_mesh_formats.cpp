@@ -19,19 +19,11 @@
 namespace tetglow {
 namespace {
 
+using test::readError;
+
 struct Sample {
     std::string name, bytes;
 };
-
-// readMesh's error message, or "no error".
-std::string readError(const std::string& path, const std::string& node = "") {
-    try {
-        readMesh(path, nullptr, node);
-    } catch (const InputError& e) {
-        return e.what();
-    }
-    return "no error";
-}
 
 // Every format of the box, written under names whose extensions say nothing (".mesh"), where the
 // format allows it: the content alone must tell the reader.

@@ -12,14 +12,7 @@
 namespace tetglow {
 namespace {
 
-std::string readError(const std::string& path) {
-    try {
-        readMesh(path);
-    } catch (const InputError& e) {
-        return e.what();
-    }
-    return "no error";
-}
+using test::readError;
 
 // A scanner's free-text line and an obj_info line in the header: skipped, the first with a warning.
 TEST(ReaderLeniency, APlyHeaderLineThatIsNoKeywordIsSkippedWithAWarning) {

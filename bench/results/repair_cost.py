@@ -9,13 +9,13 @@ import argparse
 import math
 import os
 import re
-import subprocess
 import sys
 import tempfile
-import time
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))  # bench/, for benchlib
-from benchlib import fail, machine  # noqa: E402
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))  # bench/results, for repair_bench
+import repair_bench  # noqa: E402
+from benchlib import machine  # noqa: E402
 
 FACES = [(0, 2, 1), (0, 1, 3), (0, 3, 2), (1, 2, 3)]
 BOX_FACES = [(0, 2, 3), (0, 3, 1), (4, 5, 7), (4, 7, 6), (0, 1, 5), (0, 5, 4),
@@ -61,15 +61,10 @@ def boxes(k):
 
 
 def run(binary, mesh):
-    start = time.monotonic()
-    r = subprocess.run(["/usr/bin/time", "-f", "%U %S", binary, "tetrahedralize", mesh, "--no-cache"],
-                       capture_output=True, text=True)
-    seconds = time.monotonic() - start
-    if r.returncode != 0:
-        fail(f"tetrahedralize {mesh}: {r.stderr.strip()[-300:]}")
-    user, system = r.stderr.strip().splitlines()[-1].split()
-    crossings = re.search(r"(\d+) crossing pairs? resolved", r.stdout)
-    return seconds, float(user) + float(system), int(crossings.group(1)) if crossings else 0
+    """Wall and CPU seconds of tetrahedralize (repair_bench's run) and the crossing pairs resolved."""
+    seconds, cpu, _, summary = repair_bench.run(binary, mesh)
+    crossings = re.search(r"(\d+) crossing pairs? resolved", " ".join(summary))
+    return seconds, cpu, int(crossings.group(1)) if crossings else 0
 
 
 def main():
