@@ -304,11 +304,22 @@ TEST(InteriorRepair, FlippedAndDuplicatedFaces) {
 // A volume mesh saved as every cell's faces: a 3x3x3 grid of cubes, each wound outward on its
 // own, so that every inner face is there twice, wound opposite ways. The pairs cancel, as they do
 // in the winding number, and the grid is its outer solid, exactly, without a repair.
-TriangleMesh cubeGrid() {
+// With `otherDiagonal`, every other cube splits its squares along their other diagonals, as a
+// cell that lists a face from another corner does: its half of an inner face is then two other
+// triangles over the same square.
+TriangleMesh cubeGrid(bool otherDiagonal = false) {
     TriangleMesh grid;
     for (int i = 0; i < 27; ++i) {
         const glm::dvec3 lo(i % 3, i / 3 % 3, i / 9);
-        grid = merge(grid, box(lo, lo + 1.0));
+        TriangleMesh cube = box(lo, lo + 1.0);
+        if (otherDiagonal && i % 2)
+            for (size_t t = 0; t < cube.triangles.size(); t += 2) {  // (a, b, c), (a, c, d) -> (b, c, d), (b, d, a)
+                const auto [a, b, c] = cube.triangles[t];
+                const uint32_t d = cube.triangles[t + 1][2];
+                cube.triangles[t] = {b, c, d};
+                cube.triangles[t + 1] = {b, d, a};
+            }
+        grid = merge(grid, cube);
     }
     return grid;
 }
@@ -321,6 +332,12 @@ TEST(InteriorRepair, OppositePairsOfFacesCancel) {
     EXPECT_EQ(mesh.surface.size(), 108u);   // 6 sides of 9 squares
     EXPECT_DOUBLE_EQ(mesh.surfaceVolume(), 27);
     EXPECT_NEAR(mesh.volume(), 27, 1e-12);  // summed over the tets
+    // Inner squares split along different diagonals by the two cubes beside them cancel too.
+    const TetMesh mixed = tets(cubeGrid(true), &report);
+    EXPECT_FALSE(report.repair.applied) << report.repair.summary();
+    EXPECT_EQ(report.oppositePairs, 108u);
+    EXPECT_EQ(mixed.surface.size(), 108u);
+    EXPECT_DOUBLE_EQ(mixed.surfaceVolume(), 27);
     // A face there three times, twice one way: one pair cancels, the face stays.
     TriangleMesh m = box();
     m.triangles.push_back({m.triangles[4][0], m.triangles[4][2], m.triangles[4][1]});

@@ -5,6 +5,7 @@
 #include <limits>
 #include <map>
 #include <numeric>
+#include <optional>
 #include <unordered_map>
 
 #include <glm/geometric.hpp>
@@ -96,20 +97,20 @@ WeldCounts weldVertices(TriangleMesh& mesh) {
     return report;
 }
 
-size_t cancelOppositeFaces(TriangleMesh& mesh) {
-    TriangleMesh welded = mesh;
-    weldVertices(welded);
+namespace {
+
+// Faces with the same three corners wound opposite ways, marked in `cancelled`; the pairs.
+size_t cancelOppositeTriangles(const TriangleMesh& mesh, std::vector<char>& cancelled) {
     // Per set of corners, the faces on it wound each way: a face is "even" when its corners run
     // in the cyclic order of the sorted corners.
     std::map<std::array<uint32_t, 3>, std::array<std::vector<uint32_t>, 2>> faces;
-    for (uint32_t t = 0; t < welded.triangles.size(); ++t) {
-        const auto& v = welded.triangles[t];
+    for (uint32_t t = 0; t < mesh.triangles.size(); ++t) {
+        const auto& v = mesh.triangles[t];
         const int first = int(std::min_element(v.begin(), v.end()) - v.begin());
         auto key = v;
         std::sort(key.begin(), key.end());
         faces[key][v[(first + 1) % 3] < v[(first + 2) % 3] ? 0 : 1].push_back(t);
     }
-    std::vector<char> cancelled(welded.triangles.size(), 0);
     size_t pairs = 0;
     for (const auto& [key, ways] : faces) {
         const size_t n = std::min(ways[0].size(), ways[1].size());
@@ -118,6 +119,80 @@ size_t cancelOppositeFaces(TriangleMesh& mesh) {
             for (size_t i = way.size() - n; i < way.size(); ++i) cancelled[way[i]] = 1;
         pairs += n;
     }
+    return pairs;
+}
+
+// The same for flat convex quads split along different diagonals, as two cells of a volume mesh
+// that list their shared face from different corners give it: two triangles that share an edge,
+// lie in one plane and make a convex quad cancel two that make the same quad wound the other way.
+size_t cancelOppositeQuads(const TriangleMesh& mesh, std::vector<char>& cancelled) {
+    // Directed edges a -> b with the face running each, sorted: a run of one key is its faces.
+    std::vector<std::pair<uint64_t, uint32_t>> edges;
+    edges.reserve(3 * mesh.triangles.size());
+    for (uint32_t t = 0; t < mesh.triangles.size(); ++t)
+        if (!cancelled[t])
+            for (int k = 0; k < 3; ++k)
+                edges.push_back({uint64_t(mesh.triangles[t][k]) << 32 | mesh.triangles[t][(k + 1) % 3], t});
+    std::sort(edges.begin(), edges.end());
+    // The one face running `key`, or none.
+    const auto only = [&](uint64_t key) -> std::optional<uint32_t> {
+        const auto it = std::lower_bound(edges.begin(), edges.end(), std::pair{key, 0u});
+        if (it == edges.end() || it->first != key || (it + 1 != edges.end() && (it + 1)->first == key))
+            return std::nullopt;
+        return it->second;
+    };
+    const auto apex = [&](uint32_t t, uint32_t a, uint32_t b) {
+        for (uint32_t v : mesh.triangles[t])
+            if (v != a && v != b) return v;
+        return a;
+    };
+    // Per set of four corners, the pairs of faces making that quad, by winding.
+    std::map<std::array<uint32_t, 4>, std::array<std::vector<std::pair<uint32_t, uint32_t>>, 2>> quads;
+    for (const auto& [key, face] : edges) {
+        const auto u = uint32_t(key >> 32), v = uint32_t(key);
+        if (u > v) continue;
+        const auto first = only(key), back = only(uint64_t(v) << 32 | u);
+        if (!first || !back) continue;
+        const uint32_t s = *first, t = *back;
+        const uint32_t p = apex(s, u, v), q = apex(t, u, v);
+        const auto &U = mesh.positions[u], &V = mesh.positions[v], &P = mesh.positions[p], &Q = mesh.positions[q];
+        if (p == q || orient3d(U, V, P, Q) != 0) continue;
+        // Convex: u and v on either side of p-q, p and q on either side of u-v, in the plane
+        // seen along the axis its normal is closest to.
+        const glm::dvec3 n = glm::abs(glm::cross(V - U, P - U));
+        const int axis = n.x >= n.y && n.x >= n.z ? 0 : n.y >= n.z ? 1 : 2;
+        const auto flat = [&](const glm::dvec3& x) { return glm::dvec2(x[(axis + 1) % 3], x[(axis + 2) % 3]); };
+        const auto side = [&](const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
+            const double o = orient2d(flat(a), flat(b), flat(c));
+            return (o > 0) - (o < 0);
+        };
+        if (side(U, V, P) * side(U, V, Q) != -1 || side(P, Q, U) * side(P, Q, V) != -1) continue;
+        // The quad's boundary runs v, p, u, q; from its smallest corner, one way or the other.
+        std::array<uint32_t, 4> cycle{v, p, u, q};
+        std::rotate(cycle.begin(), std::min_element(cycle.begin(), cycle.end()), cycle.end());
+        std::array<uint32_t, 4> corners = cycle;
+        std::sort(corners.begin(), corners.end());
+        quads[corners][cycle[1] < cycle[3] ? 0 : 1].push_back({s, t});
+    }
+    size_t pairs = 0;
+    for (const auto& [corners, ways] : quads)
+        for (const auto& [a, b] : ways[0])
+            for (const auto& [c, d] : ways[1])
+                if (!cancelled[a] && !cancelled[b] && !cancelled[c] && !cancelled[d]) {
+                    cancelled[a] = cancelled[b] = cancelled[c] = cancelled[d] = 1;
+                    pairs += 2;
+                }
+    return pairs;
+}
+
+}  // namespace
+
+size_t cancelOppositeFaces(TriangleMesh& mesh) {
+    TriangleMesh welded = mesh;
+    weldVertices(welded);
+    std::vector<char> cancelled(welded.triangles.size(), 0);
+    size_t pairs = cancelOppositeTriangles(welded, cancelled);
+    pairs += cancelOppositeQuads(welded, cancelled);
     if (pairs == 0) return 0;  // the mesh as it was, not even welded
     std::vector<std::array<uint32_t, 3>> kept;
     for (uint32_t t = 0; t < welded.triangles.size(); ++t)

@@ -52,8 +52,10 @@ WeldCounts weldVertices(TriangleMesh& mesh);
 // Two faces with the same three corners (once welded) wound opposite ways add nothing to the
 // generalized winding number, so the solid is the same without them; a volume mesh saved as
 // every cell's faces has each inner face twice, so. Removes every such pair (of a face there
-// more often one way, the first ones that way stay) and the vertices only they used; returns
-// the number of pairs. A mesh without such pairs is left exactly as it is.
+// more often one way, the first ones that way stay), and likewise the two pairs of triangles
+// that make one flat convex quad wound both ways along different diagonals, then the vertices
+// only they used; returns the number of pairs of triangles. A mesh without such pairs is left
+// exactly as it is.
 size_t cancelOppositeFaces(TriangleMesh& mesh);
 // Exactly collinear corners (a zero-area triangle).
 bool collinear(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c);
