@@ -88,8 +88,8 @@ void Progress::work(const std::string& done, double fraction, double seconds) {
     const int tenth = int(fraction * 10);
     if (!terminal_ && tenth == lastTenth_) return;
     lastTenth_ = tenth;
-    std::fprintf(stderr, "%s%s: %s, %.1f s, %.1f s left%s", terminal_ ? "\r" : "", label_.c_str(), done.c_str(), seconds,
-                 seconds * (1 - fraction) / fraction, terminal_ ? "   " : "\n");
+    std::fprintf(stderr, "%s%s: %s, %.1f s, %.1f s left%s", terminal_ ? "\r" : "", label_.c_str(), done.c_str(),
+                 seconds, seconds * (1 - fraction) / fraction, terminal_ ? "   " : "\n");
     std::fflush(stderr);
     shown_ = true;
 }

@@ -357,9 +357,8 @@ Imported import(std::string data, const std::string& path, SceneMeshFormat forma
         }
         const std::vector<unsigned> key(p.node->mMeshes, p.node->mMeshes + p.node->mNumMeshes);
         // A skinned mesh is posed by its bones for this node alone; other sets are shared.
-        const bool skinned = std::any_of(key.begin(), key.end(), [&](unsigned m) {
-            return m < scene->mNumMeshes && scene->mMeshes[m]->mNumBones;
-        });
+        const bool skinned = std::any_of(
+            key.begin(), key.end(), [&](unsigned m) { return m < scene->mNumMeshes && scene->mMeshes[m]->mNumBones; });
         Local posed;
         const Local* local = &posed;
         if (skinned) {

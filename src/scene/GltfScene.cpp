@@ -352,7 +352,7 @@ SceneDesc loadGltfScene(const std::string& path, std::string data, const std::st
         const std::string nodeName = nameOf(doc, o);
         const auto [name, label] = nodeNames(nodeName, node);
         if (auto f = o["camera"]) {
-            cameraNodes.push_back("'" + shorten(nodeName, 40) + "'");
+            cameraNodes.push_back('\'' + shorten(nodeName, 40) + '\'');
             if (!haveCamera && (cameraName.empty() || nodeName == cameraName)) {
                 if (glm::determinant(glm::dmat3(n.world)) == 0)
                     node.error("the camera's transform is singular (scale 0)");

@@ -110,14 +110,25 @@ fi
 cat "$dir/bad.err"
 grep -q "task 2 wrote no part: .*part-0000-002.exr'*: the output must name a file, not a folder" "$dir/bad.err" || fail "the error does not name task 2's failure"
 [ ! -e "$dir/bad/sphere.exr" ] || fail "an image was written without task 2's part"
-echo "== a medium with no inside: the cache job fails, the array never runs"
+echo "== a medium with no inside: refused before anything is submitted"
 printf 'v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 1 3 4\n' > "$dir/open.obj"  # a flat square: a sheet
 sed 's|{"type": "sphere", "center": \[0, 0, 0\], "radius": 1, "subdivisions": 4}|{"type": "mesh", "file": "open.obj"}|' "$scene" > "$dir/open.json"
 grep -q open.obj "$dir/open.json" || fail "the open scene was not made"
 if "$tetglow" farm "$dir/open.json" --parts 2 --spp 2 -o "$dir/open/o.exr" --wait 2> "$dir/open.err"; then
-    fail "farm succeeded although the cache job failed"
+    fail "farm succeeded although the medium encloses no volume"
 fi
 cat "$dir/open.err"
-grep -q "task 0 wrote no part: it did not run: the tet cache job failed: .*mesh encloses no volume" "$dir/open.err" || fail "the error does not give the cache job's failure"
-[ ! -e "$dir/open/o.exr" ] || fail "an image was written without parts"
+grep -q "open.obj): mesh encloses no volume" "$dir/open.err" || fail "the error does not name the medium's mesh"
+grep -q "submitted" "$dir/open.err" && fail "jobs were submitted for a scene farm refuses"
+[ ! -e "$dir/open/o.farm" ] || fail "the job scripts were written for a scene farm refuses"
+echo "== a tet cache the jobs cannot fill: the cache job fails, the array never runs"
+printf 'not a folder\n' > "$dir/cache-file"
+if TETGLOW_CACHE_DIR="$dir/cache-file" "$tetglow" farm "$scene" --parts 2 --spp 2 -o "$dir/nocache/n.exr" --wait \
+    2> "$dir/nocache.err"; then
+    fail "farm succeeded although the cache job failed"
+fi
+cat "$dir/nocache.err"
+grep -q "task 0 wrote no part: it did not run: the tet cache job failed: .*cannot fill the tet cache" "$dir/nocache.err" ||
+    fail "the error does not give the cache job's failure"
+[ ! -e "$dir/nocache/n.exr" ] || fail "an image was written without parts"
 echo "PASS"
