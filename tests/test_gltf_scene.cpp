@@ -403,16 +403,27 @@ TEST(GltfScene, MalformedFilesAreOneLineErrors) {
              const uint32_t past = 99;
              std::memcpy(&b.bin[b.json["bufferViews"][1]["byteOffset"].get<size_t>()], &past, 4);
          }},
-        {"escape", "/buffers/0/uri: '../secret.bin' is not a file in the glTF's folder",
+        {"escape", "/buffers/0/uri: '../secret.bin' lies outside the model's folder: refusing to read it",
          [](GltfBuilder& b) {
              json& j = b.json;
              j["buffers"][0]["uri"] = "../secret.bin";
          }},
-        {"absolute", "/buffers/0/uri: '/etc/passwd' is not a file in the glTF's folder",
+        {"absolute", "/buffers/0/uri: '/etc/passwd' lies outside the model's folder: refusing to read it",
          [](GltfBuilder& b) {
              json& j = b.json;
              j["buffers"][0]["uri"] = "/etc/passwd";
          }},
+        // A link in the folder to a file elsewhere: read through it before, as if it were the buffer.
+        {"link", "/buffers/0/uri: 'outside link.bin' lies outside the model's folder: refusing to read it",
+         [&dir](GltfBuilder& b) {
+             std::filesystem::remove(dir + "/outside link.bin");
+             std::filesystem::create_symlink("/etc/hostname", dir + "/outside link.bin");
+             b.json["buffers"][0]["uri"] = "outside%20link.bin";
+         }},
+        {"percent", "/buffers/0/uri: a '%' not followed by two hex digits",
+         [](GltfBuilder& b) { b.json["buffers"][0]["uri"] = "mesh%2.bin"; }},
+        {"scheme", "/buffers/0/uri: 'https://example.org/x.bin' is not a file in the glTF's folder",
+         [](GltfBuilder& b) { b.json["buffers"][0]["uri"] = "https://example.org/x.bin"; }},
         {"length", "/buffers/0: byteLength is 100000, but the buffer holds",
          [](GltfBuilder& b) {
              json& j = b.json;

@@ -1,5 +1,6 @@
 #include "base/ExternalReference.h"
 
+#include <cctype>
 #include <cstdlib>
 #include <cstring>
 
@@ -24,6 +25,21 @@ bool inside(const fs::path& path, const fs::path& folder) {
 }
 
 }  // namespace
+
+std::optional<std::string> percentDecoded(const std::string& uri) {
+    std::string out;
+    for (size_t i = 0; i < uri.size(); ++i) {
+        if (uri[i] != '%') {
+            out.push_back(uri[i]);
+            continue;
+        }
+        if (i + 2 >= uri.size() || !std::isxdigit(uint8_t(uri[i + 1])) || !std::isxdigit(uint8_t(uri[i + 2])))
+            return std::nullopt;
+        out.push_back(char(std::stoi(uri.substr(i + 1, 2), nullptr, 16)));
+        i += 2;
+    }
+    return out;
+}
 
 bool outsideReferencesAllowed() {
     const char* allow = std::getenv("TETGLOW_ALLOW_OUTSIDE_REFS");

@@ -5,9 +5,14 @@
 // sets TETGLOW_ALLOW_OUTSIDE_REFS=1 (docs/USAGE.md, "Hostile input").
 #pragma once
 #include <filesystem>
+#include <optional>
 #include <string>
 
 namespace tetglow {
+
+// A URI's RFC 3986 percent-decoding, as glTF writes references ("my%20scene.bin"); nullopt where
+// a '%' is not followed by two hex digits.
+std::optional<std::string> percentDecoded(const std::string& uri);
 
 // Whether $TETGLOW_ALLOW_OUTSIDE_REFS is "1".
 bool outsideReferencesAllowed();

@@ -1,7 +1,6 @@
 #include "scene/AssimpReader.h"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -400,21 +399,6 @@ Imported import(std::string data, const std::string& path, SceneMeshFormat forma
     return result;
 }
 
-// "%20" and the like decoded, as a glTF uri is written.
-std::string percentDecoded(const std::string& uri) {
-    std::string out;
-    for (size_t i = 0; i < uri.size(); ++i) {
-        if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit((unsigned char)uri[i + 1]) &&
-            std::isxdigit((unsigned char)uri[i + 2])) {
-            out += char(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
-            i += 2;
-        } else {
-            out += uri[i];
-        }
-    }
-    return out;
-}
-
 // The bytes of the regular files in the model's folder that the file's "uri" members name (a
 // glTF's external buffers), by a scan of the text rather than a parse: the JSON is Assimp's to
 // parse, in its child. Capped at the mesh limit, which readInputFile enforces on them anyway.
@@ -429,7 +413,8 @@ uint64_t externalBytes(const std::string& data, const std::string& path) {
         if (i == std::string::npos || data[i] != '"') continue;
         const size_t end = data.find('"', i + 1);
         if (end == std::string::npos) break;
-        const std::string uri = percentDecoded(data.substr(i + 1, end - i - 1));
+        const std::string written = data.substr(i + 1, end - i - 1);
+        const std::string uri = percentDecoded(written).value_or(written);
         const fs::path relative = fs::path(uri).lexically_normal();
         if (uri.starts_with("data:") || relative.is_absolute() || relative.empty() || *relative.begin() == "..")
             continue;

@@ -1,6 +1,5 @@
 #include "scene/GltfDocument.h"
 
-#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -10,6 +9,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
+#include "base/ExternalReference.h"
 #include "base/InputFile.h"
 #include "scene/AssimpReader.h"
 
@@ -79,22 +79,6 @@ std::string decodeBase64(const std::string& text, const JsonValue& where) {
     return out;
 }
 
-// RFC 3986 percent-decoding, as glTF URIs are written ("my%20scene.bin").
-std::string percentDecoded(const std::string& uri, const JsonValue& where) {
-    std::string out;
-    for (size_t i = 0; i < uri.size(); ++i) {
-        if (uri[i] != '%') {
-            out.push_back(uri[i]);
-            continue;
-        }
-        if (i + 2 >= uri.size() || !std::isxdigit(uint8_t(uri[i + 1])) || !std::isxdigit(uint8_t(uri[i + 2])))
-            where.error("a '%' not followed by two hex digits");
-        out.push_back(char(std::stoi(uri.substr(i + 1, 2), nullptr, 16)));
-        i += 2;
-    }
-    return out;
-}
-
 // A buffer's bytes: a data: URI, a file in the glTF's folder, or the GLB's BIN chunk.
 std::string readBuffer(const JsonValue& v, const fs::path& dir, std::string& glbBin, uint64_t& bytesRead) {
     JsonObject o(v);
@@ -111,12 +95,18 @@ std::string readBuffer(const JsonValue& v, const fs::path& dir, std::string& glb
             uri.error("a data: URI must be base64 (data:...;base64,...)");
         bytes = decodeBase64(text.substr(comma + 1), uri);
     } else {
-        // The buffers a scene names stay in its folder: a shared scene must not read other files.
-        const fs::path relative = fs::path(percentDecoded(text, uri)).lexically_normal();
-        if (text.find(':') != std::string::npos || relative.is_absolute() || relative.empty() ||
-            *relative.begin() == "..")
+        // Another scheme than data: is no file; a file stays in the scene's folder, links resolved.
+        if (text.find(':') != std::string::npos)
             uri.error("'" + shorten(text) + "' is not a file in the glTF's folder (only relative paths inside it)");
-        bytes = readInputFile((dir / relative).string(), kMaxMeshFileBytes - bytesRead, "a glTF's buffers");
+        const std::optional<std::string> decoded = percentDecoded(text);
+        if (!decoded) uri.error("a '%' not followed by two hex digits");
+        fs::path file;
+        try {
+            file = resolveReference(dir, *decoded);
+        } catch (const InputError& e) {
+            uri.error(e.what());
+        }
+        bytes = readInputFile(file.string(), kMaxMeshFileBytes - bytesRead, "a glTF's buffers");
     }
     if (bytes.size() < length)
         v.error("byteLength is " + std::to_string(length) + ", but the buffer holds " + std::to_string(bytes.size()) +
