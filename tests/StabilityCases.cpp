@@ -11,10 +11,10 @@
 
 namespace tetglow::test {
 
-TetVolume tetsOf(const TriangleMesh& mesh) {
+TetTraversal tetsOf(const TriangleMesh& mesh) {
     TetOptions o;
     o.useCache = false;
-    return TetVolume(tetrahedralize(mesh, o));
+    return TetTraversal(tetrahedralize(mesh, o));
 }
 
 void expectTetsRefuse(const TriangleMesh& mesh, const std::string& problem) {

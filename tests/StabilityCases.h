@@ -6,12 +6,12 @@
 #include <vector>
 
 #include "tet/TetMesh.h"
-#include "tet/TetVolume.h"
+#include "tet/TetTraversal.h"
 
 namespace tetglow::test {
 
 // The tets of `mesh`, tetrahedralized afresh (no cache).
-TetVolume tetsOf(const TriangleMesh& mesh);
+TetTraversal tetsOf(const TriangleMesh& mesh);
 // Expects tetrahedralizing `mesh` strictly (no repair) to fail with an InputError whose message
 // contains `problem`.
 void expectTetsRefuse(const TriangleMesh& mesh, const std::string& problem);

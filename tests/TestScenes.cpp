@@ -1,6 +1,6 @@
 #include "TestScenes.h"
 
-#include "integrators/Renderer.h"
+#include "render/Renderer.h"
 #include "tet/Shapes.h"
 
 namespace tetglow::test {

@@ -1,6 +1,6 @@
 // A point's distance to the medium's boundary bounded from below by a coarse grid (ClearanceGrid),
 // against the closed form inside a convex mesh; and the shadow roulette's tests that this bound
-// makes certain, decided before any walk (RegionMedia::sureDepth), keep the transmittance.
+// makes certain, decided before any walk (Volume::sureDepth), keep the transmittance.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -12,7 +12,7 @@
 #include "TestMeshes.h"
 #include "TestScenes.h"
 #include "integrators/PathStep.h"
-#include "render/Scene.h"
+#include "scene/Scene.h"
 #include "tet/ClearanceGrid.h"
 #include "tet/Shapes.h"
 #include "tet/Tetrahedralizer.h"
@@ -66,9 +66,9 @@ TEST(ClearanceGrid, BoundsTheDistanceToTheBoundaryFromBelowWithinACell) {
 TEST(ClearanceGrid, ShadowRouletteDecidedInTheClearBallKeepsTheTransmittance) {
     const Scene scene(test::sceneWith(test::sphereMedium(RGB(10, 10.5, 11), RGB(0)), 8));
     const Ray ray{{0.02, -0.01, 0.03}, glm::normalize(glm::dvec3(0.3, 0.5, 0.8))};
-    const VolumeState centre = scene.mediumAt(ray.o);
+    const VolumeState centre = scene.volumeAt(ray.o);
     ASSERT_TRUE(centre.inside());
-    const RegionMedia& medium = *scene.volumes()[0].media;
+    const Volume& medium = *scene.volumes()[0].volume;
     // The sure depth: the smallest extinction over the bound on the distance to the boundary.
     const double sure = medium.sureDepth(centre.start, ray.o, INFINITY);
     EXPECT_GT(sure, 10 * (0.95 - 0.11));

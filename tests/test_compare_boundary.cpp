@@ -22,8 +22,8 @@ const std::string kFish = std::string(TETGLOW_SOURCE_DIR) + "/scenes/meshes/fish
 
 // The classification of every region, every method's errors printed. The tets' are asserted
 // zero down to 1e-8 diagonals: below 1e-9 their location falls back on a line shifted by 1e-9
-// diagonals (TetVolume::traverse) and is no longer exact (measured in docs/RESULTS.md).
-std::vector<ClassificationRow> expectTetsExact(const TetVolume& tets, const InsideTruth& truth,
+// diagonals (TetTraversal::traverse) and is no longer exact (measured in docs/RESULTS.md).
+std::vector<ClassificationRow> expectTetsExact(const TetTraversal& tets, const InsideTruth& truth,
                                                const std::string& shape) {
     const TriangleMesh surface = tets.mesh().surfaceMesh();
     const auto rows =
@@ -43,7 +43,7 @@ std::vector<ClassificationRow> expectTetsExact(const TetVolume& tets, const Insi
 }
 
 TEST(CompareBoundary, TetsExactOnAConvexPolyhedron) {
-    const TetVolume tets = tetsOf(tiltedPolyhedron());
+    const TetTraversal tets = tetsOf(tiltedPolyhedron());
     const TriangleMesh snapped = tets.mesh().surfaceMesh();  // the very vertices the tets have
     const auto rows = expectTetsExact(
         tets, [&](const glm::dvec3& p) { return std::optional(insideConvex(snapped, p)); }, "convex polyhedron");
@@ -57,7 +57,7 @@ TEST(CompareBoundary, TetsExactOnAConvexPolyhedron) {
 }
 
 TEST(CompareBoundary, TetsExactOnATessellatedSphereAwayFromTheFacetGap) {
-    const TetVolume tets = tetsOf(icosphere(3, 1.0));
+    const TetTraversal tets = tetsOf(icosphere(3, 1.0));
     const TriangleMesh surface = tets.mesh().surfaceMesh();
     // Inside the inscribed sphere is inside, beyond the circumscribed one outside; between them
     // the facets differ from the sphere and the point is not scored.
@@ -126,7 +126,7 @@ TEST(CompareBoundary, RepairedTetsAgreeWithTheWindingNumberWhereParityFails) {
     std::erase_if(holed.triangles, [&](const auto& t) {
         return closed.positions[t[0]].z + closed.positions[t[1]].z + closed.positions[t[2]].z > 2.7;
     });
-    const TetVolume tets = tetsOf(holed);
+    const TetTraversal tets = tetsOf(holed);
     EXPECT_LE(tets.mesh().volume(), signedVolume(closed) * (1 + 1e-12));
     EXPECT_GT(tets.mesh().volume(), 0.97 * signedVolume(closed));
     ComparisonOptions options;
@@ -156,7 +156,7 @@ TEST(CompareBoundary, RepairedTetsAgreeWithTheWindingNumberWhereParityFails) {
 }
 
 TEST(CompareBoundary, PictureShowsTheMediumAndAgreement) {
-    const TetVolume tets = tetsOf(icosphere(3, 1.0));
+    const TetTraversal tets = tetsOf(icosphere(3, 1.0));
     CameraDesc desc;
     desc.position = {0, 0, 4};
     desc.width = desc.height = 48;

@@ -7,10 +7,10 @@
 #include <gtest/gtest.h>
 
 #include "TestScenes.h"
-#include "integrators/Renderer.h"
 #include "integrators/VolPathIntegrator.h"
-#include "integrators/photon/PhotonIntegrator.h"
-#include "integrators/photon/PhotonTracer.h"
+#include "photon/PhotonIntegrator.h"
+#include "photon/PhotonTracer.h"
+#include "render/Renderer.h"
 #include "tet/Shapes.h"
 
 namespace tetglow::test {

@@ -12,7 +12,8 @@
 #include "TestMeshes.h"
 #include "TestScenes.h"
 #include "integrators/Integrator.h"
-#include "integrators/Renderer.h"
+#include "render/IntegratorFactory.h"
+#include "render/Renderer.h"
 #include "tet/Shapes.h"
 #include "tet/Tetrahedralizer.h"
 
@@ -99,7 +100,7 @@ TEST(SurfaceInsideAMedium, FloorUnderWaterMatchesTheClosedForm) {
     light.intensity = RGB(2);
     desc.lights.push_back(light);
     const Scene scene(desc);
-    ASSERT_TRUE(scene.mediumAt(desc.camera.position).inside());
+    ASSERT_TRUE(scene.volumeAt(desc.camera.position).inside());
     const auto integrator = makeIntegrator(scene, IntegratorDesc{});
     RenderOptions options;
     options.spp = 16;

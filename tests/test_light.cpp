@@ -5,9 +5,9 @@
 
 #include <gtest/gtest.h>
 
-#include "render/Light.h"
 #include "sampling/Rng.h"
 #include "sampling/Sampling.h"
+#include "scene/Light.h"
 
 namespace tetglow::test {
 namespace {

@@ -6,11 +6,12 @@
 #include <gtest/gtest.h>
 
 #include "integrators/Integrator.h"
-#include "render/LightSelection.h"
-#include "render/Scene.h"
-#include "render/SphericalRectangle.h"
+#include "render/IntegratorFactory.h"
 #include "sampling/Rng.h"
 #include "sampling/Sampling.h"
+#include "scene/LightSelection.h"
+#include "scene/Scene.h"
+#include "scene/SphericalRectangle.h"
 #include "tet/Shapes.h"
 
 namespace tetglow::test {

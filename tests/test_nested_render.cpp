@@ -13,13 +13,14 @@
 #include "integrators/DirectLighting.h"
 #include "integrators/Integrator.h"
 #include "integrators/PathStep.h"
-#include "integrators/Renderer.h"
 #include "integrators/SingleScatterIntegrator.h"
 #include "integrators/VolPathIntegrator.h"
-#include "integrators/photon/PhotonDomains.h"
-#include "integrators/photon/PhotonIntegrator.h"
-#include "integrators/photon/PhotonTracer.h"
-#include "render/Scene.h"
+#include "photon/PhotonDomains.h"
+#include "photon/PhotonIntegrator.h"
+#include "photon/PhotonTracer.h"
+#include "render/IntegratorFactory.h"
+#include "render/Renderer.h"
+#include "scene/Scene.h"
 #include "tet/Shapes.h"
 
 namespace tetglow::test {
@@ -77,7 +78,7 @@ TEST(NestedRender, TransmittanceThroughNestedSpheresAndACavityIsTheClosedForm) {
     ASSERT_EQ(scene.volumes().size(), 1u);
     ASSERT_EQ(scene.volumes()[0].regionMedium.size(), 4u);
     const std::vector<int> parent{-1, 0, 1, 2};
-    for (int r = 0; r < 4; ++r) EXPECT_EQ(scene.volumes()[0].media->mesh().regionParent[r], parent[r]);
+    for (int r = 0; r < 4; ++r) EXPECT_EQ(scene.volumes()[0].volume->mesh().regionParent[r], parent[r]);
     std::mt19937_64 rng(14);
     constexpr int kLines = 100000;
     double worst = 0;
@@ -86,7 +87,7 @@ TEST(NestedRender, TransmittanceThroughNestedSpheresAndACavityIsTheClosedForm) {
         const glm::dvec3 a = onSphere(rng, 1.3), b = onSphere(rng, 1.3);
         const Ray ray{a, glm::normalize(b - a)};
         const double exact = exactDepth(desc, parent, ray);
-        const RGB tr = transmittance(scene, ray, INFINITY, scene.mediumAt(ray.o));
+        const RGB tr = transmittance(scene, ray, INFINITY, scene.volumeAt(ray.o));
         through += exact > 0;
         worst = std::max(worst, std::abs(tr.x / std::exp(-exact) - 1));
     }
@@ -124,7 +125,7 @@ TEST(NestedRender, EachRegionHasItsOwnDensity) {
     desc.media[1].density.type = DensityDesc::Type::Linear;
     desc.media[1].density.gradient = {0, 0, 2};
     const Scene scene(desc);
-    ASSERT_FALSE(scene.volumes()[0].media->homogeneous());
+    ASSERT_FALSE(scene.volumes()[0].volume->homogeneous());
     std::mt19937_64 gen(12);
     std::uniform_real_distribution<double> u(-0.4, 0.4), angle(0, 2 * kPi);
     double worst = 0;
@@ -190,7 +191,7 @@ TEST(NestedRender, ACoreInADielectricSkinIsTheMultilayer) {
     desc.lights.push_back(environment(1));
     const Scene scene(desc);
     const SceneVolume& v = scene.volumes()[0];
-    const TetMesh& mesh = v.media->mesh();
+    const TetMesh& mesh = v.volume->mesh();
     for (size_t s = 0; s < mesh.surface.size(); ++s) {
         const MaterialDesc& m = v.materials[v.triangleMaterial[s]];
         const auto [behind, front] = mesh.surfaceRegions[s];
@@ -389,11 +390,11 @@ TEST(NestedRender, OnlyVolumesNoShadowRayLeavesAreSealed) {
         int lit = 0;
         for (int i = 0; i < 200; ++i) {
             const glm::dvec3 p(u(random), u(random), u(random));
-            const VolumeState at = scene.mediumAt(p);
+            const VolumeState at = scene.volumeAt(p);
             ASSERT_TRUE(at.inside());
             Rng rng(9, uint64_t(i));
             // A light sample as directInMedium takes it, without its skip for sealed volumes.
-            const HenyeyGreenstein& phase = scene.volumes()[at.volume].media->at(at.start.index).phase;
+            const HenyeyGreenstein& phase = scene.volumes()[at.volume].volume->at(at.start.index).phase;
             lit += !isBlack(sampleDirect(scene, p, rng, false, phaseScattering(phase, {0, 0, 1}),
                                          [&](const Ray& r, double t) { return transmittance(scene, r, t, at); }));
         }

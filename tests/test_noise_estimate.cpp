@@ -10,8 +10,9 @@
 
 #include "TestScenes.h"
 #include "integrators/Integrator.h"
-#include "integrators/Renderer.h"
+#include "render/IntegratorFactory.h"
 #include "render/NoiseEstimate.h"
+#include "render/Renderer.h"
 
 namespace tetglow::test {
 namespace {

@@ -11,8 +11,9 @@
 #include "TestMeshes.h"
 #include "TestScenes.h"
 #include "integrators/Integrator.h"
-#include "integrators/Renderer.h"
+#include "render/IntegratorFactory.h"
 #include "render/PartialRender.h"
+#include "render/Renderer.h"
 
 namespace tetglow::test {
 namespace {

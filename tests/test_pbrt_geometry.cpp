@@ -10,8 +10,8 @@
 #include <glm/matrix.hpp>
 
 #include "TestMeshes.h"
-#include "render/Camera.h"
-#include "render/Light.h"
+#include "scene/Camera.h"
+#include "scene/Light.h"
 #include "scene/PbrtParser.h"
 
 namespace tetglow {

@@ -7,9 +7,10 @@
 
 #include "TestScenes.h"
 #include "integrators/Integrator.h"
-#include "integrators/Renderer.h"
-#include "integrators/photon/PhotonIntegrator.h"
-#include "integrators/photon/PhotonTracer.h"
+#include "photon/PhotonIntegrator.h"
+#include "photon/PhotonTracer.h"
+#include "render/IntegratorFactory.h"
+#include "render/Renderer.h"
 #include "tet/Shapes.h"
 
 namespace tetglow::test {

@@ -10,9 +10,9 @@
 #include <tbb/parallel_for.h>
 #include <glm/geometric.hpp>
 
-#include "integrators/photon/OctahedralDirection.h"
-#include "integrators/photon/PhotonBeams.h"
-#include "integrators/photon/PhotonMap.h"
+#include "photon/OctahedralDirection.h"
+#include "photon/PhotonDiscs.h"
+#include "photon/PhotonMap.h"
 
 namespace tetglow {
 namespace {
@@ -182,7 +182,7 @@ TEST(PhotonMap, EmptyMap) {
     map.assignRadii(5, 1);
     EXPECT_EQ(map.size(), 0u);
 
-    const PhotonBeams beams(map.photons());
+    const PhotonDiscs beams(map.photons());
     int visits = 0;
     beams.query(glm::dvec3(0), glm::dvec3(1, 0, 0), 0, INFINITY, [&](uint32_t, double, double) { ++visits; });
     EXPECT_EQ(visits, 0);
@@ -222,7 +222,7 @@ TEST(PhotonMap, BeamQueryMatchesBruteForce) {
     map.assignRadii(20, 0.05f);
     photons = map.photons();
     for (size_t i = 0; i < photons.size(); i += 97) photons[i].radius = 0;  // no disc
-    const PhotonBeams beams(photons);
+    const PhotonDiscs beams(photons);
     EXPECT_EQ(beams.size(), photons.size() - (photons.size() + 96) / 97);
 
     std::mt19937_64 rng(11);

@@ -13,12 +13,12 @@
 #include "TestMeshes.h"
 #include "TestScenes.h"
 #include "integrators/PathStep.h"
-#include "media/RegionMedia.h"
-#include "render/Scene.h"
+#include "media/Volume.h"
 #include "scene/MeshFile.h"
+#include "scene/Scene.h"
 #include "tet/Predicates.h"
 #include "tet/RegionExit.h"
-#include "tet/TetVolume.h"
+#include "tet/TetTraversal.h"
 
 namespace tetglow {
 namespace {
@@ -35,10 +35,10 @@ struct InteriorRay {
     Ray ray;
     uint32_t tet;
 };
-std::optional<InteriorRay> interiorRay(const RegionMedia& medium, std::mt19937_64& rng) {
+std::optional<InteriorRay> interiorRay(const Volume& medium, std::mt19937_64& rng) {
     std::uniform_real_distribution<double> u(-1, 1);
     const glm::dvec3 p(0.9 * u(rng), 0.9 * u(rng), 0.9 * u(rng));
-    const int64_t tet = medium.volume().locate(p);
+    const int64_t tet = medium.traversal().locate(p);
     if (tet < 0) return std::nullopt;
     return InteriorRay{{p, direction(rng)}, uint32_t(tet)};
 }
@@ -68,7 +68,7 @@ bool degenerateAlongRay(const TetMesh& mesh, uint32_t tet, const Ray& ray) {
 
 // Walks `steps` segments of the ray from `tet` (holding its origin), asks regionExit from there
 // and compares it with the rest of the walk, to the region's first exit.
-void compareExit(const TetVolume& volume, const Ray& ray, uint32_t tet, int steps, ExitCounts& counts) {
+void compareExit(const TetTraversal& volume, const Ray& ray, uint32_t tet, int steps, ExitCounts& counts) {
     const TetMesh& mesh = volume.mesh();
     TetWalk walk = TetWalk::start(mesh, ray, tet, 0);
     WalkSegment s{};
@@ -103,7 +103,7 @@ void compareExit(const TetVolume& volume, const Ray& ray, uint32_t tet, int step
     ++counts.compared;
 }
 
-ExitCounts compareExits(const TetVolume& volume, uint64_t seed) {
+ExitCounts compareExits(const TetTraversal& volume, uint64_t seed) {
     const TetMesh& mesh = volume.mesh();
     const Bounds3& box = volume.bounds();
     const double diagonal = box.diagonal();
@@ -163,7 +163,7 @@ void expectMostCompared(const ExitCounts& counts, const std::string& name) {
 }
 
 TEST(RegionExit, IsTheWalksExitInTheUnitIcosphere) {
-    const TetVolume volume(tetrahedralize(icosphere(3), test::noCache()));
+    const TetTraversal volume(tetrahedralize(icosphere(3), test::noCache()));
     expectMostCompared(compareExits(volume, 1), "icosphere");
 }
 
@@ -173,7 +173,7 @@ TEST(RegionExit, IsTheWalksExitInReferenceMeshes) {
             printf("%s.obj not tested: ../shared/meshes not found\n", m.name.c_str());
             continue;
         }
-        const TetVolume volume(tetrahedralize(readMesh(m.path), test::noCache()));
+        const TetTraversal volume(tetrahedralize(readMesh(m.path), test::noCache()));
         expectMostCompared(compareExits(volume, 2), m.name);
     }
 }
@@ -183,18 +183,18 @@ TEST(RegionExit, IsTheWalksExitAtInterfacesOfNestedSpheres) {
     // shell it is the interface or the outer surface.
     TetOptions o;
     o.useCache = false;
-    const TetVolume volume(
+    const TetTraversal volume(
         tetrahedralize({icosphere(3, 1.0), icosphere(2, 0.5, {0.1, 0.05, 0})}, {"shell", "core"}, o));
     ASSERT_EQ(volume.mesh().regionCount(), 2u);
     expectMostCompared(compareExits(volume, 3), "nested spheres");
 }
 
 // A homogeneous absorbing sphere.
-std::unique_ptr<RegionMedia> absorbingSphere(double sigma) {
+std::unique_ptr<Volume> absorbingSphere(double sigma) {
     MediumParams p;
     p.sigmaA = RGB(sigma);
     p.sigmaS = RGB(0);
-    return std::make_unique<RegionMedia>(p, tetrahedralize(icosphere(3), test::noCache()));
+    return std::make_unique<Volume>(p, tetrahedralize(icosphere(3), test::noCache()));
 }
 
 TEST(RegionMediaExit, TransmittanceAlongAChordIsTheClosedForm) {
@@ -225,7 +225,7 @@ TEST(RegionMediaExit, TransmittanceAlongAChordIsTheClosedForm) {
 
 // shadowFlight and transmittance with the exit query and with the walk of every tet agree:
 // the same exit (triangle, tet, t), the same transmittance.
-void expectSameAsTheWalk(RegionMedia& medium, uint64_t seed) {
+void expectSameAsTheWalk(Volume& medium, uint64_t seed) {
     std::mt19937_64 rng(seed);
     size_t left = 0;
     for (int i = 0; i < 2000; ++i) {
@@ -259,15 +259,15 @@ TEST(RegionMediaExit, ShadowRaysLeaveWhereTheWalkLeaves) {
 }
 
 // A unit sphere (the shell) holding an off-centre sphere of radius 0.5 (the core), index-matched.
-RegionMedia nestedSpheres(const MediumParams& shell, const MediumParams& core) {
+Volume nestedSpheres(const MediumParams& shell, const MediumParams& core) {
     TetOptions o;
     o.useCache = false;
     TetMesh mesh = tetrahedralize({icosphere(3, 1.0), icosphere(2, 0.5, {0.1, 0.05, 0})}, {"shell", "core"}, o);
-    return RegionMedia(std::move(mesh), {RegionMedium{shell, {}}, RegionMedium{core, {}}});
+    return Volume(std::move(mesh), {MediumField{shell, {}}, MediumField{core, {}}});
 }
 
 // The same, both scattering and thin enough that flights jump.
-RegionMedia scatteringNestedSpheres() {
+Volume scatteringNestedSpheres() {
     MediumParams shell, core;
     shell.sigmaA = RGB(0.1, 0.15, 0.2);
     shell.sigmaS = RGB(0.3);
@@ -277,7 +277,7 @@ RegionMedia scatteringNestedSpheres() {
 }
 
 // Flights stop at the interface between the two (a dielectric there).
-void stopAtInterfaces(RegionMedia& medium) {
+void stopAtInterfaces(Volume& medium) {
     std::vector<bool> stops(medium.mesh().surface.size());
     for (size_t s = 0; s < stops.size(); ++s) stops[s] = medium.mesh().surfaceFaceFront[s] != UINT32_MAX;
     medium.setStops(stops);
@@ -288,7 +288,7 @@ TEST(RegionMediaExit, NestedRegionsCrossOrStopAtInterfacesLikeTheWalk) {
     shell.sigmaA = RGB(0.4, 0.5, 0.6);
     core.sigmaA = RGB(0.9, 0.2, 0.1);
     shell.sigmaS = core.sigmaS = RGB(0);
-    RegionMedia medium = nestedSpheres(shell, core);
+    Volume medium = nestedSpheres(shell, core);
     expectSameAsTheWalk(medium, 6);  // crossing the interface: the walk goes on there
     stopAtInterfaces(medium);
     expectSameAsTheWalk(medium, 7);  // stopping there: the exit is the interface
@@ -298,14 +298,14 @@ TEST(RegionMediaExit, NestedRegionsCrossOrStopAtInterfacesLikeTheWalk) {
 // against the walk of every tet, from the tet of the origin and from another tet of its region
 // (WalkStart::inRegion): the same interaction or exit, the same transmittance, to the last bits.
 // Shadow rays and transmittance from a point in a region agree with those from its tet.
-void expectJumpsAsTheWalk(RegionMedia& medium, uint64_t seed) {
+void expectJumpsAsTheWalk(Volume& medium, uint64_t seed) {
     const TetMesh& mesh = medium.mesh();
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> u(-1, 1), u01(0, 1);
     size_t jumped = 0, left = 0, flights = 0, entering = 0, enteredAndJumped = 0;
     for (int i = 0; i < 2000; ++i) {
         const glm::dvec3 p(0.9 * u(rng), 0.9 * u(rng), 0.9 * u(rng));
-        const int64_t tet = medium.volume().locate(p);
+        const int64_t tet = medium.traversal().locate(p);
         if (tet < 0) continue;
         uint32_t hint = uint32_t(rng() % mesh.tets.size());
         while (mesh.region(hint) != mesh.region(uint32_t(tet))) hint = uint32_t(rng() % mesh.tets.size());
@@ -336,7 +336,7 @@ void expectJumpsAsTheWalk(RegionMedia& medium, uint64_t seed) {
         }
         // The same flight from outside, entering through the surface on the way to p.
         const Ray from{p - 3.0 * ray.d, ray.d};
-        if (const auto entry = medium.volume().firstEntry(from, 0, INFINITY)) {
+        if (const auto entry = medium.traversal().firstEntry(from, 0, INFINITY)) {
             const WalkStart surface = WalkStart::surface(entry->entryTriangle());
             const FreeFlight w = medium.sampleFlight(from, surface, INFINITY, hero, v);
             const FreeFlight f = medium.sampleFlight(from, surface, INFINITY, hero, v, RGB(1), true);
@@ -375,22 +375,22 @@ TEST(RegionMediaExit, FlightsThatJumpLandWhereTheWalkLands) {
     MediumParams p;
     p.sigmaA = RGB(0.1, 0.15, 0.2);
     p.sigmaS = RGB(0.35, 0.3, 0.25);
-    auto medium = std::make_unique<RegionMedia>(p, tetrahedralize(icosphere(3), test::noCache()));
+    auto medium = std::make_unique<Volume>(p, tetrahedralize(icosphere(3), test::noCache()));
     expectJumpsAsTheWalk(*medium, 8);
 }
 
 TEST(RegionMediaExit, FlightsThatJumpCrossOrStopAtInterfacesLikeTheWalk) {
-    RegionMedia medium = scatteringNestedSpheres();
+    Volume medium = scatteringNestedSpheres();
     expectJumpsAsTheWalk(medium, 9);
     stopAtInterfaces(medium);
     expectJumpsAsTheWalk(medium, 10);
 }
 
-// A stretch (RegionMedia::regionStretch: one exit query) ends where the walk of every tet leaves
+// A stretch (Volume::regionStretch: one exit query) ends where the walk of every tet leaves
 // its region: whole, with the walk's exit triangle, tet and t, where the walk leaves the medium or
 // stops at an interface; not whole where the ray goes on across an interface into another region
 // or where the exit lies beyond the depth the stretch looks ahead.
-void expectStretchesEndAsTheWalk(RegionMedia& medium, uint64_t seed, bool crosses) {
+void expectStretchesEndAsTheWalk(Volume& medium, uint64_t seed, bool crosses) {
     std::mt19937_64 rng(seed);
     size_t whole = 0, across = 0, short_ = 0, unsure = 0;
     for (int i = 0; i < 1000; ++i) {
@@ -446,9 +446,9 @@ TEST(RegionMediaExit, AStretchEndsWhereTheWalkLeavesItsRegion) {
     MediumParams p;
     p.sigmaA = RGB(0.2, 0.3, 0.4);
     p.sigmaS = RGB(0.3);
-    auto sphere = std::make_unique<RegionMedia>(p, tetrahedralize(icosphere(3), test::noCache()));
+    auto sphere = std::make_unique<Volume>(p, tetrahedralize(icosphere(3), test::noCache()));
     expectStretchesEndAsTheWalk(*sphere, 11, false);
-    RegionMedia nested = scatteringNestedSpheres();
+    Volume nested = scatteringNestedSpheres();
     expectStretchesEndAsTheWalk(nested, 12, true);  // across the interface: not whole there
     stopAtInterfaces(nested);
     expectStretchesEndAsTheWalk(nested, 13, false);  // stopping there: whole, the interface its exit
@@ -460,9 +460,9 @@ TEST(RegionMediaExit, VaryingDensityKeepsTheWalk) {
     TetMesh mesh = tetrahedralize(icosphere(2), test::noCache());
     std::vector<double> density(mesh.vertices.size());
     for (size_t v = 0; v < density.size(); ++v) density[v] = 1 + mesh.vertices[v].x;
-    const RegionMedia medium(p, std::move(mesh), density);
+    const Volume medium(p, std::move(mesh), density);
     const uint64_t queries = surfaceQueries();
-    const int64_t tet = medium.volume().locate(glm::dvec3(0.1, 0.2, 0.3));
+    const int64_t tet = medium.traversal().locate(glm::dvec3(0.1, 0.2, 0.3));
     ASSERT_GE(tet, 0);
     medium.transmittance({{0.1, 0.2, 0.3}, {1, 0, 0}}, WalkStart::inside(uint32_t(tet)), INFINITY);
     EXPECT_EQ(surfaceQueries(), queries);
@@ -477,10 +477,10 @@ TEST(RegionMediaExit, APathLeavingAConvexMediumAsksNoQueryToMeetItAgain) {
     for (int i = 0; i < 200; ++i) {
         const glm::dvec3 p(0.3, -0.2, 0.1);
         Ray ray{p, direction(rng)};
-        VolumeState state = scene.mediumAt(p);
+        VolumeState state = scene.volumeAt(p);
         ASSERT_TRUE(state.inside());
         std::optional<Intersection> hit = scene.intersect(ray, state);
-        const FreeFlight flight = scene.volumes()[0].media->sampleFlight(ray, state.start, INFINITY, 0, 1.0);
+        const FreeFlight flight = scene.volumes()[0].volume->sampleFlight(ray, state.start, INFINITY, 0, 1.0);
         ASSERT_EQ(endStretch(scene, hit, flight.exit, ray, state), StretchEnd::Crossed);
         ASSERT_FALSE(state.inside());
         ++left;

@@ -7,7 +7,7 @@
 
 #include "TestMeshes.h"
 #include "tet/Nesting.h"
-#include "tet/TetVolume.h"
+#include "tet/TetTraversal.h"
 #include "tet/Tetrahedralizer.h"
 
 namespace tetglow {
@@ -24,7 +24,7 @@ struct NestedSpheres {
                                      validated(icosphere(2, 0.3, {0.2, 0.05, 0})),
                                      validated(icosphere(2, 0.12, {0.22, 0.05, 0.03}))};
     std::vector<double> sigma{0.7, 2.0, 5.0, 0.0};
-    TetVolume volume{[&] {
+    TetTraversal volume{[&] {
         TetOptions o;
         o.useCache = false;
         return tetrahedralize(meshes, {"body", "organ", "core", "cavity"}, o);
@@ -78,7 +78,7 @@ TEST(RegionWalk, TransmittanceThroughNestedSpheresIsTheClosedForm) {
         const glm::dvec3 a = onSphere(rng, 1.3), b = onSphere(rng, 1.3);
         const Ray ray{a, b - a};
         const double exact = scene.exactDepth(ray);
-        const double walked = scene.walkDepth(ray, 1.0, TetVolume::kOutside, interfaces);
+        const double walked = scene.walkDepth(ray, 1.0, TetTraversal::kOutside, interfaces);
         through += exact > 0;
         // Relative error of exp(-tau): exp(exact - walked) - 1.
         worst = std::max(worst, std::abs(std::expm1(exact - walked)));
@@ -109,7 +109,7 @@ TEST(RegionWalk, RaysThroughVerticesAndEdgesOfTheInterfaces) {
             const Ray ray{from, 2.0 * (target - from)};
             // The whole line beyond `from` (the closed form counts every t >= 0).
             const double err =
-                std::abs(scene.walkDepth(ray, INFINITY, TetVolume::kOutside, interfaces) - scene.exactDepth(ray));
+                std::abs(scene.walkDepth(ray, INFINITY, TetTraversal::kOutside, interfaces) - scene.exactDepth(ray));
             worst = std::max(worst, err);
             ++rays;
         }
@@ -180,7 +180,7 @@ TEST(RegionWalk, AWalkThatStaysInsideAsksEmbreeNothing) {
 TEST(RegionWalk, TouchingBoxesThroughAnEdgeOfTheirInterface) {
     TetOptions o;
     o.useCache = false;
-    const TetVolume volume(tetrahedralize({box(), box({1, 0, 0}, {2, 1, 1})}, {"left", "right"}, o));
+    const TetTraversal volume(tetrahedralize({box(), box({1, 0, 0}, {2, 1, 1})}, {"left", "right"}, o));
     const double sigma[2] = {1.0, 3.0};
     // Through (1, 0.5, 0.5) and (1, 0.25, 0.25), on the diagonal that splits the shared face
     // (an edge of the interface), and off it by a tilt of 1e-9.
@@ -198,7 +198,7 @@ TEST(RegionWalk, TouchingBoxesThroughAnEdgeOfTheirInterface) {
 TEST(RegionWalk, GrazingTheInterfaceBetweenTouchingBoxes) {
     TetOptions o;
     o.useCache = false;
-    const TetVolume volume(tetrahedralize({box(), box({1, 0, 0}, {2, 1, 1})}, {"left", "right"}, o));
+    const TetTraversal volume(tetrahedralize({box(), box({1, 0, 0}, {2, 1, 1})}, {"left", "right"}, o));
     const double sigma[2] = {1.0, 3.0};
     // Through (1, 0.3, 0.5) on the shared face, at angle theta to it: from the floor of the left
     // box (y = 0) to the ceiling of the right one (y = 1), 0.3 / cos(theta) in the left box and

@@ -11,8 +11,8 @@
 #include "TestMeshes.h"
 #include "tet/Nesting.h"
 #include "tet/Predicates.h"
-#include "tet/RegionComplex.h"
 #include "tet/Tetrahedralizer.h"
+#include "tet/VolumeBoundary.h"
 
 namespace tetglow {
 namespace {

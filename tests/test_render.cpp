@@ -10,9 +10,10 @@
 #include "TestScenes.h"
 #include "integrators/Integrator.h"
 #include "integrators/PathStep.h"
-#include "integrators/Renderer.h"
 #include "integrators/VolPathIntegrator.h"
-#include "media/ColumnProfile.h"
+#include "photon/ColumnProfile.h"
+#include "render/IntegratorFactory.h"
+#include "render/Renderer.h"
 #include "sampling/Sampling.h"
 #include "tet/Shapes.h"
 
@@ -35,7 +36,7 @@ TEST(Render, IndexMatchedSurfacesPassEveryRay) {
         const Ray ray{{0, 0, 4}, {0, 0, -1}};
         const bool passes = type == MaterialType::Interface;
         // Through the wall and the whole unit sphere: a chord of 2.
-        const RGB tr = transmittance(scene, ray, 10, scene.mediumAt(ray.o));
+        const RGB tr = transmittance(scene, ray, 10, scene.volumeAt(ray.o));
         for (int c = 0; c < 3; ++c) EXPECT_NEAR(tr[c], passes ? std::exp(-2 * sigmaA[c]) : 0, 1e-9) << int(type);
         const auto opaque = scene.intersectOpaque(ray);
         EXPECT_EQ(opaque.has_value(), !passes) << int(type);
@@ -56,7 +57,7 @@ TEST(Render, SurfacesInsideAMediumBlockShadowRaysFromInside) {
     desc.surfaces.push_back(wall);
     const Scene scene(desc);
     const Ray ray{{0, 0, -0.5}, {0, 0, 1}};
-    const VolumeState inside = scene.mediumAt(ray.o);
+    const VolumeState inside = scene.volumeAt(ray.o);
     ASSERT_TRUE(inside.inside());
     const auto hit = scene.intersect(ray, inside);
     ASSERT_TRUE(hit.has_value());
@@ -64,12 +65,12 @@ TEST(Render, SurfacesInsideAMediumBlockShadowRaysFromInside) {
     EXPECT_EQ(transmittance(scene, ray, 10, inside), RGB(0));
     // Beside the wall the ray leaves the sphere: the chord from (0.5, 0, -0.5) to the surface.
     const Ray beside{{0.5, 0, -0.5}, {0, 0, 1}};
-    const RGB tr = transmittance(scene, beside, 10, scene.mediumAt(beside.o));
+    const RGB tr = transmittance(scene, beside, 10, scene.volumeAt(beside.o));
     const double chord = 0.5 + std::sqrt(1 - 0.25);
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(tr[c], std::exp(-chord * sigmaA[c]), 1e-3) << c;  // the sphere's facets
 }
 
-// Shadow rays with Russian roulette (RegionMedia::shadowFlight) have the exact transmittance as
+// Shadow rays with Russian roulette (Volume::shadowFlight) have the exact transmittance as
 // their mean: 0 or exp(-depth) times 4 per survival. A channel that keeps the transmittance
 // above 1/20 leaves no room for roulette: then every estimate is exact.
 TEST(Render, ShadowRayRouletteKeepsTheTransmittance) {
@@ -77,7 +78,7 @@ TEST(Render, ShadowRayRouletteKeepsTheTransmittance) {
     for (const RGB sigmaA : {RGB(1.7, 1.8, 2.0), RGB(1.7, 1.8, 0.5)}) {
         const Scene scene(sceneWith(sphereMedium(sigmaA, RGB(0), 0, 4), 8));
         const Ray ray{{0, 0, -3}, {0, 0, 1}};
-        const VolumeState outside = scene.mediumAt(ray.o);
+        const VolumeState outside = scene.volumeAt(ray.o);
         const RGB exact = transmittance(scene, ray, 10, outside);
         const int n = 40000;
         const Estimate e = estimateMean(n, [&](int i) {
@@ -96,7 +97,7 @@ TEST(Render, ShadowRayRouletteKeepsTheTransmittance) {
 
 // The photon integrator draws its single-scattering distance from the eye stretch's column
 // profile (ColumnProfile::atDepth) instead of walking the tets again: the same point and tet as
-// a free flight (RegionMedia::sampleFlight) with that optical depth as its target, also where the
+// a free flight (Volume::sampleFlight) with that optical depth as its target, also where the
 // density varies linearly inside each tet.
 TEST(Render, ColumnProfileEventsAreFreeFlights) {
     MediumDesc m = sphereMedium(RGB(0.2, 0.5, 1.0), RGB(1, 2, 3));
@@ -106,9 +107,9 @@ TEST(Render, ColumnProfileEventsAreFreeFlights) {
     m.density.frequency = 3;
     m.tetOptions.maxVolume = 0.01;
     const Scene scene(sceneWith(m, 8));
-    const RegionMedia& medium = *scene.volumes()[0].media;
+    const Volume& medium = *scene.volumes()[0].volume;
     ASSERT_FALSE(medium.homogeneous());
-    const VolumeState centre = scene.mediumAt({0.05, -0.02, 0.03});
+    const VolumeState centre = scene.volumeAt({0.05, -0.02, 0.03});
     std::mt19937 random(11);
     std::uniform_real_distribution<double> u(0, 1);
     int events = 0;
@@ -137,7 +138,7 @@ TEST(Render, AbsorbingSphereMatchesChords) {
     SceneDesc desc = sceneWith(sphereMedium(sigmaA, RGB(0)), 48);
     desc.lights.push_back(environment(1));
     const Scene scene(desc);
-    const SurfaceBVH& bvh = scene.volumes()[0].media->volume().bvh();
+    const SurfaceBVH& bvh = scene.volumes()[0].volume->traversal().bvh();
     for (IntegratorType type : {IntegratorType::VolPath, IntegratorType::Single}) {
         IntegratorDesc integ;
         integ.type = type;
@@ -221,12 +222,12 @@ TEST(Render, AThinMediumIsLitOnEveryStretch) {
     // boundary: an error of about the step's share).
     const int steps = 4000;
     const double t0 = 2.9, t1 = 5.1, h = (t1 - t0) / steps;
-    const VolumeState camera = scene.mediumAt(ray.o);
+    const VolumeState camera = scene.volumeAt(ray.o);
     double integral = 0;
     for (int k = 0; k < steps; ++k) {
         const double t = t0 + (k + 0.5) * h;
         const glm::dvec3 x = ray.at(t);
-        const VolumeState here = scene.mediumAt(x);
+        const VolumeState here = scene.volumeAt(x);
         if (!here.inside()) continue;
         const glm::dvec3 toLamp = lamp - x;
         const double r = glm::length(toLamp);
@@ -246,7 +247,7 @@ TEST(Render, ACameraPathSplitsAtItsFirstInteractionKeepingItsMean) {
     const Scene scene(desc);
     const VolPathIntegrator integrator(scene, 64);
     const Ray ray{scene.camera().position(), glm::normalize(-scene.camera().position())};
-    const VolumeState camera = scene.mediumAt(ray.o);
+    const VolumeState camera = scene.volumeAt(ray.o);
     const int n = 20000;
     const Estimate split = estimateMean(n, [&](int i) {
         Rng rng = Rng::pixelSample(5, 0, uint32_t(i));
@@ -271,7 +272,7 @@ void expectFurnace(const MediumDesc& medium) {
     SceneDesc desc = sceneWith(medium, 12);
     desc.lights.push_back(environment(1));
     const Scene scene(desc);
-    ASSERT_EQ(scene.volumes()[0].media->homogeneous(), medium.density.isConstant());
+    ASSERT_EQ(scene.volumes()[0].volume->homogeneous(), medium.density.isConstant());
     if (!medium.density.isConstant()) {
         ASSERT_GT(scene.volumes()[0].steinerPoints, 50u);  // the density varies inside
     }

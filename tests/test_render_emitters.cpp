@@ -6,6 +6,7 @@
 
 #include "TestScenes.h"
 #include "integrators/Integrator.h"
+#include "render/IntegratorFactory.h"
 #include "tet/SurfaceBVH.h"
 
 namespace tetglow::test {
@@ -13,7 +14,7 @@ namespace {
 
 // The length of the camera ray inside the unit sphere, from Embree's hits on its boundary.
 double chord(const Scene& scene, const Ray& ray) {
-    const auto hits = scene.volumes()[0].media->volume().bvh().allHits(ray);
+    const auto hits = scene.volumes()[0].volume->traversal().bvh().allHits(ray);
     double length = 0;
     for (size_t i = 0; i + 1 < hits.size(); i += 2) length += hits[i + 1].t - hits[i].t;
     return length;

@@ -7,7 +7,8 @@
 
 #include "TestScenes.h"
 #include "integrators/Integrator.h"
-#include "integrators/Renderer.h"
+#include "render/IntegratorFactory.h"
+#include "render/Renderer.h"
 #include "scene/SceneLoader.h"
 #include "scene/SceneWriter.h"
 

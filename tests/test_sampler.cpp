@@ -12,7 +12,8 @@
 
 #include "TestScenes.h"
 #include "integrators/Integrator.h"
-#include "integrators/Renderer.h"
+#include "render/IntegratorFactory.h"
+#include "render/Renderer.h"
 #include "sampling/Sampling.h"
 
 namespace tetglow::test {

@@ -6,8 +6,8 @@
 #include <gtest/gtest.h>
 
 #include "TestMeshes.h"
-#include "render/MediaGroups.h"
 #include "scene/MediaNesting.h"
+#include "scene/VolumePartition.h"
 #include "tet/Shapes.h"
 
 namespace tetglow::test {
@@ -118,9 +118,9 @@ TEST(SceneRegions, MediaAreGroupedByTheNestingAReaderFound) {
     media[1].name = "/media/1";
     const MediaNesting nesting = nestMedia(media);
     EXPECT_EQ(nesting.parent, (std::vector<int32_t>{-1, 0}));
-    EXPECT_EQ(groupMedia(media), (std::vector<std::vector<int>>{{0, 1}}));
+    EXPECT_EQ(findVolumes(media), (std::vector<std::vector<int>>{{0, 1}}));
     const MediaNesting apart{{-1, -1}, {}};
-    EXPECT_EQ(groupMedia(media, &apart), (std::vector<std::vector<int>>{{0}, {1}}));
+    EXPECT_EQ(findVolumes(media, &apart), (std::vector<std::vector<int>>{{0}, {1}}));
 }
 
 TEST(SceneRegions, MediaApartStillRender) {

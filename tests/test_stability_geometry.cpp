@@ -36,7 +36,7 @@ void printRows(const std::string& shape, const std::vector<ClassificationRow>& r
 }
 
 TEST(Stability, DegenerateLinesThroughAConvexPolyhedron) {
-    const TetVolume tets = tetsOf(tiltedPolyhedron(2));
+    const TetTraversal tets = tetsOf(tiltedPolyhedron(2));
     const TriangleMesh surface = tets.mesh().surfaceMesh();
     const double diagonal = bounds(surface).diagonal(), step = diagonal / 100;
     const SurfaceBVH& bvh = tets.bvh();
@@ -96,7 +96,7 @@ TEST(Stability, DegenerateLinesThroughAConvexPolyhedron) {
 // Boundary-only tetrahedralization makes slivers (four nearly coplanar corners, no short edge):
 // 2,400 of the 7,400 tets of a tessellated sphere. Points inside them and lines along them.
 TEST(Stability, SliverTets) {
-    const TetVolume tets = tetsOf(icosphere(4, 1.0));
+    const TetTraversal tets = tetsOf(icosphere(4, 1.0));
     const TetMesh& mesh = tets.mesh();
     const TriangleMesh surface = mesh.surfaceMesh();
     const std::vector<uint32_t> flat = slivers(mesh, 0.01);
@@ -151,7 +151,7 @@ TEST(Stability, SelfIntersectionHidesTheOverlapFromParity) {
 // out through the hole.
 TEST(Stability, FishWithAHole) {
     const TriangleMesh fish = readMesh(std::string(TETGLOW_SOURCE_DIR) + "/scenes/meshes/fish.obj");
-    const TetVolume intact = tetsOf(fish);
+    const TetTraversal intact = tetsOf(fish);
     TriangleMesh holed = intact.mesh().surfaceMesh();
     const glm::dvec3 flank = holed.positions[holed.triangles[holed.triangles.size() / 3][0]];
     std::vector<std::pair<double, size_t>> near;
@@ -188,7 +188,7 @@ TEST(Stability, FishWithAHole) {
 TEST(Stability, ThinPlates) {
     for (int bits : {7, 10, 14, 17, 20}) {
         const double w = std::ldexp(1.0, -bits);
-        const TetVolume tets = tetsOf(thinPlate(w));
+        const TetTraversal tets = tetsOf(thinPlate(w));
         const TriangleMesh surface = tets.mesh().surfaceMesh();
         const Bounds3 box = bounds(surface);
         // Points inside the plate, uniform in its own frame, and at 1e-2 of its thickness about its faces.

@@ -12,9 +12,10 @@
 #include "TestMeshes.h"
 #include "TestScenes.h"
 #include "integrators/Integrator.h"
-#include "integrators/Renderer.h"
 #include "render/Image.h"
 #include "render/ImageIO.h"
+#include "render/IntegratorFactory.h"
+#include "render/Renderer.h"
 
 namespace tetglow::test {
 namespace {
@@ -105,7 +106,7 @@ void expectEveryIntegratorAlong(const Scene& scene, const std::vector<NamedLine>
 TEST(StabilityRender, RaysThroughVerticesEdgesAndGrazingEveryIntegrator) {
     const double sigma = 1.5;
     const Scene scene(furnace(tiltedPolyhedron(2), RGB(sigma), RGB(0), 0));
-    const TriangleMesh surface = scene.volumes()[0].media->mesh().surfaceMesh();
+    const TriangleMesh surface = scene.volumes()[0].volume->mesh().surfaceMesh();
     expectEveryIntegratorAlong(
         scene, degenerateLines(surface), [&](const Ray& ray) { return std::exp(-sigma * convexChord(surface, ray)); },
         "|radiance - exp(-sigma chord)|");

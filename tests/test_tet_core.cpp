@@ -14,7 +14,7 @@
 #include "tet/FrontExtent.h"
 #include "tet/Predicates.h"
 #include "tet/Shapes.h"
-#include "tet/TetVolume.h"
+#include "tet/TetTraversal.h"
 #include "tet/Tetrahedralizer.h"
 
 namespace tetglow {
@@ -43,7 +43,7 @@ struct WalkResult {
     std::vector<double> ends;  // where segments start and stop
 };
 
-WalkResult walk(const TetVolume& volume, const Ray& ray) {
+WalkResult walk(const TetTraversal& volume, const Ray& ray) {
     WalkResult r;
     r.ok = volume.traverse(
         ray, 0, INFINITY,
@@ -54,7 +54,7 @@ WalkResult walk(const TetVolume& volume, const Ray& ray) {
             r.ends.push_back(s.tOut);
             return true;
         },
-        TetVolume::kOutside);
+        TetTraversal::kOutside);
     return r;
 }
 
@@ -68,7 +68,7 @@ class TetCore : public testing::TestWithParam<test::NamedMesh> {
 protected:
     void SetUp() override {
         if (GetParam().path.empty()) GTEST_SKIP() << GetParam().name << ".obj not tested: ../shared/meshes not found";
-        volume_ = std::make_unique<TetVolume>(tetrahedralize(readMesh(GetParam().path), test::noCache()));
+        volume_ = std::make_unique<TetTraversal>(tetrahedralize(readMesh(GetParam().path), test::noCache()));
         Bounds3 b;
         for (const auto& v : mesh().vertices) b.extend(v);
         bounds_ = b;
@@ -76,7 +76,7 @@ protected:
     }
     const TetMesh& mesh() const { return volume_->mesh(); }
 
-    std::unique_ptr<TetVolume> volume_;
+    std::unique_ptr<TetTraversal> volume_;
     Bounds3 bounds_;
     double diag_ = 0;
 };
@@ -418,7 +418,7 @@ TEST_P(TetCore, FirstEntryIsTheFirstOfAllEntries) {
                     chords.back().second = s.tOut;
                 return true;
             },
-            TetVolume::kOutside);
+            TetTraversal::kOutside);
         double tnear = 0;
         for (const auto& [start, end] : chords) {
             auto first = volume_->firstEntry(ray, tnear, INFINITY);
@@ -463,7 +463,7 @@ TEST_P(TetCore, WalkFromInsideMatchesWalkFromOutside) {
                 outer += s.tOut - s.tIn;
                 return true;
             },
-            TetVolume::kUnknown);
+            TetTraversal::kUnknown);
         double full = 0;
         volume_->traverse(
             ray, 0, INFINITY,
@@ -471,7 +471,7 @@ TEST_P(TetCore, WalkFromInsideMatchesWalkFromOutside) {
                 if (s.tOut > 2 * diag_) full += s.tOut - std::max(s.tIn, 2 * diag_);
                 return true;
             },
-            TetVolume::kOutside);
+            TetTraversal::kOutside);
         ASSERT_NEAR(inner, full, 1e-6 * diag_);
         ASSERT_NEAR(outer, full, 1e-6 * diag_);
         ++tested;
@@ -499,7 +499,7 @@ TEST(TetWalkDegenerate, BodyDiagonalThroughAPinch) {
     // both outer corners and the pinch, where the walk leaves one shell and must find the next.
     TetOptions o;
     o.useCache = false;
-    const TetVolume volume(tetrahedralize(merge(box(), box(glm::dvec3(1), glm::dvec3(2))), o));
+    const TetTraversal volume(tetrahedralize(merge(box(), box(glm::dvec3(1), glm::dvec3(2))), o));
     for (const double s : {1.0, -1.0}) {
         const glm::dvec3 d(s, s, s);
         const Ray ray{glm::dvec3(1) - 2.0 * d, d};  // through the cubes for t in [1, 3]
@@ -510,7 +510,7 @@ TEST(TetWalkDegenerate, BodyDiagonalThroughAPinch) {
                 length += w.tOut - w.tIn;
                 return true;
             },
-            TetVolume::kOutside));
+            TetTraversal::kOutside));
         EXPECT_NEAR(length, 2.0, 1e-6);
     }
 }

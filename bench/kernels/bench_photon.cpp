@@ -9,9 +9,9 @@
 #include <benchmark/benchmark.h>
 #include <glm/geometric.hpp>
 
-#include "integrators/photon/PhotonBeams.h"
-#include "integrators/photon/PhotonMap.h"
-#include "integrators/photon/PhotonTracer.h"
+#include "photon/PhotonDiscs.h"
+#include "photon/PhotonMap.h"
+#include "photon/PhotonTracer.h"
 #include "scene/SceneLoader.h"
 
 namespace tetglow {
@@ -73,10 +73,10 @@ BENCHMARK(BM_PhotonRadius)->Arg(100000)->Arg(1000000);
 
 void BM_PhotonBeams(benchmark::State& state) {
     // Rays from a sphere around the cloud towards random points inside it.
-    static const PhotonBeams beams = [] {
+    static const PhotonDiscs beams = [] {
         PhotonMap map(photonMap(100000).photons());
         map.assignRadii(20, 0.1f);
-        return PhotonBeams(map.photons());
+        return PhotonDiscs(map.photons());
     }();
     std::vector<glm::dvec3> origins, directions;
     std::mt19937_64 rng(3);

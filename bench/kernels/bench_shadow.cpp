@@ -19,7 +19,7 @@
 #include <benchmark/benchmark.h>
 #include <glm/geometric.hpp>
 
-#include "media/RegionMedia.h"
+#include "media/Volume.h"
 #include "scene/MeshFile.h"
 #include "tet/Tetrahedralizer.h"
 
@@ -27,7 +27,7 @@ namespace tetglow {
 namespace {
 
 struct ShadowFixture {
-    std::unique_ptr<RegionMedia> medium;
+    std::unique_ptr<Volume> medium;
     double diagonal = 0;
     std::vector<Ray> rays;       // from located interior points, unit directions
     std::vector<uint32_t> tets;  // holding each ray's origin
@@ -44,8 +44,8 @@ std::string shadowMesh() {
 ShadowFixture& shadowFixture() {
     static ShadowFixture f = [] {
         ShadowFixture f;
-        f.medium = std::make_unique<RegionMedia>(MediumParams{}, tetrahedralize(readMesh(shadowMesh())));
-        const Bounds3& box = f.medium->volume().bounds();
+        f.medium = std::make_unique<Volume>(MediumParams{}, tetrahedralize(readMesh(shadowMesh())));
+        const Bounds3& box = f.medium->traversal().bounds();
         f.diagonal = box.diagonal();
         std::mt19937_64 rng(1);
         std::uniform_real_distribution<double> u(0, 1);
@@ -53,7 +53,7 @@ ShadowFixture& shadowFixture() {
         double length = 0;
         while (f.rays.size() < 4096) {
             const glm::dvec3 p = box.lo + (box.hi - box.lo) * glm::dvec3(u(rng), u(rng), u(rng));
-            const int64_t t = f.medium->volume().locate(p);
+            const int64_t t = f.medium->traversal().locate(p);
             if (t < 0) continue;
             const glm::dvec3 d(n(rng), n(rng), n(rng));
             f.rays.push_back({p, d / glm::length(d)});
@@ -99,10 +99,10 @@ void setMeanFreePath(ShadowFixture& f, double path) {
     MediumParams p;
     p.sigmaS = RGB(1 / path);
     f.medium->setRegions(
-        std::vector<RegionMedium>(std::max<size_t>(1, f.medium->mesh().regionCount()), RegionMedium{p, {}}));
+        std::vector<MediumField>(std::max<size_t>(1, f.medium->mesh().regionCount()), MediumField{p, {}}));
 }
 
-// Transmittance to the boundary (RegionMedia::transmittance), mean free path the box's diagonal.
+// Transmittance to the boundary (Volume::transmittance), mean free path the box's diagonal.
 void BM_ShadowExit(benchmark::State& state) {
     ShadowFixture& f = shadowFixture();
     setMeanFreePath(f, f.diagonal);

@@ -8,7 +8,7 @@
 #include <glm/geometric.hpp>
 
 #include "scene/MeshFile.h"
-#include "tet/TetVolume.h"
+#include "tet/TetTraversal.h"
 #include "tet/Tetrahedralizer.h"
 
 namespace tetglow {
@@ -17,7 +17,7 @@ namespace {
 std::string gMeshPath = std::string(TETGLOW_SOURCE_DIR) + "/scenes/meshes/fish.obj";
 
 struct Fixture {
-    std::unique_ptr<TetVolume> volume;
+    std::unique_ptr<TetTraversal> volume;
     Bounds3 box;                                  // of the medium: the parity baseline's march samples only inside it
     std::vector<Ray> rays;                        // each crosses the medium
     std::vector<uint32_t> entries;                // Embree's entry triangle per ray
@@ -34,7 +34,7 @@ double marchT(const Fixture& f, size_t r, size_t k, double step) { return f.t0[r
 const Fixture& fixture() {
     static const Fixture f = [] {
         Fixture f;
-        f.volume = std::make_unique<TetVolume>(tetrahedralize(readMesh(gMeshPath)));
+        f.volume = std::make_unique<TetTraversal>(tetrahedralize(readMesh(gMeshPath)));
         for (const auto& v : f.volume->mesh().vertices) f.box.extend(v);
         const double diag = f.box.diagonal();
         std::mt19937_64 rng(1);
@@ -82,7 +82,7 @@ BENCHMARK(BM_TetSteps);
 // The same rays as above (the fixture's, which cross the body), walked across every interface.
 void BM_TetStepsAcrossRegions(benchmark::State& state) {
     const Fixture& f = fixture();
-    static std::unique_ptr<TetVolume> volumes[2];
+    static std::unique_ptr<TetTraversal> volumes[2];
     static std::vector<uint32_t> entries[2];  // each volume's own entry triangles for the rays
     auto& volume = volumes[state.range(0)];
     if (!volume) {
@@ -94,7 +94,7 @@ void BM_TetStepsAcrossRegions(benchmark::State& state) {
                 meshes.push_back(readMesh(dir + part + ".obj"));
                 names.push_back(part);
             }
-        volume = std::make_unique<TetVolume>(tetrahedralize(meshes, names, TetOptions{}));
+        volume = std::make_unique<TetTraversal>(tetrahedralize(meshes, names, TetOptions{}));
         for (const Ray& ray : f.rays)
             entries[state.range(0)].push_back(volume->bvh().intersect(ray, 0, INFINITY, Facing::Entering)->triangle);
     }
@@ -129,7 +129,7 @@ void BM_RayWalkFull(benchmark::State& state) {
                 length += s.tOut - s.tIn;
                 return true;
             },
-            TetVolume::kOutside);
+            TetTraversal::kOutside);
         benchmark::DoNotOptimize(length);
     }
     state.counters["rays/s"] = benchmark::Counter(double(state.iterations()), benchmark::Counter::kIsRate);
@@ -199,7 +199,7 @@ void BM_LocateAlongPath(benchmark::State& state) {
                 for (; k < n && marchT(f, r, k, step) < s.tOut; ++k) tets[k] = s.tet;
                 return true;
             },
-            TetVolume::kOutside);
+            TetTraversal::kOutside);
         return n;
     };
     for (size_t r = 0; r < 256; ++r)  // once, untimed: the located tets hold their samples

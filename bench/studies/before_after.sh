@@ -31,7 +31,7 @@ if [ -f ../shared/meshes/blub.obj ]; then
 else
   echo "before_after: ../shared/meshes not found: tet kernels on each tree's fish, renders of sphere.json only" >&2
 fi
-filter='BM_(TetSteps|RayWalkFull|EmbreeEntryExit|LocateWithHint|ParityAlongPath|PhotonKnn|PhotonRadius|PhotonBeams|TracePhotons)'
+filter='BM_(TetSteps|RayWalkFull|EmbreeEntryExit|LocateWithHint|ParityAlongPath|PhotonKnn|PhotonRadius|PhotonDiscs|TracePhotons)'
 declare -A integrator=([volpath]="--integrator volpath --spp 16" [photon]="--integrator photon --passes 4 --photons 50000")
 for scene in "${scenes[@]}"; do  # warm both builds' tet caches: the renders time rendering
   for side in base new; do "${!side}/tetglow" render "scenes/$scene.json" --resolution 8x8 --spp 1 -o "$out/warm.exr" >/dev/null 2>&1; done

@@ -9,8 +9,8 @@
 #include "cli/Commands.h"
 #include "evidence/BoundaryPicture.h"
 #include "render/ImageIO.h"
-#include "render/Scene.h"
 #include "scene/MeshFile.h"
+#include "scene/Scene.h"
 #include "scene/SceneLoader.h"
 #include "tet/Tetrahedralizer.h"
 
@@ -27,16 +27,16 @@ struct Options {
 // The media to compare, with what the picture needs: a camera, a step and rays per parity test.
 struct Subject {
     std::unique_ptr<Scene> scene;          // SCENE input
-    std::unique_ptr<TetVolume> mesh;       // MESH input
+    std::unique_ptr<TetTraversal> mesh;    // MESH input
     std::unique_ptr<TriangleMesh> broken;  // MESH input as read, where it was repaired
-    std::vector<const TetVolume*> volumes;
+    std::vector<const TetTraversal*> volumes;
     std::vector<MediumReport> reports;
     CameraDesc camera;
     double step = 0;
     int parityRays = 1;
 };
 
-MediumReport describe(const std::string& name, const TetVolume& v) {
+MediumReport describe(const std::string& name, const TetTraversal& v) {
     MediumReport r;
     r.name = name;
     r.tets = v.mesh().tets.size();
@@ -51,11 +51,11 @@ Subject loadSceneSubject(const std::string& path) {
     if (desc.media.empty()) throw InputError(path + ": the scene has no media to compare");
     s.scene = std::make_unique<Scene>(desc);
     for (const auto& m : s.scene->volumes()) {
-        s.volumes.push_back(&m.media->volume());
-        MediumReport r = describe(m.name, m.media->volume());
-        r.sigmaT = average(m.media->region(0).sigmaT);
+        s.volumes.push_back(&m.volume->traversal());
+        MediumReport r = describe(m.name, m.volume->traversal());
+        r.sigmaT = average(m.volume->region(0).sigmaT);
         r.sigmaSource = "the mean over R, G, B";
-        r.homogeneous = m.media->homogeneous();
+        r.homogeneous = m.volume->homogeneous();
         s.reports.push_back(std::move(r));
     }
     s.camera = desc.camera;
@@ -74,7 +74,7 @@ Subject loadMeshSubject(const std::string& path, bool strict) {
     ValidationReport report;
     const TriangleMesh input = surface;
     try {
-        s.mesh = std::make_unique<TetVolume>(tetrahedralize(std::move(surface), options, nullptr, &report));
+        s.mesh = std::make_unique<TetTraversal>(tetrahedralize(std::move(surface), options, nullptr, &report));
     } catch (const InputError& e) {
         throw InputError(path + ": " + e.what());
     }

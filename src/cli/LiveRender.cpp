@@ -1,9 +1,10 @@
 #include "cli/LiveRender.h"
+#include "render/IntegratorFactory.h"
 
 #include <algorithm>
 #include <chrono>
 
-#include "integrators/Renderer.h"
+#include "render/Renderer.h"
 
 namespace tetglow {
 

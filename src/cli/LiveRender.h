@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "render/Image.h"
-#include "render/Scene.h"
+#include "scene/Scene.h"
 
 namespace tetglow {
 

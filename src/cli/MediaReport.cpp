@@ -30,7 +30,7 @@ void printRepairs(const std::string& medium, const ValidationReport& report) {
 void printVolumes(const Scene& scene) {
     for (const SceneVolume& v : scene.volumes()) {
         std::fprintf(stderr, "medium %s: %zu tets, %zu Steiner points, %s in %.2f s\n", v.name.c_str(),
-                     v.media->mesh().tets.size(), v.steinerPoints,
+                     v.volume->mesh().tets.size(), v.steinerPoints,
                      v.stats.fromCache ? "read from the cache" : "tetrahedralized", v.stats.seconds);
         for (size_t r = 0; r < v.repairs.size() && r < v.regionMedium.size(); ++r)
             printRepairs(scene.desc().media[v.regionMedium[r]].name, v.repairs[r]);

@@ -5,7 +5,7 @@
 #pragma once
 #include <string>
 
-#include "render/Scene.h"
+#include "scene/Scene.h"
 
 namespace tetglow::cli {
 

@@ -5,7 +5,7 @@
 #pragma once
 #include <string>
 
-#include "integrators/Renderer.h"
+#include "render/Renderer.h"
 
 namespace tetglow::cli {
 

@@ -5,8 +5,8 @@
 #include <fstream>
 #include <string>
 
-#include "integrators/Renderer.h"
 #include "render/Image.h"
+#include "render/Renderer.h"
 
 namespace tetglow::cli {
 

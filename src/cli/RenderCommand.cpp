@@ -14,10 +14,11 @@
 #include "cli/Progress.h"
 #include "cli/ReferenceLog.h"
 #include "cli/RenderArgs.h"
-#include "integrators/Renderer.h"
-#include "integrators/photon/PhotonIntegrator.h"
+#include "photon/PhotonIntegrator.h"
 #include "render/ImageIO.h"
+#include "render/IntegratorFactory.h"
 #include "render/PartialRender.h"
+#include "render/Renderer.h"
 #include "scene/SceneFingerprint.h"
 #include "scene/Turntable.h"
 

@@ -24,7 +24,7 @@ double timePerCall(size_t n, F&& f) {
 
 }  // namespace
 
-std::vector<InsideTest> insideTests(const TetVolume* tets, const SurfaceBVH& bvh, const Bounds3& box) {
+std::vector<InsideTest> insideTests(const TetTraversal* tets, const SurfaceBVH& bvh, const Bounds3& box) {
     std::vector<InsideTest> tests;
     if (tets) tests.push_back({"tets", [tets](const glm::dvec3& p) { return tets->locate(p) >= 0; }});
     for (int rays : {1, 3, 5})
@@ -106,7 +106,7 @@ std::vector<Line> sampleLines(const Bounds3& box, size_t count, uint64_t seed) {
     return lines;
 }
 
-double tetChord(const TetVolume& tets, const Line& line) {
+double tetChord(const TetTraversal& tets, const Line& line) {
     double length = 0;
     tets.traverse(
         line.ray, 0, INFINITY,
@@ -114,11 +114,11 @@ double tetChord(const TetVolume& tets, const Line& line) {
             length += s.tOut - s.tIn;
             return true;
         },
-        TetVolume::kOutside);
+        TetTraversal::kOutside);
     return length;
 }
 
-std::vector<ChordTest> chordTests(const TetVolume* tets, const SurfaceBVH& bvh, const std::vector<double>& steps) {
+std::vector<ChordTest> chordTests(const TetTraversal* tets, const SurfaceBVH& bvh, const std::vector<double>& steps) {
     std::vector<ChordTest> tests;
     if (tets) tests.push_back({"tets", 0, [tets](const Line& line) { return tetChord(*tets, line); }});
     for (double h : steps)
@@ -163,7 +163,7 @@ ChordTable compareChords(const std::vector<Line>& lines, const std::vector<Chord
     return table;
 }
 
-BoundaryComparison compareBoundary(const TetVolume& volume, const ComparisonOptions& options,
+BoundaryComparison compareBoundary(const TetTraversal& volume, const ComparisonOptions& options,
                                    const TriangleMesh* input) {
     const TriangleMesh surface = volume.mesh().surfaceMesh();
     const Bounds3& box = volume.bounds();

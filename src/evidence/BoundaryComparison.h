@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "tet/TetVolume.h"
+#include "tet/TetTraversal.h"
 
 namespace tetglow {
 
@@ -22,7 +22,7 @@ using InsideTruth = std::function<std::optional<bool>(const glm::dvec3&)>;
 
 // tets (when `tets` is given: locate from the start grid, exact), parity with 1, 3 and 5 rays
 // (majority), and `box` (inside the bounding box).
-std::vector<InsideTest> insideTests(const TetVolume* tets, const SurfaceBVH& bvh, const Bounds3& box);
+std::vector<InsideTest> insideTests(const TetTraversal* tets, const SurfaceBVH& bvh, const Bounds3& box);
 
 // Random points: offset 0 is the whole bounding box of `surface`; offset s > 0 is the shell
 // reached from a point uniform on the surface (by area) along its face normal, outwards or
@@ -63,8 +63,8 @@ struct ChordTest {
 
 // tets (the walk's segments, exact), the parity baseline's march (1 parity ray per step, each step's
 // sample standing for the whole step) at each step, and `box` (the whole box is medium).
-std::vector<ChordTest> chordTests(const TetVolume* tets, const SurfaceBVH& bvh, const std::vector<double>& steps);
-double tetChord(const TetVolume& tets, const Line& line);
+std::vector<ChordTest> chordTests(const TetTraversal* tets, const SurfaceBVH& bvh, const std::vector<double>& steps);
+double tetChord(const TetTraversal& tets, const Line& line);
 
 struct ChordScore {
     std::string method;
@@ -96,7 +96,7 @@ struct BoundaryComparison {
 
 // Every method against the tets. With `input` (a broken mesh the tets repaired), the parity
 // tests use the input as it was, and the input's winding number (> 1/2) joins them.
-BoundaryComparison compareBoundary(const TetVolume& volume, const ComparisonOptions& options,
+BoundaryComparison compareBoundary(const TetTraversal& volume, const ComparisonOptions& options,
                                    const TriangleMesh* input = nullptr);
 
 }  // namespace tetglow

@@ -8,14 +8,14 @@
 
 namespace tetglow {
 
-BoundaryPicture renderBoundaryPicture(const Camera& camera, const std::vector<const TetVolume*>& media, double step,
+BoundaryPicture renderBoundaryPicture(const Camera& camera, const std::vector<const TetTraversal*>& media, double step,
                                       int parityRays) {
     struct Counts {
         size_t samples = 0, disagreements = 0, pixels = 0;
     };
     std::vector<Bounds3> boxes;
     Bounds3 all;
-    for (const TetVolume* v : media) {
+    for (const TetTraversal* v : media) {
         boxes.push_back(v->bounds());
         all.extend(boxes.back());
     }

@@ -5,9 +5,9 @@
 #pragma once
 #include <vector>
 
-#include "render/Camera.h"
 #include "render/Image.h"
-#include "tet/TetVolume.h"
+#include "scene/Camera.h"
+#include "tet/TetTraversal.h"
 
 namespace tetglow {
 
@@ -19,7 +19,7 @@ struct BoundaryPicture {
 };
 
 // `step`: the march's step in world units; `parityRays`: rays per parity test (majority).
-BoundaryPicture renderBoundaryPicture(const Camera& camera, const std::vector<const TetVolume*>& media, double step,
+BoundaryPicture renderBoundaryPicture(const Camera& camera, const std::vector<const TetTraversal*>& media, double step,
                                       int parityRays);
 
 }  // namespace tetglow

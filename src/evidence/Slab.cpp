@@ -11,7 +11,7 @@
 #include <tbb/task_arena.h>
 
 #include "base/Error.h"
-#include "media/PhotonWalk.h"
+#include "photon/PhotonWalk.h"
 #include "tet/Shapes.h"
 #include "tet/Tetrahedralizer.h"
 
@@ -56,13 +56,13 @@ SlabResult simulateSlab(const SlabParams& p) {
     // are a negligible fraction (they are counted apart, as `lost`).
     const double width = 200;
     const TriangleMesh slab = box({-width / 2, -width / 2, -1}, {width / 2, width / 2, 0});
-    const RegionMedia medium({RGB(p.tau * (1 - p.albedo)), RGB(p.tau * p.albedo), p.g, RGB(0)},
-                             tetrahedralize(slab, options));
+    const Volume medium({RGB(p.tau * (1 - p.albedo)), RGB(p.tau * p.albedo), p.g, RGB(0)},
+                        tetrahedralize(slab, options));
     const TetMesh& mesh = medium.mesh();
     // The lit face is z = 0; entry triangles are found once by Embree, then each photon's walk
     // starts there. Entry points are spread over the middle of the face (the slab is
     // translation invariant), away from its diagonal.
-    const SurfaceBVH& bvh = medium.volume().bvh();
+    const SurfaceBVH& bvh = medium.traversal().bvh();
 
     constexpr uint64_t kBlock = 4096;
     // Blocks are summed in order, so the sum is the same for any thread count; a few hundred at

@@ -2,10 +2,10 @@
 // sampled towards the point.
 #pragma once
 #include "integrators/PathStep.h"
-#include "render/LightSelection.h"
-#include "render/Scene.h"
 #include "sampling/Rng.h"
 #include "sampling/Sampling.h"
+#include "scene/LightSelection.h"
+#include "scene/Scene.h"
 
 namespace tetglow {
 
@@ -61,7 +61,7 @@ inline RGB directInMedium(const Scene& scene, int v, const glm::dvec3& p, const 
     if (scene.sealed(v)) return RGB(0);  // no shadow ray from inside reaches a light
     const VolumeState here{v, WalkStart::inside(tet)};
     return sampleDirect(
-        scene, p, rng, false, phaseScattering(scene.volumes()[v].media->at(tet).phase, d),
+        scene, p, rng, false, phaseScattering(scene.volumes()[v].volume->at(tet).phase, d),
         [&](const Ray& r, double t) { return transmittance(scene, r, t, here, roulette ? &rng : nullptr); });
 }
 

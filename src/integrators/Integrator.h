@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "render/Scene.h"
 #include "sampling/Rng.h"
+#include "scene/Scene.h"
 
 namespace tetglow {
 
@@ -20,10 +20,8 @@ public:
     // One sample of the radiance arriving at the camera along `ray` (unit direction).
     virtual RGB radiance(const Ray& ray, Rng& rng) const = 0;
     // Light this integrator cannot carry to some medium of the scene, one line per medium
-    // (render/UnsampledLight.h), for the user to be told before the render.
+    // (scene/UnsampledLight.h), for the user to be told before the render.
     virtual std::vector<std::string> warnings() const { return {}; }
 };
-
-std::unique_ptr<Integrator> makeIntegrator(const Scene& scene, const IntegratorDesc& desc);
 
 }  // namespace tetglow

@@ -21,7 +21,7 @@ namespace {
 
 // Decides the roulette tests a shadow ray from inside `state`'s volume surely reaches (sureDepth);
 // false where one ended it.
-bool surelyReached(const RegionMedia& medium, const Ray& ray, double tMax, const VolumeState& state, Rng& rng,
+bool surelyReached(const Volume& medium, const Ray& ray, double tMax, const VolumeState& state, Rng& rng,
                    ShadowRoulette& roulette) {
     return !medium.deepShadows() || roulette.reach(medium.sureDepth(state.start, ray.o, tMax), rng);
 }
@@ -34,7 +34,7 @@ RGB transmittance(const Scene& scene, Ray ray, double tMax, VolumeState state, R
     // they spare most such rays the surface query and the walk.
     ShadowRoulette first;
     if (roulette && state.inside() &&
-        !surelyReached(*scene.volumes()[state.volume].media, ray, tMax, state, *roulette, first))
+        !surelyReached(*scene.volumes()[state.volume].volume, ray, tMax, state, *roulette, first))
         return RGB(0);
     for (int crossings = 0; crossings < kMaxCrossings; ++crossings) {
         auto hit = scene.intersect(ray, state, tMax);
@@ -42,7 +42,7 @@ RGB transmittance(const Scene& scene, Ray ray, double tMax, VolumeState state, R
         if (hit && !scene.indexMatched(*hit)) return RGB(0);
         WalkExit exit;
         if (state.inside()) {
-            const RegionMedia& medium = *scene.volumes()[state.volume].media;
+            const Volume& medium = *scene.volumes()[state.volume].volume;
             const double end = hit ? hit->t : tMax;
             const FreeFlight f = roulette ? medium.shadowFlight(ray, state.start, end, *roulette,
                                                                 crossings == 0 ? first : ShadowRoulette{})

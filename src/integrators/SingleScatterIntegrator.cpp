@@ -5,8 +5,8 @@
 
 #include "integrators/DirectLighting.h"
 #include "integrators/PathStep.h"
-#include "render/Material.h"
-#include "render/UnsampledLight.h"
+#include "scene/Material.h"
+#include "scene/UnsampledLight.h"
 #include "tet/InteriorRepair.h"
 
 namespace tetglow {
@@ -18,11 +18,11 @@ SingleScatterIntegrator::SingleScatterIntegrator(const Scene& scene, const Integ
       parityRays_(desc.parityRays),
       maxDepth_(desc.maxDepth) {
     for (const SceneVolume& v : scene.volumes()) {
-        if (mode_ != BoundaryMode::Tet && !v.media->homogeneous())
+        if (mode_ != BoundaryMode::Tet && !v.volume->homogeneous())
             throw InputError(v.name +
                              ": the parity and bbox boundary modes need a homogeneous medium (no per-vertex density)");
-        boxes_.push_back(v.media->volume().bounds());
-        const TetMesh& mesh = v.media->mesh();
+        boxes_.push_back(v.volume->traversal().bounds());
+        const TetMesh& mesh = v.volume->mesh();
         std::vector<int> depth(v.regionMedium.size(), 0);
         for (size_t r = 0; r < depth.size(); ++r)
             for (int32_t p = mesh.regionParent[r]; p >= 0; p = mesh.regionParent[size_t(p)]) ++depth[r];
@@ -53,7 +53,7 @@ int SingleScatterIntegrator::pick(size_t v, const glm::dvec3& p) const {
 }
 
 RGB SingleScatterIntegrator::visibility(const Ray& ray, double tMax, Rng& rng) const {
-    if (mode_ == BoundaryMode::Tet) return transmittance(scene_, ray, tMax, scene_.mediumAt(ray.o));
+    if (mode_ == BoundaryMode::Tet) return transmittance(scene_, ray, tMax, scene_.volumeAt(ray.o));
     if (!scene_.unoccluded(ray, tMax)) return RGB(0);
     // The parity baseline's shadow ray: march through each volume's box, asking the boundary test per step.
     RGB tau(0);
@@ -73,17 +73,18 @@ RGB SingleScatterIntegrator::visibility(const Ray& ray, double tMax, Rng& rng) c
             std::sort(cuts.begin(), cuts.end());
             for (size_t i = 0; i + 1 < cuts.size(); ++i)
                 if (const int m = pick(v, ray.at(0.5 * (cuts[i] + cuts[i + 1]))); m >= 0)
-                    tau += scene_.volumes()[v].media->region(scene_.media()[m].region).sigmaT * (cuts[i + 1] - cuts[i]);
+                    tau +=
+                        scene_.volumes()[v].volume->region(scene_.media()[m].region).sigmaT * (cuts[i + 1] - cuts[i]);
             continue;
         }
         for (double t = t0 + rng.uniform() * step_; t < t1; t += step_)
             if (const int m = pick(v, ray.at(t)); m >= 0)
-                tau += scene_.volumes()[v].media->region(scene_.media()[m].region).sigmaT * step_;
+                tau += scene_.volumes()[v].volume->region(scene_.media()[m].region).sigmaT * step_;
     }
     return exp(-tau);
 }
 
-RGB SingleScatterIntegrator::inScattered(size_t v, const RegionOptics& optics, const glm::dvec3& p, const glm::dvec3& d,
+RGB SingleScatterIntegrator::inScattered(size_t v, const Medium& optics, const glm::dvec3& p, const glm::dvec3& d,
                                          int64_t tet, Rng& rng) const {
     // Exact transmittance: the parity baseline's march is the baseline, compared mode against mode.
     if (mode_ == BoundaryMode::Tet) return directInMedium(scene_, int(v), p, d, uint32_t(tet), rng, false);
@@ -92,14 +93,14 @@ RGB SingleScatterIntegrator::inScattered(size_t v, const RegionOptics& optics, c
 }
 
 RGB SingleScatterIntegrator::marchTets(size_t v, const Ray& ray, double tMax, const RGB& beta, Rng& rng, RGB& L) const {
-    const RegionMedia& medium = *scene_.volumes()[v].media;
+    const Volume& medium = *scene_.volumes()[v].volume;
     // One sample every step_ of the volume's own length along the ray (random offset), across
     // tet faces and interfaces: as many samples as the parity march takes inside, each with the
     // exact transmittance up to it. Each sample stands for step_, an unbiased estimate of the integral.
     double next = rng.uniform() * step_, walked = 0;  // length in the volume: of the next sample, before this segment
     RGB tr(1);
-    medium.volume().traverse(ray, 0, tMax, [&](const WalkSegment& s) {
-        const RegionOptics& optics = medium.at(s.tet);
+    medium.traversal().traverse(ray, 0, tMax, [&](const WalkSegment& s) {
+        const Medium& optics = medium.at(s.tet);
         const double length = s.tOut - s.tIn;
         for (; next < walked + length; next += step_) {
             const double t = s.tIn + (next - walked);
@@ -119,14 +120,14 @@ RGB SingleScatterIntegrator::marchSteps(size_t v, const Ray& ray, double tMax, c
                                         RGB& L) const {
     double t0 = 0, t1 = tMax;
     if (!clip(boxes_[v], ray, t0, t1)) return RGB(1);
-    const RegionMedia& medium = *scene_.volumes()[v].media;
+    const Volume& medium = *scene_.volumes()[v].volume;
     RGB tau(0);
     // pbrt-v2's march: each step's sample stands for the whole step.
     for (double t = t0 + rng.uniform() * step_; t < t1; t += step_) {
         const glm::dvec3 p = ray.at(t);
         const int m = pick(v, p);
         if (m < 0) continue;
-        const RegionOptics& optics = medium.region(scene_.media()[m].region);
+        const Medium& optics = medium.region(scene_.media()[m].region);
         tau += optics.sigmaT * step_;
         L += beta * exp(-tau) * step_ *
              (optics.params.sigmaS * inScattered(v, optics, p, ray.d, -1, rng) + optics.params.emission);

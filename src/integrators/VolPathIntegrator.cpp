@@ -5,8 +5,8 @@
 #include "media/Roulette.h"
 #include "media/SpectralPath.h"
 #include "media/StretchSampling.h"
-#include "render/Material.h"
-#include "render/UnsampledLight.h"
+#include "scene/Material.h"
+#include "scene/UnsampledLight.h"
 
 namespace tetglow {
 
@@ -20,7 +20,7 @@ constexpr double kLitStretchDepth = 4;
 }  // namespace
 
 VolPathIntegrator::VolPathIntegrator(const Scene& scene, int maxDepth)
-    : scene_(scene), maxDepth_(maxDepth), cameraMedium_(scene.mediumAt(scene.camera().position())) {}
+    : scene_(scene), maxDepth_(maxDepth), cameraMedium_(scene.volumeAt(scene.camera().position())) {}
 
 std::vector<std::string> VolPathIntegrator::warnings() const {
     return unsampledLightWarnings(scene_, IntegratorType::VolPath);
@@ -56,7 +56,7 @@ RGB VolPathIntegrator::trace(PathVertex v, int branches, Rng& rng) const {
         auto hit = scene_.intersect(ray, state);
         FreeFlight flight;
         if (state.inside()) {
-            const RegionMedia& medium = *scene_.volumes()[state.volume].media;
+            const Volume& medium = *scene_.volumes()[state.volume].volume;
             const double tMax = hit ? hit->t : INFINITY;
             if (!medium.scatters() && !medium.emissive()) {
                 // Nothing scatters or glows: attenuate exactly instead of sampling where light dies.
@@ -80,7 +80,7 @@ RGB VolPathIntegrator::trace(PathVertex v, int branches, Rng& rng) const {
                 if (!flight.scattered) {
                     path.pass(flight.transmittance);
                 } else {
-                    const RegionOptics& optics = medium.at(flight.tet);
+                    const Medium& optics = medium.at(flight.tet);
                     path.interact(flight.transmittance, optics.sigmaT * flight.density);
                     L += path.weight() * flight.density * optics.params.emission;
                     path.beta *= flight.density * optics.params.sigmaS;
@@ -159,7 +159,7 @@ RGB VolPathIntegrator::trace(PathVertex v, int branches, Rng& rng) const {
 std::optional<VolPathIntegrator::StretchLight> VolPathIntegrator::directWithin(const RegionStretch& stretch,
                                                                                const Ray& ray, const SpectralPath& path,
                                                                                int volume, Rng& rng) const {
-    const RegionOptics& optics = scene_.volumes()[size_t(volume)].media->region(stretch.region);
+    const Medium& optics = scene_.volumes()[size_t(volume)].volume->region(stretch.region);
     const double length = stretch.end - stretch.t0;
     const double meanDepth = average(optics.sigmaT) * length;
     // Known to its end, not empty, not deep, and scattering.

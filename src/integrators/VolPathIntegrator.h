@@ -9,8 +9,8 @@
 #include <optional>
 
 #include "integrators/Integrator.h"
-#include "media/RegionMedia.h"
 #include "media/SpectralPath.h"
+#include "media/Volume.h"
 
 namespace tetglow {
 

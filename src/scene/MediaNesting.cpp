@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <set>
 
-#include "tet/RegionComplex.h"
+#include "tet/VolumeBoundary.h"
 
 namespace tetglow {
 
@@ -16,7 +16,7 @@ MediaNesting nestMedia(const std::vector<MediumDesc>& media) {
     }
     const bool strict =
         std::any_of(media.begin(), media.end(), [](const MediumDesc& m) { return m.tetOptions.strict; });
-    const RegionComplex complex = validatedComplex(std::move(surfaces), names, strict);
+    const VolumeBoundary complex = validatedComplex(std::move(surfaces), names, strict);
     std::set<std::pair<int32_t, int32_t>> touching;
     for (const auto& [behind, front] : complex.sides)
         if (behind >= 0 && front >= 0) touching.insert(std::minmax(behind, front));

@@ -15,9 +15,9 @@
 #include "tet/InsideLabels.h"
 #include "tet/IntersectionResolution.h"
 #include "tet/Predicates.h"
-#include "tet/RegionComplex.h"
 #include "tet/SelfIntersection.h"
 #include "tet/TetGenProcess.h"
+#include "tet/VolumeBoundary.h"
 #include "tet/WindingNumber.h"
 
 namespace tetglow {
@@ -391,7 +391,7 @@ RepairReport repairInterior(TriangleMesh& mesh) {
     // The constraints: the input's triangles with their crossings split, in a box, and a lattice
     // around each hole. Their vertices come first in TetGen's output, then the box's, the
     // lattice's, then Steiner points.
-    RegionComplex plc;
+    VolumeBoundary plc;
     ResolvedSurface resolved = resolveIntersections(soup, pairs);
     plc.surface = std::move(resolved.surface);
     report.unsplitTriangles = resolved.unsplit;

@@ -5,7 +5,7 @@
 
 namespace tetglow {
 
-RegionExit regionExit(const TetVolume& volume, const Ray& ray, int32_t region, double tFrom, double tTo) {
+RegionExit regionExit(const TetTraversal& volume, const Ray& ray, int32_t region, double tFrom, double tTo) {
     const TetMesh& mesh = volume.mesh();
     const RayProjection project(ray);
     // Closer than this, two crossings' computed t may be out of order: the walk decides.

@@ -4,7 +4,7 @@
 #include <cstdint>
 
 #include "base/Ray.h"
-#include "tet/TetVolume.h"
+#include "tet/TetTraversal.h"
 
 namespace tetglow {
 
@@ -24,6 +24,6 @@ struct RegionExit {
 // decided by the walk's own exact tests (the same projection of the same vertices, side() with
 // simulation of simplicity), so the exit is the face the walk would leave through, and its t the
 // walk's to rounding of the last bits.
-RegionExit regionExit(const TetVolume& volume, const Ray& ray, int32_t region, double tFrom, double tTo);
+RegionExit regionExit(const TetTraversal& volume, const Ray& ray, int32_t region, double tFrom, double tTo);
 
 }  // namespace tetglow

@@ -26,7 +26,7 @@ std::string tetgenFailure(int code) {
 }
 
 // In the child: TetGen's tets as bytes; TetGen's thrown error codes become InputErrors.
-std::string runTetGen(const RegionComplex& complex, const std::string& switches) {
+std::string runTetGen(const VolumeBoundary& complex, const std::string& switches) {
     const TriangleMesh& mesh = complex.surface;
     int devnull = ::open("/dev/null", O_WRONLY);  // TetGen prints to stdout even when quiet
     if (devnull >= 0) ::dup2(devnull, STDOUT_FILENO);
@@ -78,7 +78,7 @@ std::string runTetGen(const RegionComplex& complex, const std::string& switches)
 
 }  // namespace
 
-RawTets runIsolated(const RegionComplex& complex, const std::string& switches) {
+RawTets runIsolated(const VolumeBoundary& complex, const std::string& switches) {
     // TetGen 1.5's Hilbert sort loops without end on an infinite or NaN point.
     for (const glm::dvec3& p : complex.surface.positions)
         if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))

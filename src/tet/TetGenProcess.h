@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "base/ChildProcess.h"
-#include "tet/RegionComplex.h"
+#include "tet/VolumeBoundary.h"
 
 namespace tetglow {
 
@@ -30,6 +30,6 @@ struct TetGenCrash : InputError {
 
 // TetGen on complex.surface (and its inside points, with -A) under `switches`, in a forked child.
 // Throws TetGenCrash when it dies of a signal, InputError for any other failure.
-RawTets runIsolated(const RegionComplex& complex, const std::string& switches);
+RawTets runIsolated(const VolumeBoundary& complex, const std::string& switches);
 
 }  // namespace tetglow

@@ -31,7 +31,7 @@ struct TetMesh {
 
     size_t surfaceVertexCount = 0;
 
-    // Regions, one per input surface (see RegionComplex): region r owns tets
+    // Regions, one per input surface (see VolumeBoundary): region r owns tets
     // [regionTets[r], regionTets[r + 1]), each region's in Morton order. A surface triangle is an
     // interface where there is a region in front of it too: its tet faces on both sides are
     // boundary faces (~s), and the walk decides what happens there.

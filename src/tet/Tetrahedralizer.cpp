@@ -14,8 +14,8 @@
 #include "tet/InteriorRepair.h"
 #include "tet/MeshingMemory.h"
 #include "tet/Predicates.h"
-#include "tet/RegionComplex.h"
 #include "tet/TetGenProcess.h"
+#include "tet/VolumeBoundary.h"
 
 namespace tetglow {
 
@@ -67,7 +67,7 @@ struct SideOfFace {
     bool behind;
     int region;
 };
-std::string inconsistentRegions(const RegionComplex& complex, const std::vector<std::string>& names,
+std::string inconsistentRegions(const VolumeBoundary& complex, const std::vector<std::string>& names,
                                 const SideOfFace& a, const SideOfFace& b) {
     const auto mesh = [&](int surface) {
         if (size_t(surface) < names.size() && !names[size_t(surface)].empty()) return names[size_t(surface)];
@@ -93,7 +93,7 @@ std::string inconsistentRegions(const RegionComplex& complex, const std::vector<
 // are removed. With -A, TetGen's attribute of each kept tet must agree: the inside point's region + 1,
 // or a number of TetGen's own (0 or above the regions') for a cell that no inside point reaches, such as
 // a second shell of one mesh.
-TetMesh assemble(const RegionComplex& complex, const RawTets& raw, const std::vector<std::string>& names) {
+TetMesh assemble(const VolumeBoundary& complex, const RawTets& raw, const std::vector<std::string>& names) {
     const TriangleMesh& surface = complex.surface;
     const size_t nv = raw.points.size() / 3, nt = raw.tets.size() / 4, nr = complex.regionCount();
     if (nt == 0) throw InputError("TetGen produced no tetrahedra (is the mesh closed?)");
@@ -256,7 +256,7 @@ TetMesh assemble(const RegionComplex& complex, const RawTets& raw, const std::ve
 
 // The whole set of surfaces: TetGen's input (merged surface, inside points) and how it is read back
 // (the sides of every triangle, the nesting).
-uint64_t cacheKey(const RegionComplex& complex, const std::string& switches) {
+uint64_t cacheKey(const VolumeBoundary& complex, const std::string& switches) {
     const TriangleMesh& mesh = complex.surface;
     uint64_t h = kFnvOffset;
     h = fnv1a(h, mesh.positions.data(), mesh.positions.size() * sizeof(mesh.positions[0]));
@@ -300,7 +300,7 @@ void checkTetCount(double volume, double maxVolume) {
 }
 
 TetMesh tetrahedralizeUnchecked(const TriangleMesh& surface, const std::string& switches) {
-    const RegionComplex complex = singleRegion(surface);
+    const VolumeBoundary complex = singleRegion(surface);
     return assemble(complex, runIsolated(complex, switches), {""});
 }
 
@@ -320,7 +320,7 @@ TetMesh tetrahedralize(std::vector<TriangleMesh> surfaces, const std::vector<std
         }
     }
     checkTetCount(largestVolume, options.maxVolume);
-    RegionComplex complex = buildRegionComplex(surfaces, names);
+    VolumeBoundary complex = buildRegionComplex(surfaces, names);
     placeInsidePoints(complex, surfaces, names);
     const std::string switches = options.switches();
     const uint64_t key = cacheKey(complex, switches);

@@ -42,7 +42,7 @@ TetMesh tetrahedralize(TriangleMesh surface, const TetOptions& options = {}, Tet
 
 // Several closed surfaces, nested or touching along shared triangles, in one TetGen run
 // (-pYnA): every triangle is tet faces, every tet belongs to a region (one per surface, see
-// RegionComplex). Errors name the surface by `names` (one per surface; "" adds no name).
+// VolumeBoundary). Errors name the surface by `names` (one per surface; "" adds no name).
 TetMesh tetrahedralize(std::vector<TriangleMesh> surfaces, const std::vector<std::string>& names,
                        const TetOptions& options = {}, TetStats* stats = nullptr,
                        std::vector<ValidationReport>* reports = nullptr);

@@ -1,0 +1,421 @@
+#include "photon/PhotonIntegrator.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "base/Memory.h"
+#include "integrators/DirectLighting.h"
+#include "integrators/PathStep.h"
+#include "media/Roulette.h"
+#include "photon/OctahedralDirection.h"
+#include "scene/Material.h"
+#include "scene/UnsampledLight.h"
+
+namespace tetglow {
+
+namespace {
+
+// Photons in a k-NN ball or a disc never reach this far: at worst a sparse map gets a blurry
+// estimate instead of one lookup that spans the whole scene.
+constexpr double kMaxRadiusFraction = 0.2;  // of the medium's (or the scene's) bounding-box diagonal
+// What one stored photon costs at the peak of a pass: itself in the tracer's blocks and again
+// when they are joined, then in its map with the k-d tree, the beam BVH and its ball's volume.
+constexpr double kBytesPerStoredPhoton = 160;
+// A domain whose longest mean free path is shorter than this fraction of its bounding-box
+// diagonal is optically dense: the photon density changes within a mean free path of its
+// boundary (where the eye sees it) and within sqrt(max depth) mean free paths (where a truncated
+// walk stops), both far below any kernel radius a pass's photons fill. There the eye path walks
+// the medium as volpath does.
+constexpr double kDenseMeanFreePath = 0.02;
+
+// Whether the eye path walks a domain of `volume` (of the optical size below) instead of reading
+// photons there. A dense domain, always. So does one that shadow rays from inside can leave (not
+// sealed) and whose longest mean free path is shorter than the largest kernel radius: its light
+// changes within a mean free path, a photon estimate blurs it until the radius has shrunk below
+// that, so its error falls only as the radius does (as t^-0.5 on blub), while the walk's, lit by
+// next-event estimation, falls as 1/t. Behind glass (sealed) the walk finds the light by chance
+// only, and photons stay.
+bool eyeWalks(const Scene& scene, int volume, double opticalSize) {
+    return opticalSize * (scene.sealed(volume) ? kDenseMeanFreePath : kMaxRadiusFraction) > 1;
+}
+
+// The smallest extinction (any channel, any tet) of the domain's media, times its diagonal.
+double opticalSize(const Scene& scene, const std::vector<int>& media, double diagonal) {
+    double smallest = INFINITY;
+    for (int m : media) {
+        const MediumPlace& sm = scene.media()[size_t(m)];
+        const Volume& medium = *scene.volumes()[sm.volume].volume;
+        const TetMesh& mesh = medium.mesh();
+        const RGB& sigmaT = medium.region(sm.region).sigmaT;
+        const double least = std::min({sigmaT[0], sigmaT[1], sigmaT[2]});
+        for (uint32_t t = mesh.regionTets[sm.region]; t < mesh.regionTets[sm.region + 1]; ++t)
+            for (uint32_t v : mesh.tets[t]) smallest = std::min(smallest, least * medium.density(t, mesh.vertices[v]));
+    }
+    return smallest * diagonal;
+}
+
+// Whether a surface or a medium boundary of the scene refracts or reflects specularly (a
+// dielectric): light from a light that reaches a diffuse surface through one is a caustic, which
+// from a light of zero size only photons find.
+bool hasDielectric(const Scene& scene) {
+    auto dielectric = [](const MaterialDesc& m) { return m.type == MaterialType::Dielectric; };
+    const auto& surfaces = scene.desc().surfaces;
+    return std::any_of(surfaces.begin(), surfaces.end(), [&](const auto& s) { return dielectric(s.material); }) ||
+           std::any_of(scene.volumes().begin(), scene.volumes().end(), [&](const SceneVolume& v) {
+               return std::any_of(v.materials.begin(), v.materials.end(), dielectric);
+           });
+}
+
+}  // namespace
+
+PhotonIntegrator::PhotonIntegrator(const Scene& scene, const IntegratorDesc& desc)
+    : scene_(scene),
+      desc_(desc),
+      cameraMedium_(scene.volumeAt(scene.camera().position())),
+      source_(scene),
+      domains_(photonDomains(scene)),
+      volpath_(scene, desc.maxDepth) {
+    // The render's time limit runs from here (the render starts next): no photon pass traces past it.
+    if (desc.timeLimit > 0)
+        deadline_ = std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                                           std::chrono::duration<double>(desc.timeLimit));
+    // A pass stores about one photon per path, checked now; as a path can store up to max depth
+    // photons, their number is also bounded while they are traced (maxStored).
+    checkMemory(double(desc.photons) * sizeof(Photon),
+                std::to_string(desc.photons) + " photon paths per pass (a 32-byte photon each)");
+    Bounds3 all;
+    for (size_t d = 0; d < domains_.media.size(); ++d) {
+        const TetMesh& mesh = scene.volumes()[size_t(domains_.volume[d])].volume->mesh();
+        Bounds3 box;
+        for (const auto& triangle : domains_.boundary[d])
+            for (uint32_t v : triangle) box.extend(mesh.vertices[v]);
+        regionBoundaries_.push_back(std::make_unique<SurfaceBVH>(mesh.vertices, domains_.boundary[d]));
+        balls_.emplace_back(*regionBoundaries_.back());
+        MediumPhotons photons;
+        photons.maxRadius = float(kMaxRadiusFraction * box.diagonal());
+        photons.walked = eyeWalks(scene, domains_.volume[d], opticalSize(scene, domains_.media[d], box.diagonal()));
+        if (photons.walked) {  // the eye path walks the domain: a pass stores no photons there
+            storedMedia_.resize(scene.media().size(), 1);
+            for (int m : domains_.media[d]) storedMedia_[size_t(m)] = 0;
+        }
+        media_.push_back(std::move(photons));
+        all.extend(box);
+    }
+    for (const auto& s : scene.desc().surfaces) all.extend(bounds(s.mesh));
+    surfaceMaxRadius_ = float(kMaxRadiusFraction * (all.empty() ? 1.0 : all.diagonal()));
+    tracing_ =
+        hasDielectric(scene) || std::any_of(media_.begin(), media_.end(), [](const auto& m) { return !m.walked; });
+}
+
+PhotonIntegrator::~PhotonIntegrator() = default;
+
+std::vector<std::string> PhotonIntegrator::warnings() const {
+    std::vector<std::string> lines;
+    if (!hasDeltaLight(scene_)) return lines;
+    std::vector<bool> named(scene_.volumes().size(), false);
+    for (size_t d = 0; d < media_.size(); ++d) {
+        const auto v = size_t(domains_.volume[d]);
+        if (!media_[d].walked || !scene_.sealed(int(v)) || !scene_.volumes()[v].volume->scatters() || named[v])
+            continue;
+        named[v] = true;
+        lines.push_back(scene_.volumes()[v].name +
+                        " lies inside a dielectric boundary and is optically dense: photon mapping walks it as volpath "
+                        "does, which cannot carry light from a point, spot or distant light through that boundary, so "
+                        "that light is missing from it; an area light or the environment reaches it");
+    }
+    return lines;
+}
+
+double PhotonIntegrator::radiusScale(uint64_t pass, double alpha, int dim) {
+    double shrink = 1;
+    for (uint64_t i = 1; i <= pass; ++i) shrink *= (i + alpha) / (i + 1);
+    return std::pow(shrink, 1.0 / dim);
+}
+
+void PhotonIntegrator::beginPass(uint64_t pass, const std::atomic<bool>* cancel) {
+    if (!tracing_) return;
+    const auto start = std::chrono::steady_clock::now();
+    const auto maxStored = uint64_t(physicalMemory() / kBytesPerStoredPhoton);
+    TracedPhotons traced = tracePhotons(scene_, source_,
+                                        {desc_.photons, desc_.maxDepth, desc_.seed, pass, desc_.finalGather, maxStored,
+                                         deadline_, cancel, storedMedia_});
+    // k-NN balls are three-dimensional kernels, beam discs and surface discs two-dimensional.
+    auto scale = [&](int dim) { return radiusScale(pass, desc_.alpha > 0 ? desc_.alpha : balancedAlpha(dim), dim); };
+    volumeScale_ = scale(desc_.estimate == PhotonEstimate::Beam ? 2 : 3);
+    surfaceScale_ = scale(2);
+    size_t bytes = 0;
+    for (size_t m = 0; m < media_.size(); ++m) {
+        MediumPhotons& mp = media_[m];
+        mp.beams.reset();
+        mp.map.reset();
+        std::vector<Photon> photons;  // the domain's media's, in medium order
+        for (int medium : domains_.media[m]) {
+            auto& stored = traced.volume[size_t(medium)];
+            if (photons.empty())
+                photons = std::move(stored);
+            else
+                photons.insert(photons.end(), stored.begin(), stored.end());
+        }
+        stats_.volumePhotons += photons.size();
+        if (photons.empty()) continue;
+        mp.map = std::make_unique<PhotonMap>(std::move(photons));
+        if (desc_.estimate == PhotonEstimate::Beam) {
+            if (desc_.radius > 0)
+                mp.map->setRadii(float(desc_.radius * volumeScale_));
+            else
+                mp.map->assignRadii(desc_.k, mp.maxRadius, float(volumeScale_));
+            mp.beams = std::make_unique<PhotonDiscs>(mp.map->photons());
+            bytes += mp.beams->bytes();
+            const auto& photons = mp.map->photons();
+            mp.largestRadius = 0;
+            for (const Photon& photon : photons) mp.largestRadius = std::max(mp.largestRadius, double(photon.radius));
+            mp.invBallVolume.resize(photons.size());
+            tbb::parallel_for(tbb::blocked_range<size_t>(0, photons.size()), [&](const auto& range) {
+                for (size_t i = range.begin(); i != range.end(); ++i) {
+                    const double r = photons[i].radius;
+                    const double volume = desc_.boundaryCorrection
+                                              ? balls_[m].inside(glm::dvec3(photons[i].position), r)
+                                              : 4 * kPi / 3 * r * r * r;
+                    mp.invBallVolume[i] = float(1 / volume);
+                }
+            });
+            bytes += mp.invBallVolume.size() * sizeof(float);
+        }
+        bytes += mp.map->bytes();
+    }
+    stats_.surfacePhotons += traced.surface.size();
+    surface_ = traced.surface.empty() ? nullptr : std::make_unique<PhotonMap>(std::move(traced.surface));
+    if (surface_) bytes += surface_->bytes();
+    caustic_ = traced.caustic.empty() ? nullptr : std::make_unique<PhotonMap>(std::move(traced.caustic));
+    if (caustic_) bytes += caustic_->bytes();
+    stats_.paths += traced.paths;
+    stats_.energy.add(traced.energy);
+    stats_.bytes = std::max(stats_.bytes, bytes);
+    stats_.tracingSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+RGB PhotonIntegrator::radiance(const Ray& cameraRay, Rng& rng) const {
+    if (!tracing_) return volpath_.radiance(cameraRay, rng);
+    RGB L(0), beta(1);
+    Ray ray = cameraRay;
+    VolumeState state = cameraMedium_;
+    int depth = 0;
+    // After the final-gather bounce: emitters it reaches were counted by next-event estimation
+    // or as caustics, and its next diffuse surface ends the path.
+    bool gathering = false;
+    for (int crossings = 0; crossings < kMaxCrossings; ++crossings) {
+        auto hit = scene_.intersect(ray, state);
+        WalkExit exit;
+        if (state.inside()) {
+            const double tMax = hit ? hit->t : INFINITY;
+            const Volume& media = *scene_.volumes()[state.volume].volume;
+            const ColumnProfile column(media, ray, state.start, tMax);
+            // A walked domain on the stretch: walk the stretch (and all after) as volpath does, from
+            // its start. Restarted where the domain begins, on a tet's face, the walk would follow
+            // the rounded line from there, which can miss a tet the stretch only touches.
+            const auto& pieces = column.pieces();
+            if (std::any_of(pieces.begin(), pieces.end(),
+                            [&](const auto& p) { return media_[domainOf(state.volume, p.tet)].walked; })) {
+                L += beta * volpath_.continuePath(ray, state, depth, !gathering, rng);
+                break;
+            }
+            L += beta * inMedium(state.volume, ray, column, rng);
+            beta *= exp(-column.depth());
+            if (isBlack(beta)) break;
+            exit = column.exit();
+        }
+        const StretchEnd end = endStretch(scene_, hit, exit, ray, state);
+        if (end == StretchEnd::Crossed) continue;
+        if (end != StretchEnd::Surface) {
+            if (!gathering) L += beta * scene_.emitted(ray, hit ? &*hit : nullptr);
+            break;
+        }
+        const MaterialDesc& material = scene_.material(*hit);
+        if (!isSpecular(material)) {
+            const VolumeState here = scene_.afterHit(*hit, ray.d, state);
+            L += beta * sampleDirect(
+                            scene_, hit->p, rng, false,
+                            [&](const glm::dvec3& wi) {
+                                return Scattering{evaluateMaterial(material, ray.d, hit->n, wi), 0};
+                            },
+                            shadowRays(scene_, here, rng));
+            if (gathering || !desc_.finalGather) {
+                L += beta * caustics(surface_.get(), *hit, ray.d, material);
+                break;
+            }
+            L += beta * caustics(caustic_.get(), *hit, ray.d, material);
+            gathering = true;
+        }
+        if (++depth >= desc_.maxDepth) break;
+        const double u0 = rng.uniform(), u1 = rng.uniform();
+        const BsdfSample bs = sampleMaterial(material, ray.d, hit->n, {u0, u1});
+        beta *= bs.weight;
+        leaveSurface(scene_, *hit, bs.direction, ray, state);
+        const double keep = eyePathSurvival(beta, depth, rng);  // on long specular chains
+        if (keep == 0) break;
+        beta /= keep;
+    }
+    return L;
+}
+
+int PhotonIntegrator::domainOf(int v, uint32_t tet) const {
+    const SceneVolume& volume = scene_.volumes()[v];
+    return domains_.ofMedium[size_t(volume.regionMedium[size_t(volume.volume->mesh().region(tet))])];
+}
+
+RGB PhotonIntegrator::inMedium(int v, const Ray& ray, const ColumnProfile& column, Rng& rng) const {
+    const Volume& medium = *scene_.volumes()[v].volume;
+    const auto& pieces = column.pieces();
+    RGB L(0);
+    // Emission, piece by piece: the integral of emission * density * transmittance over a piece
+    // is emission * tr(piece start) * (1 - tr(piece)) / sigma_t.
+    for (size_t i = 0; i < pieces.size(); ++i) {
+        const Medium& optics = medium.at(pieces[i].tet);
+        if (!(maxComponent(optics.params.emission) > 0)) continue;
+        const double piece = (i + 1 < pieces.size() ? pieces[i + 1].columnIn : column.total()) - pieces[i].columnIn;
+        const RGB trIn = exp(-pieces[i].depthIn);
+        for (int c = 0; c < 3; ++c) {
+            const double sigma = optics.sigmaT[c];
+            L[c] += optics.params.emission[c] * trIn[c] * (sigma > 0 ? -std::expm1(-sigma * piece) / sigma : piece);
+        }
+    }
+    if (!medium.scatters() || pieces.empty()) return L;
+    if (desc_.estimate == PhotonEstimate::KnnMarch) return L + marchKnn(v, ray, column, rng);
+    return L + directAlong(v, ray, column, rng) + beamEstimate(v, ray, column);
+}
+
+RGB PhotonIntegrator::marchKnn(int v, const Ray& ray, const ColumnProfile& column, Rng& rng) const {
+    const Volume& medium = *scene_.volumes()[v].volume;
+    const double u = rng.uniform();
+    RGB L(0);
+    // Each exact piece is split into equal steps no longer than the step size, one jittered
+    // sample per step: the parity baseline's march, without its boundary error.
+    for (const ColumnProfile::Piece& piece : column.pieces()) {
+        const RGB sigmaS = medium.at(piece.tet).params.sigmaS;
+        if (isBlack(sigmaS)) continue;
+        const int n = std::max(1, int(std::ceil((piece.tOut - piece.tIn) / desc_.stepSize)));
+        const double h = (piece.tOut - piece.tIn) / n;
+        for (int i = 0; i < n; ++i) {
+            const double t = piece.tIn + (i + u) * h;
+            const glm::dvec3 p = ray.at(t);
+            const RGB scattered =
+                sigmaS * medium.density(piece.tet, p) * directInMedium(scene_, v, p, ray.d, piece.tet, rng) +
+                knnEstimate(v, piece.tet, p, ray.d);
+            L += column.transmittance(t) * h * scattered;
+        }
+    }
+    return L;
+}
+
+double PhotonIntegrator::gather(const PhotonMap& map, const glm::dvec3& p, double scale, float maxRadius,
+                                std::vector<Neighbour>& near) const {
+    if (desc_.radius > 0) {
+        const double r = desc_.radius * scale;
+        map.withinRadius(glm::vec3(p), float(r), near);
+        return r;
+    }
+    map.knn(glm::vec3(p), desc_.k, near, maxRadius * maxRadius);
+    // Fewer than k within reach: the ball is the largest allowed.
+    return scale * (near.size() == size_t(desc_.k) ? std::sqrt(double(near.back().distance2)) : double(maxRadius));
+}
+
+RGB PhotonIntegrator::knnEstimate(int v, uint32_t tet, const glm::dvec3& p, const glm::dvec3& d) const {
+    const int m = domainOf(v, tet);
+    const MediumPhotons& mp = media_[m];
+    if (!mp.map) return RGB(0);
+    thread_local std::vector<Neighbour> near;
+    const double r = gather(*mp.map, p, volumeScale_, mp.maxRadius, near);
+    const HenyeyGreenstein& phase = scene_.volumes()[v].volume->at(tet).phase;
+    const auto& photons = mp.map->photons();
+    RGB sum(0);
+    for (const Neighbour& n : near) {
+        if (n.distance2 > r * r) break;  // nearest first
+        const Photon& photon = photons[n.index];
+        // Light travelled along the photon's direction and leaves towards the eye (-d).
+        sum += RGB(photon.power) * phase.eval(-glm::dot(glm::dvec3(unpackDirection(photon.direction)), d));
+    }
+    if (isBlack(sum)) return sum;
+    const double volume = desc_.boundaryCorrection ? balls_[m].inside(p, r) : 4 * kPi / 3 * r * r * r;
+    return sum / volume;
+}
+
+RGB PhotonIntegrator::beamEstimate(int v, const Ray& ray, const ColumnProfile& column) const {
+    const auto& pieces = column.pieces();
+    RGB L(0);
+    // Each run of pieces in one domain sees that domain's photons only. Each photon's ball
+    // kernel is integrated along the run: the transmittance integrated over the ball's chord
+    // within [begin, end], over the ball's volume (inside its domain, with boundary correction).
+    // Unlike the disc kernel 1 / (pi r^2), which assumes the whole chord lies in the medium, this
+    // stays right where the ball reaches past the run's ends, however large the radius, and
+    // where the transmittance changes within the ball.
+    for (size_t first = 0, last; first < pieces.size(); first = last) {
+        const int m = domainOf(v, pieces[first].tet);
+        for (last = first + 1; last < pieces.size() && domainOf(v, pieces[last].tet) == m;) ++last;
+        const MediumPhotons& mp = media_[m];
+        if (!mp.beams) continue;
+        const HenyeyGreenstein& phase = scene_.volumes()[v].volume->at(pieces[first].tet).phase;
+        const auto& photons = mp.map->photons();
+        const double begin = pieces[first].tIn, end = pieces[last - 1].tOut;
+        mp.beams->query(
+            ray.o, ray.d, begin - mp.largestRadius, end + mp.largestRadius,
+            [&](uint32_t i, double t, double distance2) {
+                const Photon& photon = photons[i];
+                const double half = std::sqrt(std::max(0.0, double(photon.radius) * photon.radius - distance2));
+                const double a = std::max(begin, t - half), b = std::min(end, t + half);
+                if (b <= a) return;
+                const double f = phase.eval(-glm::dot(glm::dvec3(unpackDirection(photon.direction)), ray.d));
+                L += column.transmitted(a, b) * RGB(photon.power) * (f * mp.invBallVolume[i]);
+            });
+    }
+    return L;
+}
+
+RGB PhotonIntegrator::directAlong(int v, const Ray& ray, const ColumnProfile& column, Rng& rng) const {
+    if (scene_.lights().empty() || scene_.sealed(v)) return RGB(0);
+    const Volume& medium = *scene_.volumes()[v].volume;
+    // The distance follows one channel's transmittance, truncated to the stretch; the channels
+    // with extinction share the sample by one-sample MIS, so no channel's weight blows up.
+    const RGB depth = column.depth();
+    int channels[3], count = 0;
+    for (int c = 0; c < 3; ++c)
+        if (depth[c] > 0) channels[count++] = c;
+    if (count == 0) return RGB(0);
+    const RGB trEnd = exp(-depth);
+    const int hero = channels[std::min(count - 1, int(rng.uniform() * count))];
+    // Read off the column profile the eye stretch already walked.
+    const auto event = column.atDepth(hero, -std::log1p(-rng.uniform() * (1 - trEnd[hero])));
+    if (!event) return RGB(0);
+    const Medium& optics = medium.at(event->tet);
+    const RGB tr = column.transmittance(event->t);
+    double pdf = 0;  // mean over the channels of sigma_t tr / (1 - tr(end)), per unit column
+    for (int i = 0; i < count; ++i) {
+        const int c = channels[i];
+        pdf += optics.sigmaT[c] * tr[c] / (1 - trEnd[c]) / count;
+    }
+    const RGB weight = tr * optics.params.sigmaS / pdf;
+    return weight * directInMedium(scene_, v, ray.at(event->t), ray.d, event->tet, rng);
+}
+
+RGB PhotonIntegrator::caustics(const PhotonMap* map, const Intersection& hit, const glm::dvec3& d,
+                               const MaterialDesc& material) const {
+    if (!map) return RGB(0);
+    thread_local std::vector<Neighbour> near;
+    const double r = gather(*map, hit.p, surfaceScale_, surfaceMaxRadius_, near);
+    const double side = glm::dot(d, hit.n);
+    RGB sum(0);
+    for (const Neighbour& n : near) {
+        if (n.distance2 > r * r) break;
+        const Photon& photon = map->photons()[n.index];
+        // Only photons that arrived on the side the eye sees.
+        if (glm::dot(glm::dvec3(unpackDirection(photon.direction)), hit.n) * side <= 0) continue;
+        // Cone filter (Jensen 1996): weight 1 - dist / r, normalised by pi r^2 / 3.
+        sum += RGB(photon.power) * (1 - std::sqrt(double(n.distance2)) / r);
+    }
+    return material.reflectance / kPi * sum * (3 / (kPi * r * r));
+}
+
+}  // namespace tetglow

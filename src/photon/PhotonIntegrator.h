@@ -1,0 +1,117 @@
+// Volumetric photon mapping (Jensen and Christensen 1998), progressive (Knaus and Zwicker 2011).
+// Each pass traces a fresh photon set (PhotonTracer) and takes one eye sample per pixel; the
+// image is the mean of the passes while the radii shrink, so the error keeps falling with time.
+//
+// Eye rays follow specular chains and never scatter in a medium. Along each stretch of a volume
+// (through its regions, up to where it leaves or meets a dielectric interface) the integrator
+// adds, against the exact transmittance of the tet walk:
+//   - emission, integrated in closed form;
+//   - single scattering by next-event estimation;
+//   - multiple scattering (and light that reached the medium through glass) from the volume
+//     photons, by the parity baseline's ray march with a k-NN lookup per step (`knn-march`, optionally
+//     dividing by the part of the ball inside the medium) or by the beam radiance estimate
+//     (`beam`: every photon ball the ray crosses, integrated exactly along the ray, no step).
+// Photons are kept per medium (region), pooled over regions of one same medium that meet
+// without an interface (PhotonDomains): a photon is only ever found from the domain that
+// scattered it, and a kernel's volume is its volume inside that domain (its boundary and the
+// other media's and dielectric interfaces stop it). A diffuse surface gets direct light by next-event estimation and
+// caustics from the surface photons with a cone filter; with final gathering (final_gather), the
+// first diffuse surface of an eye path takes only the caustic photons (from a light by specular
+// events alone) and gathers the rest by one more bounce, whose next diffuse surface takes all
+// its photons (Jensen's final gather: the kernel's blur stays off what the eye sees directly).
+#pragma once
+#include <memory>
+#include <vector>
+
+#include "integrators/Integrator.h"
+#include "integrators/VolPathIntegrator.h"
+#include "photon/ClippedBall.h"
+#include "photon/ColumnProfile.h"
+#include "photon/PhotonDiscs.h"
+#include "photon/PhotonDomains.h"
+#include "photon/PhotonMap.h"
+#include "photon/PhotonTracer.h"
+
+namespace tetglow {
+
+struct PhotonStats {
+    double tracingSeconds = 0;                                  // photon tracing and map building, all passes
+    uint64_t paths = 0, volumePhotons = 0, surfacePhotons = 0;  // all passes
+    size_t bytes = 0;                                           // the largest pass's maps
+    EnergyBalance energy;                                       // all passes
+};
+
+class PhotonIntegrator : public Integrator {
+public:
+    PhotonIntegrator(const Scene& scene, const IntegratorDesc& desc);
+    ~PhotonIntegrator() override;
+    void beginPass(uint64_t pass, const std::atomic<bool>* cancel = nullptr) override;
+    RGB radiance(const Ray& ray, Rng& rng) const override;
+    std::vector<std::string> warnings() const override;
+    const PhotonStats& stats() const { return stats_; }
+    // Whether passes trace photons. They do not when the eye path walks every medium and no
+    // surface or medium boundary is a dielectric: the only photons left would be the diffuse
+    // surfaces', whose light paths with next-event estimation carry without the kernel's bias
+    // and, measured, with less error at equal time. Each eye path is then volpath's.
+    bool tracesPhotons() const { return tracing_; }
+
+    // Radius factor of pass `pass` (from 0) for a kernel of dimension `dim`: the radius^dim
+    // shrinks by (i + alpha) / (i + 1) from pass i to i + 1.
+    static double radiusScale(uint64_t pass, double alpha, int dim);
+    // The alpha of a kernel of dimension `dim` when the scene sets none: with it the variance
+    // of the mean of N passes falls as N^-alpha and the kernel's squared bias (radius^4) as
+    // N^(4 (alpha - 1) / dim), the same rate for 4 / (dim + 4) (Kaplanyan and Dachsbacher
+    // 2013): 2/3 for discs, 4/7 for balls. A larger alpha leaves bias to dominate the error.
+    static double balancedAlpha(int dim) { return 4.0 / (dim + 4); }
+
+private:
+    struct MediumPhotons {
+        std::unique_ptr<PhotonMap> map;      // null when the pass stored none
+        std::unique_ptr<PhotonDiscs> beams;  // beam estimate only
+        // Beam estimate: 1 / the volume of each photon's ball, only the part inside the medium
+        // with boundary correction, so that the kernel integrates to 1 over the medium.
+        std::vector<float> invBallVolume;
+        double largestRadius = 0;  // of this pass's photons: how far past a stretch balls reach
+        float maxRadius = 0;
+        bool walked = false;  // no photons: the eye path walks it as volpath does (see eyeWalks)
+    };
+
+    // Light scattered and emitted towards ray.o along the stretch `column` of volume v.
+    RGB inMedium(int v, const Ray& ray, const ColumnProfile& column, Rng& rng) const;
+    RGB marchKnn(int v, const Ray& ray, const ColumnProfile& column, Rng& rng) const;
+    RGB beamEstimate(int v, const Ray& ray, const ColumnProfile& column) const;
+    // Single scattering at a distance drawn along the stretch (one-sample spectral MIS), read off
+    // its column profile.
+    RGB directAlong(int v, const Ray& ray, const ColumnProfile& column, Rng& rng) const;
+    // The photons of `map` around p, nearest first: those within the fixed radius times `scale`,
+    // or the k nearest within maxRadius. Returns the gather radius: the fixed one, or `scale`
+    // times the k-th distance (maxRadius when fewer than k are within reach).
+    double gather(const PhotonMap& map, const glm::dvec3& p, double scale, float maxRadius,
+                  std::vector<Neighbour>& near) const;
+    // sigma_s times in-scattered radiance from the volume photons at p in tet `tet` of volume v, seen along d.
+    RGB knnEstimate(int v, uint32_t tet, const glm::dvec3& p, const glm::dvec3& d) const;
+    int domainOf(int v, uint32_t tet) const;  // the photon domain whose region holds the tet
+    // Surface photons of `map` around the hit, cone-filtered, reflected towards -d.
+    RGB caustics(const PhotonMap* map, const Intersection& hit, const glm::dvec3& d,
+                 const MaterialDesc& material) const;
+
+    const Scene& scene_;
+    IntegratorDesc desc_;
+    VolumeState cameraMedium_;
+    PhotonSource source_;
+    PhotonDomains domains_;
+    VolPathIntegrator volpath_;                                  // the eye path's walk through the domains it walks
+    std::vector<std::unique_ptr<SurfaceBVH>> regionBoundaries_;  // per photon domain: its boundary's triangles
+    std::vector<ClippedBall> balls_;                             // per photon domain, over its boundary
+    std::vector<MediumPhotons> media_;                           // per photon domain
+    std::vector<char> storedMedia_;       // per scene medium, whether a pass stores its photons (PhotonTracingOptions)
+    std::unique_ptr<PhotonMap> surface_;  // every surface photon not straight from its light
+    std::unique_ptr<PhotonMap> caustic_;  // those from a light by specular events only (final gathering)
+    float surfaceMaxRadius_ = 0;
+    bool tracing_ = true;                                            // see tracesPhotons()
+    double volumeScale_ = 1, surfaceScale_ = 1;                      // this pass's radius factors
+    std::optional<std::chrono::steady_clock::time_point> deadline_;  // of the time limit, if any
+    PhotonStats stats_;
+};
+
+}  // namespace tetglow
