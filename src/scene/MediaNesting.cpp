@@ -16,11 +16,11 @@ MediaNesting nestMedia(const std::vector<MediumDesc>& media) {
     }
     const bool strict =
         std::any_of(media.begin(), media.end(), [](const MediumDesc& m) { return m.tetOptions.strict; });
-    const VolumeBoundary complex = validatedComplex(std::move(surfaces), names, strict);
+    const VolumeBoundary boundary = validatedBoundary(std::move(surfaces), names, strict);
     std::set<std::pair<int32_t, int32_t>> touching;
-    for (const auto& [behind, front] : complex.sides)
+    for (const auto& [behind, front] : boundary.sides)
         if (behind >= 0 && front >= 0) touching.insert(std::minmax(behind, front));
-    return {complex.parent, {touching.begin(), touching.end()}};
+    return {boundary.parent, {touching.begin(), touching.end()}};
 }
 
 }  // namespace tetglow

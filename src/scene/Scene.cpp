@@ -61,23 +61,25 @@ void Scene::setCoefficients(SceneVolume& volume) const {
 void Scene::buildVolumes() {
     const std::vector<MediumDesc>& media = desc_.media;
     media_.resize(media.size());
-    for (const std::vector<int>& group : findVolumes(media, desc_.nesting.get())) {
+    for (const std::vector<int>& members : findVolumes(media, desc_.nesting.get())) {
         SceneVolume v;
         std::vector<TriangleMesh> surfaces;
         std::vector<std::string> names;
-        for (int i : group) {
+        for (int i : members) {
             surfaces.push_back(media[i].boundary);
             names.push_back(media[i].name);
             v.name += (v.name.empty() ? "" : " + ") + media[i].name;
             media_[i] = {media[i].name, int(volumes_.size()), int32_t(v.regionMedium.size())};
             v.regionMedium.push_back(i);
         }
-        // One medium alone names itself in its errors (as the loader names it), a group each of its meshes.
+        // One medium alone names itself in its errors (as the loader names it), a volume of several media each by its
+        // mesh.
         try {
-            TetMesh mesh = tetrahedralize(std::move(surfaces), group.size() == 1 ? std::vector<std::string>{""} : names,
-                                          volumeTetOptions(media, group), &v.stats, &v.repairs);
+            TetMesh mesh =
+                tetrahedralize(std::move(surfaces), members.size() == 1 ? std::vector<std::string>{""} : names,
+                               volumeTetOptions(media, members), &v.stats, &v.repairs);
             v.steinerPoints = mesh.vertices.size() - mesh.surfaceVertexCount;
-            interfaceMaterials(mesh, media, group, v.triangleMaterial, v.materials);
+            interfaceMaterials(mesh, media, members, v.triangleMaterial, v.materials);
             std::vector<bool> stops;
             for (size_t s = 0; s < mesh.surface.size(); ++s)
                 stops.push_back(mesh.surfaceRegions[s][1] >= 0 &&
@@ -85,8 +87,8 @@ void Scene::buildVolumes() {
             v.volume = std::make_unique<Volume>(MediumParams{}, std::move(mesh));
             v.volume->setStops(std::move(stops));
         } catch (const InputError& e) {
-            if (group.size() > 1) throw;
-            throw InputError(media[group[0]].name + ": " + e.what());
+            if (members.size() > 1) throw;
+            throw InputError(media[members[0]].name + ": " + e.what());
         }
         setCoefficients(v);
         volumes_.push_back(std::move(v));

@@ -28,25 +28,25 @@ std::vector<std::vector<int>> findVolumes(const std::vector<MediumDesc>& media, 
     }
     for (int i = 0; i < n; ++i)
         if (media[i].cavity && parent[i] < 0) throw InputError(media[i].name + ": a cavity must lie inside a medium");
-    std::vector<std::vector<int>> groups;
-    std::vector<int> groupOf(n, -1);
+    std::vector<std::vector<int>> volumes;
+    std::vector<int> volumeOf(n, -1);
     for (int i = 0; i < n; ++i) {
-        int& g = groupOf[find(i)];
+        int& g = volumeOf[find(i)];
         if (g < 0) {
-            g = int(groups.size());
-            groups.emplace_back();
+            g = int(volumes.size());
+            volumes.emplace_back();
         }
-        groups[g].push_back(i);
+        volumes[g].push_back(i);
     }
-    return groups;
+    return volumes;
 }
 
-TetOptions volumeTetOptions(const std::vector<MediumDesc>& media, const std::vector<int>& group) {
-    TetOptions options = media[group[0]].tetOptions;
+TetOptions volumeTetOptions(const std::vector<MediumDesc>& media, const std::vector<int>& members) {
+    TetOptions options = media[members[0]].tetOptions;
     const auto finest = [](double& a, double b) {
         if (b > 0 && (a == 0 || b < a)) a = b;  // 0 asks for nothing
     };
-    for (int i : group) {
+    for (int i : members) {
         finest(options.maxVolume, media[i].tetOptions.maxVolume);
         finest(options.radiusEdgeRatio, media[i].tetOptions.radiusEdgeRatio);
         options.strict = options.strict || media[i].tetOptions.strict;
@@ -54,11 +54,11 @@ TetOptions volumeTetOptions(const std::vector<MediumDesc>& media, const std::vec
     return options;
 }
 
-void interfaceMaterials(const TetMesh& mesh, const std::vector<MediumDesc>& media, const std::vector<int>& group,
+void interfaceMaterials(const TetMesh& mesh, const std::vector<MediumDesc>& media, const std::vector<int>& members,
                         std::vector<uint32_t>& triangleMaterial, std::vector<MaterialDesc>& materials) {
     const auto ior = [&](int32_t r) {
         for (; r >= 0; r = mesh.regionParent[size_t(r)]) {
-            const MaterialDesc& b = media[group[size_t(r)]].boundaryMaterial;
+            const MaterialDesc& b = media[members[size_t(r)]].boundaryMaterial;
             if (b.type == MaterialType::Dielectric) return b.ior;
         }
         return 1.0;

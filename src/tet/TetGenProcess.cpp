@@ -26,8 +26,8 @@ std::string tetgenFailure(int code) {
 }
 
 // In the child: TetGen's tets as bytes; TetGen's thrown error codes become InputErrors.
-std::string runTetGen(const VolumeBoundary& complex, const std::string& switches) {
-    const TriangleMesh& mesh = complex.surface;
+std::string runTetGen(const VolumeBoundary& boundary, const std::string& switches) {
+    const TriangleMesh& mesh = boundary.surface;
     int devnull = ::open("/dev/null", O_WRONLY);  // TetGen prints to stdout even when quiet
     if (devnull >= 0) ::dup2(devnull, STDOUT_FILENO);
     tetgenio in, out;
@@ -48,10 +48,10 @@ std::string runTetGen(const VolumeBoundary& complex, const std::string& switches
         facet.polygonlist[0].vertexlist = new int[3];
         for (int k = 0; k < 3; ++k) facet.polygonlist[0].vertexlist[k] = int(mesh.triangles[f][k]);
     }
-    in.numberofregions = int(complex.insidePoints.size());
-    in.regionlist = complex.insidePoints.empty() ? nullptr : new REAL[5 * complex.insidePoints.size()];
-    for (size_t r = 0; r < complex.insidePoints.size(); ++r) {
-        for (int k = 0; k < 3; ++k) in.regionlist[5 * r + k] = complex.insidePoints[r][k];
+    in.numberofregions = int(boundary.insidePoints.size());
+    in.regionlist = boundary.insidePoints.empty() ? nullptr : new REAL[5 * boundary.insidePoints.size()];
+    for (size_t r = 0; r < boundary.insidePoints.size(); ++r) {
+        for (int k = 0; k < 3; ++k) in.regionlist[5 * r + k] = boundary.insidePoints[r][k];
         in.regionlist[5 * r + 3] = double(r + 1);  // TetGen numbers the cells no inside point reaches itself
         in.regionlist[5 * r + 4] = -1;             // no volume bound of its own
     }
@@ -78,15 +78,15 @@ std::string runTetGen(const VolumeBoundary& complex, const std::string& switches
 
 }  // namespace
 
-RawTets runIsolated(const VolumeBoundary& complex, const std::string& switches) {
+RawTets runIsolated(const VolumeBoundary& boundary, const std::string& switches) {
     // TetGen 1.5's Hilbert sort loops without end on an infinite or NaN point.
-    for (const glm::dvec3& p : complex.surface.positions)
+    for (const glm::dvec3& p : boundary.surface.positions)
         if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
             throw std::logic_error("a point of TetGen's input is not finite");
     std::string answer;
     try {
         answer =
-            runInChild([&] { return runTetGen(complex, switches); }, meshingLimits(complex.surface.triangles.size()));
+            runInChild([&] { return runTetGen(boundary, switches); }, meshingLimits(boundary.surface.triangles.size()));
     } catch (const ChildFailure& e) {
         if (e.kind == ChildFailure::Kind::Signal)
             throw TetGenCrash("TetGen crashed (" + e.detail +

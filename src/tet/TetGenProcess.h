@@ -28,8 +28,8 @@ struct TetGenCrash : InputError {
     using InputError::InputError;
 };
 
-// TetGen on complex.surface (and its inside points, with -A) under `switches`, in a forked child.
+// TetGen on boundary.surface (and its inside points, with -A) under `switches`, in a forked child.
 // Throws TetGenCrash when it dies of a signal, InputError for any other failure.
-RawTets runIsolated(const VolumeBoundary& complex, const std::string& switches);
+RawTets runIsolated(const VolumeBoundary& boundary, const std::string& switches);
 
 }  // namespace tetglow

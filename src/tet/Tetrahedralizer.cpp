@@ -67,20 +67,20 @@ struct SideOfFace {
     bool behind;
     int region;
 };
-std::string inconsistentRegions(const VolumeBoundary& complex, const std::vector<std::string>& names,
+std::string inconsistentRegions(const VolumeBoundary& boundary, const std::vector<std::string>& names,
                                 const SideOfFace& a, const SideOfFace& b) {
     const auto mesh = [&](int surface) {
         if (size_t(surface) < names.size() && !names[size_t(surface)].empty()) return names[size_t(surface)];
         return names.size() == 1 ? std::string("the mesh") : "mesh " + std::to_string(surface);
     };
     const auto side = [&](const SideOfFace& f) {
-        const TriangleMesh& m = complex.surface;
+        const TriangleMesh& m = boundary.surface;
         const glm::dvec3 centre = (m.corner(f.triangle, 0) + m.corner(f.triangle, 1) + m.corner(f.triangle, 2)) / 3.0;
         return (f.region < 0 ? std::string("outside every mesh") : "inside " + mesh(f.region)) +
                (f.behind ? " behind the face at " : " in front of the face at ") + formatPosition(centre) + " of " +
-               mesh(int(complex.source[f.triangle][0]));
+               mesh(int(boundary.source[f.triangle][0]));
     };
-    const std::string name = names.size() == 1 ? names[0] : mesh(int(complex.source[b.triangle][0]));
+    const std::string name = names.size() == 1 ? names[0] : mesh(int(boundary.source[b.triangle][0]));
     return (name.empty() ? "" : name + ": ") +
            "the surfaces do not separate the regions consistently: one space between them is " + side(a) + " and " +
            side(b) + ", so one of these faces lies inside a solid or two surfaces meet without sharing faces";
@@ -93,9 +93,9 @@ std::string inconsistentRegions(const VolumeBoundary& complex, const std::vector
 // are removed. With -A, TetGen's attribute of each kept tet must agree: the inside point's region + 1,
 // or a number of TetGen's own (0 or above the regions') for a cell that no inside point reaches, such as
 // a second shell of one mesh.
-TetMesh assemble(const VolumeBoundary& complex, const RawTets& raw, const std::vector<std::string>& names) {
-    const TriangleMesh& surface = complex.surface;
-    const size_t nv = raw.points.size() / 3, nt = raw.tets.size() / 4, nr = complex.regionCount();
+TetMesh assemble(const VolumeBoundary& boundary, const RawTets& raw, const std::vector<std::string>& names) {
+    const TriangleMesh& surface = boundary.surface;
+    const size_t nv = raw.points.size() / 3, nt = raw.tets.size() / 4, nr = boundary.regionCount();
     if (nt == 0) throw InputError("TetGen produced no tetrahedra (is the mesh closed?)");
     if (nv < surface.positions.size()) throw InputError("TetGen dropped input vertices");
     if (!raw.attributes.empty() && raw.attributes.size() != nt) throw InputError("TetGen lost the region attributes");
@@ -161,12 +161,12 @@ TetMesh assemble(const VolumeBoundary& complex, const RawTets& raw, const std::v
                 if (onSurface[t][j] >= 0) {
                     const auto s = uint32_t(onSurface[t][j]);
                     const bool back = behind(t, j);
-                    const SideOfFace side{s, back, complex.sides[s][back ? 0 : 1]};
+                    const SideOfFace side{s, back, boundary.sides[s][back ? 0 : 1]};
                     if (cellRegion[id] == kUndecided) {
                         cellRegion[id] = side.region;
                         decidedBy[id] = side;
                     } else if (cellRegion[id] != side.region)
-                        throw InputError(inconsistentRegions(complex, names, decidedBy[id], side));
+                        throw InputError(inconsistentRegions(boundary, names, decidedBy[id], side));
                 } else if (nbr[t][j] >= 0 && cell[nbr[t][j]] < 0) {
                     cell[nbr[t][j]] = id;
                     stack.push_back(uint32_t(nbr[t][j]));
@@ -218,12 +218,12 @@ TetMesh assemble(const VolumeBoundary& complex, const RawTets& raw, const std::v
         ++m.regionTets[size_t(r) + 1];
     }
     for (size_t r = 0; r < nr; ++r) m.regionTets[r + 1] += m.regionTets[r];
-    m.regionParent = complex.parent;
+    m.regionParent = boundary.parent;
     m.adjacency.resize(m.tets.size());
     m.surface = surface.triangles;
     m.surfaceVertexCount = surface.positions.size();
-    m.surfaceRegions = complex.sides;
-    m.surfaceSource = complex.source;
+    m.surfaceRegions = boundary.sides;
+    m.surfaceSource = boundary.source;
     m.surfaceFace.assign(surface.triangles.size(), UINT32_MAX);
     m.surfaceFaceFront.assign(surface.triangles.size(), UINT32_MAX);
     for (size_t t = 0; t < nt; ++t) {
@@ -249,22 +249,22 @@ TetMesh assemble(const VolumeBoundary& complex, const RawTets& raw, const std::v
         }
     }
     for (size_t s = 0; s < m.surfaceFace.size(); ++s)
-        if (m.surfaceFace[s] == UINT32_MAX || (m.surfaceFaceFront[s] == UINT32_MAX) != (complex.sides[s][1] < 0))
+        if (m.surfaceFace[s] == UINT32_MAX || (m.surfaceFaceFront[s] == UINT32_MAX) != (boundary.sides[s][1] < 0))
             throw InputError("surface triangle " + std::to_string(s) + " is not a tet face on each side with a region");
     return m;
 }
 
 // The whole set of surfaces: TetGen's input (merged surface, inside points) and how it is read back
 // (the sides of every triangle, the nesting).
-uint64_t cacheKey(const VolumeBoundary& complex, const std::string& switches) {
-    const TriangleMesh& mesh = complex.surface;
+uint64_t cacheKey(const VolumeBoundary& boundary, const std::string& switches) {
+    const TriangleMesh& mesh = boundary.surface;
     uint64_t h = kFnvOffset;
     h = fnv1a(h, mesh.positions.data(), mesh.positions.size() * sizeof(mesh.positions[0]));
     h = fnv1a(h, mesh.triangles.data(), mesh.triangles.size() * sizeof(mesh.triangles[0]));
-    h = fnv1a(h, complex.sides.data(), complex.sides.size() * sizeof(complex.sides[0]));
-    h = fnv1a(h, complex.source.data(), complex.source.size() * sizeof(complex.source[0]));
-    h = fnv1a(h, complex.parent.data(), complex.parent.size() * sizeof(complex.parent[0]));
-    h = fnv1a(h, complex.insidePoints.data(), complex.insidePoints.size() * sizeof(complex.insidePoints[0]));
+    h = fnv1a(h, boundary.sides.data(), boundary.sides.size() * sizeof(boundary.sides[0]));
+    h = fnv1a(h, boundary.source.data(), boundary.source.size() * sizeof(boundary.source[0]));
+    h = fnv1a(h, boundary.parent.data(), boundary.parent.size() * sizeof(boundary.parent[0]));
+    h = fnv1a(h, boundary.insidePoints.data(), boundary.insidePoints.size() * sizeof(boundary.insidePoints[0]));
     h = fnv1a(h, switches.data(), switches.size());
     return h;
 }
@@ -300,8 +300,8 @@ void checkTetCount(double volume, double maxVolume) {
 }
 
 TetMesh tetrahedralizeUnchecked(const TriangleMesh& surface, const std::string& switches) {
-    const VolumeBoundary complex = singleRegion(surface);
-    return assemble(complex, runIsolated(complex, switches), {""});
+    const VolumeBoundary boundary = singleRegion(surface);
+    return assemble(boundary, runIsolated(boundary, switches), {""});
 }
 
 TetMesh tetrahedralize(std::vector<TriangleMesh> surfaces, const std::vector<std::string>& names,
@@ -320,10 +320,10 @@ TetMesh tetrahedralize(std::vector<TriangleMesh> surfaces, const std::vector<std
         }
     }
     checkTetCount(largestVolume, options.maxVolume);
-    VolumeBoundary complex = buildRegionComplex(surfaces, names);
-    placeInsidePoints(complex, surfaces, names);
+    VolumeBoundary boundary = buildRegionComplex(surfaces, names);
+    placeInsidePoints(boundary, surfaces, names);
     const std::string switches = options.switches();
-    const uint64_t key = cacheKey(complex, switches);
+    const uint64_t key = cacheKey(boundary, switches);
     TetStats local;
     std::filesystem::path file;
     if (options.useCache) {
@@ -341,9 +341,9 @@ TetMesh tetrahedralize(std::vector<TriangleMesh> surfaces, const std::vector<std
     std::string problem;
     CacheRead cached = file.empty() ? CacheRead::Absent : readTetMesh(mesh, key, file.string(), &problem);
     const auto sameSurface = [&] {
-        const auto& p = complex.surface.positions;
+        const auto& p = boundary.surface.positions;
         return mesh.surfaceVertexCount == p.size() && std::equal(p.begin(), p.end(), mesh.vertices.begin()) &&
-               mesh.surface == complex.surface.triangles && mesh.surfaceRegions == complex.sides;
+               mesh.surface == boundary.surface.triangles && mesh.surfaceRegions == boundary.sides;
     };
     if (cached == CacheRead::Used && !sameSurface()) {  // a key collision
         cached = CacheRead::Damaged;
@@ -358,7 +358,7 @@ TetMesh tetrahedralize(std::vector<TriangleMesh> surfaces, const std::vector<std
                 file.string() + ": damaged tet cache entry (" + problem + "); not used, tetrahedralizing again";
             std::fprintf(stderr, "tetglow: warning: %s\n", local.cacheWarning.c_str());
         }
-        mesh = assemble(complex, runIsolated(complex, switches), names);
+        mesh = assemble(boundary, runIsolated(boundary, switches), names);
         if (!file.empty()) {
             std::error_code ec;
             std::filesystem::create_directories(file.parent_path(), ec);

@@ -29,7 +29,7 @@ bool sameWinding(const std::array<uint32_t, 3>& a, const std::array<uint32_t, 3>
     return false;
 }
 
-// A surface holding a triangle of the complex: its own index of the triangle, and whether it
+// A surface holding a triangle of the boundary: its own index of the triangle, and whether it
 // winds it the other way.
 struct Holder {
     uint32_t surface, triangle;
@@ -201,8 +201,8 @@ VolumeBoundary buildRegionComplex(const std::vector<TriangleMesh>& surfaces, con
     return c;
 }
 
-VolumeBoundary validatedComplex(std::vector<TriangleMesh> surfaces, const std::vector<std::string>& names,
-                                bool strict) {
+VolumeBoundary validatedBoundary(std::vector<TriangleMesh> surfaces, const std::vector<std::string>& names,
+                                 bool strict) {
     for (size_t i = 0; i < surfaces.size(); ++i) {
         try {
             prepareSurface(surfaces[i], strict);
@@ -213,14 +213,14 @@ VolumeBoundary validatedComplex(std::vector<TriangleMesh> surfaces, const std::v
     return buildRegionComplex(surfaces, names);
 }
 
-void placeInsidePoints(VolumeBoundary& complex, const std::vector<TriangleMesh>& surfaces,
+void placeInsidePoints(VolumeBoundary& boundary, const std::vector<TriangleMesh>& surfaces,
                        const std::vector<std::string>& names) {
     std::vector<std::vector<const TriangleMesh*>> children(surfaces.size());
     for (size_t i = 0; i < surfaces.size(); ++i)
-        if (complex.parent[i] >= 0) children[complex.parent[i]].push_back(&surfaces[i]);
-    complex.insidePoints.clear();
+        if (boundary.parent[i] >= 0) children[boundary.parent[i]].push_back(&surfaces[i]);
+    boundary.insidePoints.clear();
     for (size_t i = 0; i < surfaces.size(); ++i)
-        complex.insidePoints.push_back(placeInsidePoint(surfaces[i], children[i], names[i]));
+        boundary.insidePoints.push_back(placeInsidePoint(surfaces[i], children[i], names[i]));
 }
 
 }  // namespace tetglow

@@ -34,13 +34,13 @@ VolumeBoundary singleRegion(const TriangleMesh& surface);
 VolumeBoundary buildRegionComplex(const std::vector<TriangleMesh>& surfaces, const std::vector<std::string>& names);
 
 // Validates and repairs each surface (prepareSurface; errors prefixed with its name), then
-// builds their complex as above.
-VolumeBoundary validatedComplex(std::vector<TriangleMesh> surfaces, const std::vector<std::string>& names,
-                                bool strict = false);
+// builds their boundary as above.
+VolumeBoundary validatedBoundary(std::vector<TriangleMesh> surfaces, const std::vector<std::string>& names,
+                                 bool strict = false);
 
-// Fills complex.insidePoints; the surfaces and names are the ones it was built from. Throws InputError
+// Fills boundary.insidePoints; the surfaces and names are the ones it was built from. Throws InputError
 // naming a region that its children leave no room.
-void placeInsidePoints(VolumeBoundary& complex, const std::vector<TriangleMesh>& surfaces,
+void placeInsidePoints(VolumeBoundary& boundary, const std::vector<TriangleMesh>& surfaces,
                        const std::vector<std::string>& names);
 
 }  // namespace tetglow
