@@ -68,12 +68,12 @@ TEST(ClearanceGrid, ShadowRouletteDecidedInTheClearBallKeepsTheTransmittance) {
     const Ray ray{{0.02, -0.01, 0.03}, glm::normalize(glm::dvec3(0.3, 0.5, 0.8))};
     const VolumeState centre = scene.volumeAt(ray.o);
     ASSERT_TRUE(centre.inside());
-    const Volume& medium = *scene.volumes()[0].volume;
+    const Volume& volume = *scene.volumes()[0].volume;
     // The sure depth: the smallest extinction over the bound on the distance to the boundary.
-    const double sure = medium.sureDepth(centre.start, ray.o, INFINITY);
+    const double sure = volume.sureDepth(centre.start, ray.o, INFINITY);
     EXPECT_GT(sure, 10 * (0.95 - 0.11));
     EXPECT_LE(sure, 10 * 1.0);
-    EXPECT_EQ(medium.sureDepth(centre.start, ray.o, 0.2), 10 * 0.2);  // a ray that ends inside the ball
+    EXPECT_EQ(volume.sureDepth(centre.start, ray.o, 0.2), 10 * 0.2);  // a ray that ends inside the ball
     // Tests at ln 20 + k ln 4 below it.
     const int tests = int(std::floor((sure - std::log(20.0)) / std::log(4.0))) + 1;
     ASSERT_GE(tests, 3);

@@ -35,10 +35,10 @@ struct InteriorRay {
     Ray ray;
     uint32_t tet;
 };
-std::optional<InteriorRay> interiorRay(const Volume& medium, std::mt19937_64& rng) {
+std::optional<InteriorRay> interiorRay(const Volume& volume, std::mt19937_64& rng) {
     std::uniform_real_distribution<double> u(-1, 1);
     const glm::dvec3 p(0.9 * u(rng), 0.9 * u(rng), 0.9 * u(rng));
-    const int64_t tet = medium.traversal().locate(p);
+    const int64_t tet = volume.traversal().locate(p);
     if (tet < 0) return std::nullopt;
     return InteriorRay{{p, direction(rng)}, uint32_t(tet)};
 }
@@ -225,20 +225,20 @@ TEST(RegionMediaExit, TransmittanceAlongAChordIsTheClosedForm) {
 
 // shadowFlight and transmittance with the exit query and with the walk of every tet agree:
 // the same exit (triangle, tet, t), the same transmittance.
-void expectSameAsTheWalk(Volume& medium, uint64_t seed) {
+void expectSameAsTheWalk(Volume& volume, uint64_t seed) {
     std::mt19937_64 rng(seed);
     size_t left = 0;
     for (int i = 0; i < 2000; ++i) {
-        const auto drawn = interiorRay(medium, rng);
+        const auto drawn = interiorRay(volume, rng);
         if (!drawn) continue;
         const auto [ray, tet] = *drawn;
         const WalkStart start = WalkStart::inside(uint32_t(tet));
         FreeFlight flights[2], shadows[2];
         for (const size_t k : {0, 1}) {
-            medium.setExitQueryAfter(k == 0 ? 0 : 1 + size_t(i % 3));
+            volume.setExitQueryAfter(k == 0 ? 0 : 1 + size_t(i % 3));
             Rng r(7, uint64_t(i));
-            shadows[k] = medium.shadowFlight(ray, start, INFINITY, r);
-            flights[k] = medium.sampleFlight(ray, start, INFINITY, 0, 1.0);
+            shadows[k] = volume.shadowFlight(ray, start, INFINITY, r);
+            flights[k] = volume.sampleFlight(ray, start, INFINITY, 0, 1.0);
         }
         for (const FreeFlight* f : {flights, shadows}) {
             ASSERT_EQ(f[1].exit.left, f[0].exit.left);
@@ -277,10 +277,10 @@ Volume scatteringNestedSpheres() {
 }
 
 // Flights stop at the interface between the two (a dielectric there).
-void stopAtInterfaces(Volume& medium) {
-    std::vector<bool> stops(medium.mesh().surface.size());
-    for (size_t s = 0; s < stops.size(); ++s) stops[s] = medium.mesh().surfaceFaceFront[s] != UINT32_MAX;
-    medium.setStops(stops);
+void stopAtInterfaces(Volume& volume) {
+    std::vector<bool> stops(volume.mesh().surface.size());
+    for (size_t s = 0; s < stops.size(); ++s) stops[s] = volume.mesh().surfaceFaceFront[s] != UINT32_MAX;
+    volume.setStops(stops);
 }
 
 TEST(RegionMediaExit, NestedRegionsCrossOrStopAtInterfacesLikeTheWalk) {
@@ -288,35 +288,35 @@ TEST(RegionMediaExit, NestedRegionsCrossOrStopAtInterfacesLikeTheWalk) {
     shell.sigmaA = RGB(0.4, 0.5, 0.6);
     core.sigmaA = RGB(0.9, 0.2, 0.1);
     shell.sigmaS = core.sigmaS = RGB(0);
-    Volume medium = nestedSpheres(shell, core);
-    expectSameAsTheWalk(medium, 6);  // crossing the interface: the walk goes on there
-    stopAtInterfaces(medium);
-    expectSameAsTheWalk(medium, 7);  // stopping there: the exit is the interface
+    Volume volume = nestedSpheres(shell, core);
+    expectSameAsTheWalk(volume, 6);  // crossing the interface: the walk goes on there
+    stopAtInterfaces(volume);
+    expectSameAsTheWalk(volume, 7);  // stopping there: the exit is the interface
 }
 
 // Flights that jump (sampleFlight with jump: one exit query, the interaction placed directly)
 // against the walk of every tet, from the tet of the origin and from another tet of its region
 // (WalkStart::inRegion): the same interaction or exit, the same transmittance, to the last bits.
 // Shadow rays and transmittance from a point in a region agree with those from its tet.
-void expectJumpsAsTheWalk(Volume& medium, uint64_t seed) {
-    const TetMesh& mesh = medium.mesh();
+void expectJumpsAsTheWalk(Volume& volume, uint64_t seed) {
+    const TetMesh& mesh = volume.mesh();
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> u(-1, 1), u01(0, 1);
     size_t jumped = 0, left = 0, flights = 0, entering = 0, enteredAndJumped = 0;
     for (int i = 0; i < 2000; ++i) {
         const glm::dvec3 p(0.9 * u(rng), 0.9 * u(rng), 0.9 * u(rng));
-        const int64_t tet = medium.traversal().locate(p);
+        const int64_t tet = volume.traversal().locate(p);
         if (tet < 0) continue;
         uint32_t hint = uint32_t(rng() % mesh.tets.size());
         while (mesh.region(hint) != mesh.region(uint32_t(tet))) hint = uint32_t(rng() % mesh.tets.size());
         const Ray ray{p, direction(rng)};
         const double v = u01(rng);
         const int hero = int(rng() % 3);
-        medium.setExitQueryAfter(0);
-        const FreeFlight walked = medium.sampleFlight(ray, WalkStart::inside(uint32_t(tet)), INFINITY, hero, v);
+        volume.setExitQueryAfter(0);
+        const FreeFlight walked = volume.sampleFlight(ray, WalkStart::inside(uint32_t(tet)), INFINITY, hero, v);
         for (const WalkStart start : {WalkStart::inside(uint32_t(tet)), WalkStart::inRegion(hint)}) {
             ++flights;
-            const FreeFlight f = medium.sampleFlight(ray, start, INFINITY, hero, v, RGB(1), true);
+            const FreeFlight f = volume.sampleFlight(ray, start, INFINITY, hero, v, RGB(1), true);
             ASSERT_EQ(f.scattered, walked.scattered);
             for (int c = 0; c < 3; ++c) ASSERT_NEAR(f.transmittance[c], walked.transmittance[c], 1e-12);
             if (f.scattered) {
@@ -336,10 +336,10 @@ void expectJumpsAsTheWalk(Volume& medium, uint64_t seed) {
         }
         // The same flight from outside, entering through the surface on the way to p.
         const Ray from{p - 3.0 * ray.d, ray.d};
-        if (const auto entry = medium.traversal().firstEntry(from, 0, INFINITY)) {
+        if (const auto entry = volume.traversal().firstEntry(from, 0, INFINITY)) {
             const WalkStart surface = WalkStart::surface(entry->entryTriangle());
-            const FreeFlight w = medium.sampleFlight(from, surface, INFINITY, hero, v);
-            const FreeFlight f = medium.sampleFlight(from, surface, INFINITY, hero, v, RGB(1), true);
+            const FreeFlight w = volume.sampleFlight(from, surface, INFINITY, hero, v);
+            const FreeFlight f = volume.sampleFlight(from, surface, INFINITY, hero, v, RGB(1), true);
             ++entering;
             ASSERT_EQ(f.scattered, w.scattered);
             for (int c = 0; c < 3; ++c) ASSERT_NEAR(f.transmittance[c], w.transmittance[c], 1e-12);
@@ -352,15 +352,15 @@ void expectJumpsAsTheWalk(Volume& medium, uint64_t seed) {
                 ASSERT_NEAR(f.exit.t, w.exit.t, 1e-12);
             }
         }
-        medium.setExitQueryAfter(1);
+        volume.setExitQueryAfter(1);
         Rng r0(7, uint64_t(i)), r1(7, uint64_t(i));
-        const FreeFlight fromTet = medium.shadowFlight(ray, WalkStart::inside(uint32_t(tet)), INFINITY, r0);
-        const FreeFlight fromRegion = medium.shadowFlight(ray, WalkStart::inRegion(hint), INFINITY, r1);
+        const FreeFlight fromTet = volume.shadowFlight(ray, WalkStart::inside(uint32_t(tet)), INFINITY, r0);
+        const FreeFlight fromRegion = volume.shadowFlight(ray, WalkStart::inRegion(hint), INFINITY, r1);
         ASSERT_EQ(fromRegion.exit.triangle, fromTet.exit.triangle);
         ASSERT_NEAR(fromRegion.exit.t, fromTet.exit.t, 1e-12);
         for (int c = 0; c < 3; ++c) ASSERT_NEAR(fromRegion.transmittance[c], fromTet.transmittance[c], 1e-12);
-        const RGB tr = medium.transmittance(ray, WalkStart::inRegion(hint), INFINITY),
-                  trTet = medium.transmittance(ray, WalkStart::inside(uint32_t(tet)), INFINITY);
+        const RGB tr = volume.transmittance(ray, WalkStart::inRegion(hint), INFINITY),
+                  trTet = volume.transmittance(ray, WalkStart::inside(uint32_t(tet)), INFINITY);
         for (int c = 0; c < 3; ++c) ASSERT_NEAR(tr[c], trTet[c], 1e-12);
     }
     std::printf("%zu flights: %zu jumped to an interaction, %zu left the medium; %zu entering, %zu of them jumped\n",
@@ -380,36 +380,36 @@ TEST(RegionMediaExit, FlightsThatJumpLandWhereTheWalkLands) {
 }
 
 TEST(RegionMediaExit, FlightsThatJumpCrossOrStopAtInterfacesLikeTheWalk) {
-    Volume medium = scatteringNestedSpheres();
-    expectJumpsAsTheWalk(medium, 9);
-    stopAtInterfaces(medium);
-    expectJumpsAsTheWalk(medium, 10);
+    Volume volume = scatteringNestedSpheres();
+    expectJumpsAsTheWalk(volume, 9);
+    stopAtInterfaces(volume);
+    expectJumpsAsTheWalk(volume, 10);
 }
 
 // A stretch (Volume::regionStretch: one exit query) ends where the walk of every tet leaves
 // its region: whole, with the walk's exit triangle, tet and t, where the walk leaves the medium or
 // stops at an interface; not whole where the ray goes on across an interface into another region
 // or where the exit lies beyond the depth the stretch looks ahead.
-void expectStretchesEndAsTheWalk(Volume& medium, uint64_t seed, bool crosses) {
+void expectStretchesEndAsTheWalk(Volume& volume, uint64_t seed, bool crosses) {
     std::mt19937_64 rng(seed);
     size_t whole = 0, across = 0, short_ = 0, unsure = 0;
     for (int i = 0; i < 1000; ++i) {
-        const auto drawn = interiorRay(medium, rng);
+        const auto drawn = interiorRay(volume, rng);
         if (!drawn) continue;
         const auto [ray, tet] = *drawn;
         const WalkStart start = WalkStart::inside(uint32_t(tet));
-        const int32_t region = medium.mesh().region(uint32_t(tet));
+        const int32_t region = volume.mesh().region(uint32_t(tet));
         // The walk's way out of the region: its segments until the region changes.
         double leaves = INFINITY;
         bool intoAnother = false;
-        const TetWalk walk = medium.walk(ray, start, [&](const WalkSegment& s) {
-            if (medium.mesh().region(s.tet) == region) return true;
+        const TetWalk walk = volume.walk(ray, start, [&](const WalkSegment& s) {
+            if (volume.mesh().region(s.tet) == region) return true;
             leaves = s.tIn;
             intoAnother = true;
             return false;
         });
         if (!intoAnother) leaves = walk.exitT();
-        const auto stretch = medium.regionStretch(ray, start, INFINITY, 1e6);
+        const auto stretch = volume.regionStretch(ray, start, INFINITY, 1e6);
         if (!stretch) {  // too close to call (an exit just ahead): the walk decides
             ++unsure;
             continue;
@@ -424,9 +424,9 @@ void expectStretchesEndAsTheWalk(Volume& medium, uint64_t seed, bool crosses) {
         }
         across += intoAnother;
         // Looking ahead a tenth of the way: the end is that far, not known beyond.
-        const RGB& sigma = medium.at(uint32_t(tet)).sigmaT;
+        const RGB& sigma = volume.at(uint32_t(tet)).sigmaT;
         const double least = std::min({sigma.x, sigma.y, sigma.z});
-        const auto near = medium.regionStretch(ray, start, INFINITY, 0.1 * least * leaves);
+        const auto near = volume.regionStretch(ray, start, INFINITY, 0.1 * least * leaves);
         if (!near) continue;
         ASSERT_FALSE(near->whole);
         ASSERT_NEAR(near->end, 0.1 * leaves, 1e-12);
@@ -460,11 +460,11 @@ TEST(RegionMediaExit, VaryingDensityKeepsTheWalk) {
     TetMesh mesh = tetrahedralize(icosphere(2), test::noCache());
     std::vector<double> density(mesh.vertices.size());
     for (size_t v = 0; v < density.size(); ++v) density[v] = 1 + mesh.vertices[v].x;
-    const Volume medium(p, std::move(mesh), density);
+    const Volume volume(p, std::move(mesh), density);
     const uint64_t queries = surfaceQueries();
-    const int64_t tet = medium.traversal().locate(glm::dvec3(0.1, 0.2, 0.3));
+    const int64_t tet = volume.traversal().locate(glm::dvec3(0.1, 0.2, 0.3));
     ASSERT_GE(tet, 0);
-    medium.transmittance({{0.1, 0.2, 0.3}, {1, 0, 0}}, WalkStart::inside(uint32_t(tet)), INFINITY);
+    volume.transmittance({{0.1, 0.2, 0.3}, {1, 0, 0}}, WalkStart::inside(uint32_t(tet)), INFINITY);
     EXPECT_EQ(surfaceQueries(), queries);
 }
 

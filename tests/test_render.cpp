@@ -107,8 +107,8 @@ TEST(Render, ColumnProfileEventsAreFreeFlights) {
     m.density.frequency = 3;
     m.tetOptions.maxVolume = 0.01;
     const Scene scene(sceneWith(m, 8));
-    const Volume& medium = *scene.volumes()[0].volume;
-    ASSERT_FALSE(medium.homogeneous());
+    const Volume& volume = *scene.volumes()[0].volume;
+    ASSERT_FALSE(volume.homogeneous());
     const VolumeState centre = scene.volumeAt({0.05, -0.02, 0.03});
     std::mt19937 random(11);
     std::uniform_real_distribution<double> u(0, 1);
@@ -116,11 +116,11 @@ TEST(Render, ColumnProfileEventsAreFreeFlights) {
     for (int i = 0; i < 500; ++i) {
         const double z = 2 * u(random) - 1, phi = 2 * M_PI * u(random), s = std::sqrt(1 - z * z);
         const Ray ray{{0.05, -0.02, 0.03}, {s * std::cos(phi), s * std::sin(phi), z}};
-        const ColumnProfile column(medium, ray, centre.start, INFINITY);
+        const ColumnProfile column(volume, ray, centre.start, INFINITY);
         const int c = i % 3;
         const double x = u(random) * 1.2;  // past the stretch's optical depth at times
         const double depth = x * column.depth()[c];
-        const FreeFlight flight = medium.sampleFlight(ray, centre.start, INFINITY, c, -std::expm1(-depth));
+        const FreeFlight flight = volume.sampleFlight(ray, centre.start, INFINITY, c, -std::expm1(-depth));
         const auto event = column.atDepth(c, depth);
         ASSERT_EQ(event.has_value(), flight.scattered) << i;
         if (!event) continue;

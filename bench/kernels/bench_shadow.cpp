@@ -27,7 +27,7 @@ namespace tetglow {
 namespace {
 
 struct ShadowFixture {
-    std::unique_ptr<Volume> medium;
+    std::unique_ptr<Volume> volume;
     double diagonal = 0;
     std::vector<Ray> rays;       // from located interior points, unit directions
     std::vector<uint32_t> tets;  // holding each ray's origin
@@ -44,8 +44,8 @@ std::string shadowMesh() {
 ShadowFixture& shadowFixture() {
     static ShadowFixture f = [] {
         ShadowFixture f;
-        f.medium = std::make_unique<Volume>(MediumParams{}, tetrahedralize(readMesh(shadowMesh())));
-        const Bounds3& box = f.medium->traversal().bounds();
+        f.volume = std::make_unique<Volume>(MediumParams{}, tetrahedralize(readMesh(shadowMesh())));
+        const Bounds3& box = f.volume->traversal().bounds();
         f.diagonal = box.diagonal();
         std::mt19937_64 rng(1);
         std::uniform_real_distribution<double> u(0, 1);
@@ -53,14 +53,14 @@ ShadowFixture& shadowFixture() {
         double length = 0;
         while (f.rays.size() < 4096) {
             const glm::dvec3 p = box.lo + (box.hi - box.lo) * glm::dvec3(u(rng), u(rng), u(rng));
-            const int64_t t = f.medium->traversal().locate(p);
+            const int64_t t = f.volume->traversal().locate(p);
             if (t < 0) continue;
             const glm::dvec3 d(n(rng), n(rng), n(rng));
             f.rays.push_back({p, d / glm::length(d)});
             f.tets.push_back(uint32_t(t));
             size_t steps = 0;
             double end = 0;
-            f.medium->walk(f.rays.back(), WalkStart::inside(uint32_t(t)), [&](const WalkSegment& s) {
+            f.volume->walk(f.rays.back(), WalkStart::inside(uint32_t(t)), [&](const WalkSegment& s) {
                 end = s.tOut;
                 return ++steps;
             });
@@ -98,23 +98,23 @@ void countSteps(benchmark::State& state, ShadowFixture& f, size_t after, size_t 
 void setMeanFreePath(ShadowFixture& f, double path) {
     MediumParams p;
     p.sigmaS = RGB(1 / path);
-    f.medium->setRegions(
-        std::vector<MediumField>(std::max<size_t>(1, f.medium->mesh().regionCount()), MediumField{p, {}}));
+    f.volume->setRegions(
+        std::vector<MediumField>(std::max<size_t>(1, f.volume->mesh().regionCount()), MediumField{p, {}}));
 }
 
 // Transmittance to the boundary (Volume::transmittance), mean free path the box's diagonal.
 void BM_ShadowExit(benchmark::State& state) {
     ShadowFixture& f = shadowFixture();
     setMeanFreePath(f, f.diagonal);
-    f.medium->setExitQueryAfter(size_t(state.range(0)));
+    f.volume->setExitQueryAfter(size_t(state.range(0)));
     size_t rays = 0;
     for (auto _ : state) {
         const size_t i = rays++ % f.rays.size();
-        benchmark::DoNotOptimize(f.medium->transmittance(f.rays[i], WalkStart::inside(f.tets[i]), INFINITY));
+        benchmark::DoNotOptimize(f.volume->transmittance(f.rays[i], WalkStart::inside(f.tets[i]), INFINITY));
     }
     state.counters["rays/s"] = benchmark::Counter(double(rays), benchmark::Counter::kIsRate);
     countSteps(state, f, size_t(state.range(0)), rays, [&](size_t i) {
-        benchmark::DoNotOptimize(f.medium->transmittance(f.rays[i], WalkStart::inside(f.tets[i]), INFINITY));
+        benchmark::DoNotOptimize(f.volume->transmittance(f.rays[i], WalkStart::inside(f.tets[i]), INFINITY));
     });
 }
 BENCHMARK(BM_ShadowExit)->Arg(0)->Arg(1)->Arg(2)->Arg(4)->Arg(8);
@@ -124,12 +124,12 @@ BENCHMARK(BM_ShadowExit)->Arg(0)->Arg(1)->Arg(2)->Arg(4)->Arg(8);
 void BM_DenseShadowExit(benchmark::State& state) {
     ShadowFixture& f = shadowFixture();
     setMeanFreePath(f, 0.01 * f.diagonal);
-    f.medium->setExitQueryAfter(size_t(state.range(0)));
+    f.volume->setExitQueryAfter(size_t(state.range(0)));
     Rng rng(1, 2);
     size_t rays = 0;
     for (auto _ : state) {
         const size_t i = rays++ % f.rays.size();
-        benchmark::DoNotOptimize(f.medium->shadowFlight(f.rays[i], WalkStart::inside(f.tets[i]), INFINITY, rng));
+        benchmark::DoNotOptimize(f.volume->shadowFlight(f.rays[i], WalkStart::inside(f.tets[i]), INFINITY, rng));
     }
     state.counters["rays/s"] = benchmark::Counter(double(rays), benchmark::Counter::kIsRate);
 }
@@ -142,7 +142,7 @@ BENCHMARK(BM_DenseShadowExit)->Arg(0)->Arg(1)->Arg(2)->Arg(4)->Arg(8);
 void BM_DenseShadowSure(benchmark::State& state) {
     ShadowFixture& f = shadowFixture();
     setMeanFreePath(f, 0.01 * f.diagonal);
-    f.medium->setExitQueryAfter(1);
+    f.volume->setExitQueryAfter(1);
     const bool sure = state.range(0) == 1;
     Rng rng(1, 2);
     size_t rays = 0, unwalked = 0;
@@ -150,11 +150,11 @@ void BM_DenseShadowSure(benchmark::State& state) {
         const size_t i = rays++ % f.rays.size();
         const WalkStart start = WalkStart::inside(f.tets[i]);
         ShadowRoulette roulette;
-        if (sure && !roulette.reach(f.medium->sureDepth(start, f.rays[i].o, INFINITY), rng)) {
+        if (sure && !roulette.reach(f.volume->sureDepth(start, f.rays[i].o, INFINITY), rng)) {
             ++unwalked;
             continue;
         }
-        benchmark::DoNotOptimize(f.medium->shadowFlight(f.rays[i], start, INFINITY, rng, roulette));
+        benchmark::DoNotOptimize(f.volume->shadowFlight(f.rays[i], start, INFINITY, rng, roulette));
     }
     state.counters["rays/s"] = benchmark::Counter(double(rays), benchmark::Counter::kIsRate);
     state.counters["unwalked"] = double(unwalked) / double(std::max<size_t>(1, rays));
@@ -173,7 +173,7 @@ void BM_FreeFlight(benchmark::State& state) {
     std::vector<double> u(f.rays.size());
     for (double& x : u) x = u01(rng);
     auto flight = [&](size_t i) {
-        return f.medium->sampleFlight(f.rays[i], WalkStart::inside(f.tets[i]), INFINITY, 0, u[i], RGB(1), jump);
+        return f.volume->sampleFlight(f.rays[i], WalkStart::inside(f.tets[i]), INFINITY, 0, u[i], RGB(1), jump);
     };
     size_t flights = 0;
     for (auto _ : state) {
@@ -191,7 +191,7 @@ void BM_FreeFlight(benchmark::State& state) {
         const bool decided = surfaceQueries() > queries && !(fl.scattered && fl.located);
         const double end = fl.scattered ? fl.t : INFINITY;
         size_t steps = 0;
-        f.medium->walk(f.rays[i], WalkStart::inside(f.tets[i]), [&](const WalkSegment& s) {
+        f.volume->walk(f.rays[i], WalkStart::inside(f.tets[i]), [&](const WalkSegment& s) {
             ++steps;
             return s.tOut < end;
         });

@@ -56,13 +56,13 @@ SlabResult simulateSlab(const SlabParams& p) {
     // are a negligible fraction (they are counted apart, as `lost`).
     const double width = 200;
     const TriangleMesh slab = box({-width / 2, -width / 2, -1}, {width / 2, width / 2, 0});
-    const Volume medium({RGB(p.tau * (1 - p.albedo)), RGB(p.tau * p.albedo), p.g, RGB(0)},
+    const Volume volume({RGB(p.tau * (1 - p.albedo)), RGB(p.tau * p.albedo), p.g, RGB(0)},
                         tetrahedralize(slab, options));
-    const TetMesh& mesh = medium.mesh();
+    const TetMesh& mesh = volume.mesh();
     // The lit face is z = 0; entry triangles are found once by Embree, then each photon's walk
     // starts there. Entry points are spread over the middle of the face (the slab is
     // translation invariant), away from its diagonal.
-    const SurfaceBVH& bvh = medium.traversal().bvh();
+    const SurfaceBVH& bvh = volume.traversal().bvh();
 
     constexpr uint64_t kBlock = 4096;
     // Blocks are summed in order, so the sum is the same for any thread count; a few hundred at
@@ -95,7 +95,7 @@ SlabResult simulateSlab(const SlabParams& p) {
                     if (entry) {
                         SpectralPath path(0);
                         const WalkResult r = photonWalk(
-                            medium, Ray{ray.at(entry->t), ray.d}, WalkStart::surface(entry->triangle), RGB(1), path,
+                            volume, Ray{ray.at(entry->t), ray.d}, WalkStart::surface(entry->triangle), RGB(1), path,
                             rng, kMaxSlabEvents, [](const Ray&) { return INFINITY; }, [](const PhotonEvent&) {});
                         if (r.events >= kMaxSlabEvents) stuck = true;
                         x4[2] = r.absorbedFlux.x;

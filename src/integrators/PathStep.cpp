@@ -21,9 +21,9 @@ namespace {
 
 // Decides the roulette tests a shadow ray from inside `state`'s volume surely reaches (sureDepth);
 // false where one ended it.
-bool surelyReached(const Volume& medium, const Ray& ray, double tMax, const VolumeState& state, Rng& rng,
+bool surelyReached(const Volume& volume, const Ray& ray, double tMax, const VolumeState& state, Rng& rng,
                    ShadowRoulette& roulette) {
-    return !medium.deepShadows() || roulette.reach(medium.sureDepth(state.start, ray.o, tMax), rng);
+    return !volume.deepShadows() || roulette.reach(volume.sureDepth(state.start, ray.o, tMax), rng);
 }
 
 }  // namespace
@@ -42,11 +42,11 @@ RGB transmittance(const Scene& scene, Ray ray, double tMax, VolumeState state, R
         if (hit && !scene.indexMatched(*hit)) return RGB(0);
         WalkExit exit;
         if (state.inside()) {
-            const Volume& medium = *scene.volumes()[state.volume].volume;
+            const Volume& volume = *scene.volumes()[state.volume].volume;
             const double end = hit ? hit->t : tMax;
-            const FreeFlight f = roulette ? medium.shadowFlight(ray, state.start, end, *roulette,
+            const FreeFlight f = roulette ? volume.shadowFlight(ray, state.start, end, *roulette,
                                                                 crossings == 0 ? first : ShadowRoulette{})
-                                          : medium.sampleFlight(ray, state.start, end, 0, 1.0);
+                                          : volume.sampleFlight(ray, state.start, end, 0, 1.0);
             tr *= f.transmittance;
             if (isBlack(tr)) return tr;
             exit = f.exit;

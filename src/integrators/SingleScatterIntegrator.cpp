@@ -84,33 +84,33 @@ RGB SingleScatterIntegrator::visibility(const Ray& ray, double tMax, Rng& rng) c
     return exp(-tau);
 }
 
-RGB SingleScatterIntegrator::inScattered(size_t v, const Medium& optics, const glm::dvec3& p, const glm::dvec3& d,
+RGB SingleScatterIntegrator::inScattered(size_t v, const Medium& medium, const glm::dvec3& p, const glm::dvec3& d,
                                          int64_t tet, Rng& rng) const {
     // Exact transmittance: the parity baseline's march is the baseline, compared mode against mode.
     if (mode_ == BoundaryMode::Tet) return directInMedium(scene_, int(v), p, d, uint32_t(tet), rng, false);
-    return sampleDirect(scene_, p, rng, false, phaseScattering(optics.phase, d),
+    return sampleDirect(scene_, p, rng, false, phaseScattering(medium.phase, d),
                         [&](const Ray& r, double t) { return visibility(r, t, rng); });
 }
 
 RGB SingleScatterIntegrator::marchTets(size_t v, const Ray& ray, double tMax, const RGB& beta, Rng& rng, RGB& L) const {
-    const Volume& medium = *scene_.volumes()[v].volume;
+    const Volume& volume = *scene_.volumes()[v].volume;
     // One sample every step_ of the volume's own length along the ray (random offset), across
     // tet faces and interfaces: as many samples as the parity march takes inside, each with the
     // exact transmittance up to it. Each sample stands for step_, an unbiased estimate of the integral.
     double next = rng.uniform() * step_, walked = 0;  // length in the volume: of the next sample, before this segment
     RGB tr(1);
-    medium.traversal().traverse(ray, 0, tMax, [&](const WalkSegment& s) {
-        const Medium& optics = medium.at(s.tet);
+    volume.traversal().traverse(ray, 0, tMax, [&](const WalkSegment& s) {
+        const Medium& medium = volume.at(s.tet);
         const double length = s.tOut - s.tIn;
         for (; next < walked + length; next += step_) {
             const double t = s.tIn + (next - walked);
             const glm::dvec3 p = ray.at(t);
-            const RGB trHere = tr * exp(-optics.sigmaT * medium.densityIntegral(s.tet, ray, s.tIn, t));
-            L += beta * trHere * (step_ * medium.density(s.tet, p)) *
-                 (optics.params.sigmaS * inScattered(v, optics, p, ray.d, s.tet, rng) + optics.params.emission);
+            const RGB trHere = tr * exp(-medium.sigmaT * volume.densityIntegral(s.tet, ray, s.tIn, t));
+            L += beta * trHere * (step_ * volume.density(s.tet, p)) *
+                 (medium.params.sigmaS * inScattered(v, medium, p, ray.d, s.tet, rng) + medium.params.emission);
         }
         walked += length;
-        tr *= exp(-optics.sigmaT * medium.densityIntegral(s.tet, ray, s.tIn, s.tOut));
+        tr *= exp(-medium.sigmaT * volume.densityIntegral(s.tet, ray, s.tIn, s.tOut));
         return true;
     });
     return tr;
@@ -120,17 +120,17 @@ RGB SingleScatterIntegrator::marchSteps(size_t v, const Ray& ray, double tMax, c
                                         RGB& L) const {
     double t0 = 0, t1 = tMax;
     if (!clip(boxes_[v], ray, t0, t1)) return RGB(1);
-    const Volume& medium = *scene_.volumes()[v].volume;
+    const Volume& volume = *scene_.volumes()[v].volume;
     RGB tau(0);
     // pbrt-v2's march: each step's sample stands for the whole step.
     for (double t = t0 + rng.uniform() * step_; t < t1; t += step_) {
         const glm::dvec3 p = ray.at(t);
         const int m = pick(v, p);
         if (m < 0) continue;
-        const Medium& optics = medium.region(scene_.media()[m].region);
-        tau += optics.sigmaT * step_;
+        const Medium& medium = volume.region(scene_.media()[m].region);
+        tau += medium.sigmaT * step_;
         L += beta * exp(-tau) * step_ *
-             (optics.params.sigmaS * inScattered(v, optics, p, ray.d, -1, rng) + optics.params.emission);
+             (medium.params.sigmaS * inScattered(v, medium, p, ray.d, -1, rng) + medium.params.emission);
     }
     return exp(-tau);
 }

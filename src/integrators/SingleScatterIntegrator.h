@@ -31,7 +31,7 @@ private:
     RGB marchTets(size_t v, const Ray& ray, double tMax, const RGB& beta, Rng& rng, RGB& L) const;
     RGB marchSteps(size_t v, const Ray& ray, double tMax, const RGB& beta, Rng& rng, RGB& L) const;
     // Light from one light sample scattered at p towards -d, by the mode's visibility.
-    RGB inScattered(size_t v, const Medium& optics, const glm::dvec3& p, const glm::dvec3& d, int64_t tet,
+    RGB inScattered(size_t v, const Medium& medium, const glm::dvec3& p, const glm::dvec3& d, int64_t tet,
                     Rng& rng) const;
     RGB visibility(const Ray& ray, double tMax, Rng& rng) const;
 

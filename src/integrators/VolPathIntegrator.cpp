@@ -56,40 +56,40 @@ RGB VolPathIntegrator::trace(PathVertex v, int branches, Rng& rng) const {
         auto hit = scene_.intersect(ray, state);
         FreeFlight flight;
         if (state.inside()) {
-            const Volume& medium = *scene_.volumes()[state.volume].volume;
+            const Volume& volume = *scene_.volumes()[state.volume].volume;
             const double tMax = hit ? hit->t : INFINITY;
-            if (!medium.scatters() && !medium.emissive()) {
+            if (!volume.scatters() && !volume.emissive()) {
                 // Nothing scatters or glows: attenuate exactly instead of sampling where light dies.
-                flight = medium.sampleFlight(ray, state.start, tMax, 0, 1.0);
+                flight = volume.sampleFlight(ray, state.start, tMax, 0, 1.0);
                 path.beta *= flight.transmittance;
                 if (!path.alive()) break;
             } else {
                 const double u = rng.uniform();
                 std::optional<RegionStretch> stretch;
                 if (!scene_.sealed(state.volume) && depth + 1 < maxDepth_)
-                    stretch = medium.regionStretch(ray, state.start, tMax, kLitStretchDepth);
+                    stretch = volume.regionStretch(ray, state.start, tMax, kLitStretchDepth);
                 // Where the stretch is not lit at a point of its own, the flight's interaction is.
                 const std::optional<StretchLight> lit =
                     stretch ? directWithin(*stretch, ray, path, state.volume, rng) : std::nullopt;
                 if (lit) L += lit->radiance;
                 const std::optional<FreeFlight> within =
-                    stretch ? medium.flightWithin(*stretch, path.hero, u, path.r) : std::nullopt;
-                flight = within ? *within : medium.sampleFlight(ray, state.start, tMax, path.hero, u, path.r, true);
+                    stretch ? volume.flightWithin(*stretch, path.hero, u, path.r) : std::nullopt;
+                flight = within ? *within : volume.sampleFlight(ray, state.start, tMax, path.hero, u, path.r, true);
                 // Regions without extinction glow along the whole stretch they hold, exactly.
                 L += path.beta * flight.glow;
                 if (!flight.scattered) {
                     path.pass(flight.transmittance);
                 } else {
-                    const Medium& optics = medium.at(flight.tet);
-                    path.interact(flight.transmittance, optics.sigmaT * flight.density);
-                    L += path.weight() * flight.density * optics.params.emission;
-                    path.beta *= flight.density * optics.params.sigmaS;
+                    const Medium& medium = volume.at(flight.tet);
+                    path.interact(flight.transmittance, medium.sigmaT * flight.density);
+                    L += path.weight() * flight.density * medium.params.emission;
+                    path.beta *= flight.density * medium.params.sigmaS;
                     if (++depth >= maxDepth_) break;
                     const glm::dvec3 p = ray.at(flight.t);
                     const VolumeState here{
                         state.volume, flight.located ? WalkStart::inside(flight.tet) : WalkStart::inRegion(flight.tet)};
                     if (!scene_.sealed(state.volume) && !lit)
-                        L += path.weight() * sampleDirect(scene_, p, rng, true, phaseScattering(optics.phase, ray.d),
+                        L += path.weight() * sampleDirect(scene_, p, rng, true, phaseScattering(medium.phase, ray.d),
                                                           shadowRays(scene_, here, rng));
                     // Each branch goes on in a direction of its own, with a share of the path's light.
                     // The incoming direction is kept apart: `next` may be this very vertex.
@@ -97,9 +97,9 @@ RGB VolPathIntegrator::trace(PathVertex v, int branches, Rng& rng) const {
                     const glm::dvec3 incoming = ray.d;
                     auto scatter = [&](PathVertex& next) {
                         const double u0 = rng.uniform(), u1 = rng.uniform();
-                        const glm::dvec3 wi = optics.phase.sample(incoming, {u0, u1});
+                        const glm::dvec3 wi = medium.phase.sample(incoming, {u0, u1});
                         next.specular = false;
-                        next.lastPdf = optics.phase.eval(glm::dot(incoming, wi));
+                        next.lastPdf = medium.phase.eval(glm::dot(incoming, wi));
                         next.lastScale = scale;
                         next.lastPoint = p;
                         next.ray = {p, wi};
@@ -159,22 +159,22 @@ RGB VolPathIntegrator::trace(PathVertex v, int branches, Rng& rng) const {
 std::optional<VolPathIntegrator::StretchLight> VolPathIntegrator::directWithin(const RegionStretch& stretch,
                                                                                const Ray& ray, const SpectralPath& path,
                                                                                int volume, Rng& rng) const {
-    const Medium& optics = scene_.volumes()[size_t(volume)].volume->region(stretch.region);
+    const Medium& medium = scene_.volumes()[size_t(volume)].volume->region(stretch.region);
     const double length = stretch.end - stretch.t0;
-    const double meanDepth = average(optics.sigmaT) * length;
+    const double meanDepth = average(medium.sigmaT) * length;
     // Known to its end, not empty, not deep, and scattering.
-    if (!stretch.whole || !(meanDepth > 0) || maxComponent(optics.params.sigmaS) == 0) return std::nullopt;
-    const double x = distanceWithin(optics.sigmaT[path.hero], length, rng.uniform());
+    if (!stretch.whole || !(meanDepth > 0) || maxComponent(medium.params.sigmaS) == 0) return std::nullopt;
+    const double x = distanceWithin(medium.sigmaT[path.hero], length, rng.uniform());
     SpectralPath at = path;
-    at.interact(exp(-optics.sigmaT * x), interactionWithin(optics.sigmaT, length));
-    at.beta *= optics.params.sigmaS;
+    at.interact(exp(-medium.sigmaT * x), interactionWithin(medium.sigmaT, length));
+    at.beta *= medium.params.sigmaS;
     // Against a flight's interaction lit by phase sampling, the point was this much likelier:
     // the conditioning's factor, for the mean extinction so that the MIS weights of both
     // strategies do not depend on the hero channel and still sum to one.
     const double scale = 1 / -std::expm1(-meanDepth);
     const VolumeState here{volume, WalkStart::inRegion(stretch.tet)};
     return StretchLight{
-        at.weight() * sampleDirect(scene_, ray.at(stretch.t0 + x), rng, true, phaseScattering(optics.phase, ray.d),
+        at.weight() * sampleDirect(scene_, ray.at(stretch.t0 + x), rng, true, phaseScattering(medium.phase, ray.d),
                                    shadowRays(scene_, here, rng), scale),
         scale};
 }

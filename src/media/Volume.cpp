@@ -112,31 +112,31 @@ FreeFlight Volume::sampleFlight(const Ray& ray, WalkStart start, double tMax, in
     RGB depth(0);  // optical depth so far
     FreeFlight flight;
     // A stretch without an interaction.
-    auto pass = [&](const Medium& optics, double piece) {
-        if (isBlack(optics.sigmaT) && maxComponent(optics.params.emission) > 0) {
+    auto pass = [&](const Medium& medium, double piece) {
+        if (isBlack(medium.sigmaT) && maxComponent(medium.params.emission) > 0) {
             // The transmittance is constant here: the emission integrates exactly, weighted
             // like a path that passed the stretch (SpectralPath::pass) against its pdf ratios.
             const RGB tr = exp(-depth);
-            flight.glow += optics.params.emission * piece * tr / average(ratios * tr);
+            flight.glow += medium.params.emission * piece * tr / average(ratios * tr);
         }
-        depth += optics.sigmaT * piece;
+        depth += medium.sigmaT * piece;
         return true;
     };
     auto visit = [&](const WalkSegment& s) {
         const double tIn = std::max(s.tIn, 0.0), tOut = std::min(s.tOut, tMax);
         if (tOut <= tIn) return s.tIn < tMax;
-        const Medium& optics = at(s.tet);
-        const double piece = densityIntegral(s.tet, ray, tIn, tOut), sigma = optics.sigmaT[hero];
+        const Medium& medium = at(s.tet);
+        const double piece = densityIntegral(s.tet, ray, tIn, tOut), sigma = medium.sigmaT[hero];
         if (sigma > 0 && depth[hero] + sigma * piece >= target) {
             const double need = (target - depth[hero]) / sigma;  // column still to go
             flight.scattered = true;
             flight.t = tIn + columnDistance(s.tet, ray, tIn, tOut, need);
             flight.tet = s.tet;
             flight.density = density(s.tet, ray.at(flight.t));
-            depth += optics.sigmaT * need;
+            depth += medium.sigmaT * need;
             return false;
         }
-        pass(optics, piece);
+        pass(medium, piece);
         return s.tOut < tMax;
     };
     // With no interaction possible (u = 1: transmittance), the walk may end in one exit query.
@@ -218,8 +218,8 @@ std::optional<RegionStretch> Volume::regionStretch(const Ray& ray, WalkStart sta
 
 std::optional<FreeFlight> Volume::flightWithin(const RegionStretch& stretch, int hero, double u,
                                                const RGB& ratios) const {
-    const Medium& optics = regions_[size_t(stretch.region)];
-    const double sigma = optics.sigmaT[hero], t = sigma > 0 ? stretch.t0 - std::log1p(-u) / sigma : INFINITY;
+    const Medium& medium = regions_[size_t(stretch.region)];
+    const double sigma = medium.sigmaT[hero], t = sigma > 0 ? stretch.t0 - std::log1p(-u) / sigma : INFINITY;
     const double end = stretch.end;
     const bool interacts = t < end - 1e-9 * (1 + end);  // else too close to the end to call, or beyond it
     if (!interacts && !(t > end && stretch.whole)) return std::nullopt;
@@ -229,13 +229,13 @@ std::optional<FreeFlight> Volume::flightWithin(const RegionStretch& stretch, int
         flight.t = t;
         flight.tet = stretch.tet;
         flight.located = false;
-        flight.transmittance = exp(-optics.sigmaT * (t - stretch.t0));
+        flight.transmittance = exp(-medium.sigmaT * (t - stretch.t0));
         return flight;
     }
     const double length = end - stretch.t0;
-    flight.transmittance = exp(-optics.sigmaT * length);
+    flight.transmittance = exp(-medium.sigmaT * length);
     // Without extinction the emission integrates exactly (as sampleFlight's walk does).
-    if (isBlack(optics.sigmaT)) flight.glow = optics.params.emission * length / average(ratios);
+    if (isBlack(medium.sigmaT)) flight.glow = medium.params.emission * length / average(ratios);
     flight.exit = stretch.exit;
     return flight;
 }
@@ -247,16 +247,16 @@ RGB Volume::transmittance(const Ray& ray, WalkStart start, double tMax) const {
 FreeFlight Volume::shadowFlight(const Ray& ray, WalkStart start, double tMax, Rng& rng, ShadowRoulette roulette) const {
     RGB depth(0);
     bool stopped = false;
-    auto pass = [&](const Medium& optics, double length) {
-        depth += optics.sigmaT * length;
+    auto pass = [&](const Medium& medium, double length) {
+        depth += medium.sigmaT * length;
         stopped = !roulette.reach(minComponent(depth), rng);
         return !stopped;
     };
     // Where roulette will likely end the ray within kQuerySteps mean tet steps, walking is cheaper
     // than an exit query (which costs about 14 steps on blub, bench_shadow; 8 leans to asking).
     constexpr double kQuerySteps = 8;
-    auto worthAsking = [&](const Medium& optics, double meanStep) {
-        const double sigma = minComponent(optics.sigmaT);
+    auto worthAsking = [&](const Medium& medium, double meanStep) {
+        const double sigma = minComponent(medium.sigmaT);
         return roulette.at - minComponent(depth) > sigma * kQuerySteps * meanStep;
     };
     const WalkExit exit = walkToExit(

@@ -172,9 +172,9 @@ public:
 
 private:
     // walk() for a stretch that needs only the optical depth: once exitQueryAfter_ segments are
-    // walked, the walk is inside a region of constant density and worthAsking(optics, the region's
+    // walked, the walk is inside a region of constant density and worthAsking(medium, the region's
     // mean chord of a tet) says so, the rest of the way to the region's exit (or tMax) goes to
-    // pass(optics, length) at once (false: stop), unless that exit is an interface the walk
+    // pass(medium, length) at once (false: stop), unless that exit is an interface the walk
     // crosses or too close to call. Returns where the ray left.
     template <class Visit, class Pass, class Worth>
     WalkExit walkToExit(const Ray& ray, WalkStart start, double tMax, Visit&& visit, Pass&& pass,

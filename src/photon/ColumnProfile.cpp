@@ -17,13 +17,13 @@ double sinhc(double x) {
 
 }  // namespace
 
-ColumnProfile::ColumnProfile(const Volume& medium, const Ray& ray, WalkStart start, double tMax)
-    : medium_(medium), ray_(ray) {
-    const TetWalk walk = medium.walk(ray, start, [&](const WalkSegment& s) {
+ColumnProfile::ColumnProfile(const Volume& volume, const Ray& ray, WalkStart start, double tMax)
+    : volume_(volume), ray_(ray) {
+    const TetWalk walk = volume.walk(ray, start, [&](const WalkSegment& s) {
         const double tIn = std::max(s.tIn, 0.0), tOut = std::min(s.tOut, tMax);
         if (tOut > tIn) {
-            const double piece = medium.densityIntegral(s.tet, ray, tIn, tOut);
-            const RGB depth = medium.at(s.tet).sigmaT * piece;
+            const double piece = volume.densityIntegral(s.tet, ray, tIn, tOut);
+            const RGB depth = volume.at(s.tet).sigmaT * piece;
             pieces_.push_back({tIn, tOut, s.tet, total_, depth_, depth / (tOut - tIn)});
             total_ += piece;
             depth_ += depth;
@@ -42,12 +42,12 @@ const ColumnProfile::Piece* ColumnProfile::pieceAt(double t) const {
 double ColumnProfile::column(double t) const {
     const Piece* p = pieceAt(t);
     if (!p) return 0;
-    return p->columnIn + medium_.densityIntegral(p->tet, ray_, p->tIn, std::min(t, p->tOut));
+    return p->columnIn + volume_.densityIntegral(p->tet, ray_, p->tIn, std::min(t, p->tOut));
 }
 
 RGB ColumnProfile::transmittanceIn(const Piece& p, double t) const {
     return exp(
-        -(p.depthIn + medium_.at(p.tet).sigmaT * medium_.densityIntegral(p.tet, ray_, p.tIn, std::min(t, p.tOut))));
+        -(p.depthIn + volume_.at(p.tet).sigmaT * volume_.densityIntegral(p.tet, ray_, p.tIn, std::min(t, p.tOut))));
 }
 
 RGB ColumnProfile::transmittance(double t) const {
@@ -71,11 +71,11 @@ std::optional<ColumnProfile::Event> ColumnProfile::atDepth(int c, double depth) 
                                      [c](double d, const Piece& p) { return d < p.depthIn[c]; });
     if (it == pieces_.begin()) return std::nullopt;
     const Piece& p = *(it - 1);
-    const double sigma = medium_.at(p.tet).sigmaT[c];
+    const double sigma = volume_.at(p.tet).sigmaT[c];
     const double column = (depth - p.depthIn[c]) / sigma;  // still to go in this piece
     const double next = (it == pieces_.end() ? total_ : it->columnIn) - p.columnIn;
     if (!(sigma > 0) || column > next) return std::nullopt;
-    return Event{p.tIn + medium_.columnDistance(p.tet, ray_, p.tIn, p.tOut, column), p.tet};
+    return Event{p.tIn + volume_.columnDistance(p.tet, ray_, p.tIn, p.tOut, column), p.tet};
 }
 
 }  // namespace tetglow

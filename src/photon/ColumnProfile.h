@@ -22,7 +22,7 @@ public:
     };
     // From `start` to tMax or to where the ray leaves the medium or stops at an interface (unit
     // direction).
-    ColumnProfile(const Volume& medium, const Ray& ray, WalkStart start, double tMax);
+    ColumnProfile(const Volume& volume, const Ray& ray, WalkStart start, double tMax);
 
     const std::vector<Piece>& pieces() const { return pieces_; }
     double begin() const { return pieces_.empty() ? 0 : pieces_.front().tIn; }
@@ -52,7 +52,7 @@ private:
     // The transmittance to t, which lies in `p` or past its end (then to its end).
     RGB transmittanceIn(const Piece& p, double t) const;
 
-    const Volume& medium_;
+    const Volume& volume_;
     Ray ray_;
     std::vector<Piece> pieces_;
     double total_ = 0;

@@ -31,13 +31,13 @@ PhotonDomains photonDomains(const Scene& scene) {
     std::vector<int> parent(n);
     std::iota(parent.begin(), parent.end(), 0);
     for (const SceneVolume& v : scene.volumes()) {
-        const Volume& medium = *v.volume;
-        const TetMesh& mesh = medium.mesh();
+        const Volume& volume = *v.volume;
+        const TetMesh& mesh = volume.mesh();
         for (size_t s = 0; s < mesh.surface.size(); ++s) {
             const auto [r0, r1] = mesh.surfaceRegions[s];
-            if (r1 < 0 || medium.stopsAt(uint32_t(s))) continue;
+            if (r1 < 0 || volume.stopsAt(uint32_t(s))) continue;
             const int a = v.regionMedium[size_t(r0)], b = v.regionMedium[size_t(r1)];
-            if (!sameMedium(scene.desc().media[a], scene.desc().media[b], medium.region(r0), medium.region(r1)))
+            if (!sameMedium(scene.desc().media[a], scene.desc().media[b], volume.region(r0), volume.region(r1)))
                 continue;
             const int ra = root(parent, a), rb = root(parent, b);
             parent[std::max(ra, rb)] = std::min(ra, rb);  // a set's root stays its smallest medium

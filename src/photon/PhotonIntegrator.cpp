@@ -48,12 +48,12 @@ double opticalSize(const Scene& scene, const std::vector<int>& media, double dia
     double smallest = INFINITY;
     for (int m : media) {
         const MediumPlace& sm = scene.media()[size_t(m)];
-        const Volume& medium = *scene.volumes()[sm.volume].volume;
-        const TetMesh& mesh = medium.mesh();
-        const RGB& sigmaT = medium.region(sm.region).sigmaT;
+        const Volume& volume = *scene.volumes()[sm.volume].volume;
+        const TetMesh& mesh = volume.mesh();
+        const RGB& sigmaT = volume.region(sm.region).sigmaT;
         const double least = std::min({sigmaT[0], sigmaT[1], sigmaT[2]});
         for (uint32_t t = mesh.regionTets[sm.region]; t < mesh.regionTets[sm.region + 1]; ++t)
-            for (uint32_t v : mesh.tets[t]) smallest = std::min(smallest, least * medium.density(t, mesh.vertices[v]));
+            for (uint32_t v : mesh.tets[t]) smallest = std::min(smallest, least * volume.density(t, mesh.vertices[v]));
     }
     return smallest * diagonal;
 }
@@ -212,8 +212,8 @@ RGB PhotonIntegrator::radiance(const Ray& cameraRay, Rng& rng) const {
         WalkExit exit;
         if (state.inside()) {
             const double tMax = hit ? hit->t : INFINITY;
-            const Volume& media = *scene_.volumes()[state.volume].volume;
-            const ColumnProfile column(media, ray, state.start, tMax);
+            const Volume& volume = *scene_.volumes()[state.volume].volume;
+            const ColumnProfile column(volume, ray, state.start, tMax);
             // A walked domain on the stretch: walk the stretch (and all after) as volpath does, from
             // its start. Restarted where the domain begins, on a tet's face, the walk would follow
             // the rounded line from there, which can miss a tet the stretch only touches.
@@ -268,34 +268,34 @@ int PhotonIntegrator::domainOf(int v, uint32_t tet) const {
 }
 
 RGB PhotonIntegrator::inMedium(int v, const Ray& ray, const ColumnProfile& column, Rng& rng) const {
-    const Volume& medium = *scene_.volumes()[v].volume;
+    const Volume& volume = *scene_.volumes()[v].volume;
     const auto& pieces = column.pieces();
     RGB L(0);
     // Emission, piece by piece: the integral of emission * density * transmittance over a piece
     // is emission * tr(piece start) * (1 - tr(piece)) / sigma_t.
     for (size_t i = 0; i < pieces.size(); ++i) {
-        const Medium& optics = medium.at(pieces[i].tet);
-        if (!(maxComponent(optics.params.emission) > 0)) continue;
+        const Medium& medium = volume.at(pieces[i].tet);
+        if (!(maxComponent(medium.params.emission) > 0)) continue;
         const double piece = (i + 1 < pieces.size() ? pieces[i + 1].columnIn : column.total()) - pieces[i].columnIn;
         const RGB trIn = exp(-pieces[i].depthIn);
         for (int c = 0; c < 3; ++c) {
-            const double sigma = optics.sigmaT[c];
-            L[c] += optics.params.emission[c] * trIn[c] * (sigma > 0 ? -std::expm1(-sigma * piece) / sigma : piece);
+            const double sigma = medium.sigmaT[c];
+            L[c] += medium.params.emission[c] * trIn[c] * (sigma > 0 ? -std::expm1(-sigma * piece) / sigma : piece);
         }
     }
-    if (!medium.scatters() || pieces.empty()) return L;
+    if (!volume.scatters() || pieces.empty()) return L;
     if (desc_.estimate == PhotonEstimate::KnnMarch) return L + marchKnn(v, ray, column, rng);
     return L + directAlong(v, ray, column, rng) + beamEstimate(v, ray, column);
 }
 
 RGB PhotonIntegrator::marchKnn(int v, const Ray& ray, const ColumnProfile& column, Rng& rng) const {
-    const Volume& medium = *scene_.volumes()[v].volume;
+    const Volume& volume = *scene_.volumes()[v].volume;
     const double u = rng.uniform();
     RGB L(0);
     // Each exact piece is split into equal steps no longer than the step size, one jittered
     // sample per step: the parity baseline's march, without its boundary error.
     for (const ColumnProfile::Piece& piece : column.pieces()) {
-        const RGB sigmaS = medium.at(piece.tet).params.sigmaS;
+        const RGB sigmaS = volume.at(piece.tet).params.sigmaS;
         if (isBlack(sigmaS)) continue;
         const int n = std::max(1, int(std::ceil((piece.tOut - piece.tIn) / desc_.stepSize)));
         const double h = (piece.tOut - piece.tIn) / n;
@@ -303,7 +303,7 @@ RGB PhotonIntegrator::marchKnn(int v, const Ray& ray, const ColumnProfile& colum
             const double t = piece.tIn + (i + u) * h;
             const glm::dvec3 p = ray.at(t);
             const RGB scattered =
-                sigmaS * medium.density(piece.tet, p) * directInMedium(scene_, v, p, ray.d, piece.tet, rng) +
+                sigmaS * volume.density(piece.tet, p) * directInMedium(scene_, v, p, ray.d, piece.tet, rng) +
                 knnEstimate(v, piece.tet, p, ray.d);
             L += column.transmittance(t) * h * scattered;
         }
@@ -376,7 +376,7 @@ RGB PhotonIntegrator::beamEstimate(int v, const Ray& ray, const ColumnProfile& c
 
 RGB PhotonIntegrator::directAlong(int v, const Ray& ray, const ColumnProfile& column, Rng& rng) const {
     if (scene_.lights().empty() || scene_.sealed(v)) return RGB(0);
-    const Volume& medium = *scene_.volumes()[v].volume;
+    const Volume& volume = *scene_.volumes()[v].volume;
     // The distance follows one channel's transmittance, truncated to the stretch; the channels
     // with extinction share the sample by one-sample MIS, so no channel's weight blows up.
     const RGB depth = column.depth();
@@ -389,14 +389,14 @@ RGB PhotonIntegrator::directAlong(int v, const Ray& ray, const ColumnProfile& co
     // Read off the column profile the eye stretch already walked.
     const auto event = column.atDepth(hero, -std::log1p(-rng.uniform() * (1 - trEnd[hero])));
     if (!event) return RGB(0);
-    const Medium& optics = medium.at(event->tet);
+    const Medium& medium = volume.at(event->tet);
     const RGB tr = column.transmittance(event->t);
     double pdf = 0;  // mean over the channels of sigma_t tr / (1 - tr(end)), per unit column
     for (int i = 0; i < count; ++i) {
         const int c = channels[i];
-        pdf += optics.sigmaT[c] * tr[c] / (1 - trEnd[c]) / count;
+        pdf += medium.sigmaT[c] * tr[c] / (1 - trEnd[c]) / count;
     }
-    const RGB weight = tr * optics.params.sigmaS / pdf;
+    const RGB weight = tr * medium.params.sigmaS / pdf;
     return weight * directInMedium(scene_, v, ray.at(event->t), ray.d, event->tet, rng);
 }
 

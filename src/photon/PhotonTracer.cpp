@@ -144,17 +144,17 @@ PhotonSource::PhotonSource(const Scene& scene) {
     for (int i = 0; i < int(scene.lights().size()); ++i) emitters_.push_back({i, -1, scene.lights()[i]->power(), {}});
     for (int m = 0; m < int(scene.media().size()); ++m) {
         const MediumPlace& sm = scene.media()[m];
-        const Volume& medium = *scene.volumes()[sm.volume].volume;
-        const Medium& optics = medium.region(sm.region);
-        if (!(maxComponent(optics.params.emission) > 0)) continue;
-        Emitter e{-1, m, RGB(0), {}, medium.mesh().regionTets[sm.region]};
-        const TetMesh& mesh = medium.mesh();
+        const Volume& volume = *scene.volumes()[sm.volume].volume;
+        const Medium& medium = volume.region(sm.region);
+        if (!(maxComponent(medium.params.emission) > 0)) continue;
+        Emitter e{-1, m, RGB(0), {}, volume.mesh().regionTets[sm.region]};
+        const TetMesh& mesh = volume.mesh();
         double total = 0;
         // Density is linear in a tet: its value at the centroid is its mean.
         for (uint32_t t = e.firstTet; t < mesh.regionTets[sm.region + 1]; ++t)
-            e.tetCdf.push_back(total += mesh.tetVolume(t) * medium.density(t, mesh.centroid(t)));
+            e.tetCdf.push_back(total += mesh.tetVolume(t) * volume.density(t, mesh.centroid(t)));
         // Isotropic emission of radiance `emission` per unit length: 4 pi emission per unit volume.
-        e.power = optics.params.emission * (4 * kPi * total);
+        e.power = medium.params.emission * (4 * kPi * total);
         if (total > 0) emitters_.push_back(std::move(e));
     }
     double total = 0;
@@ -178,9 +178,9 @@ PhotonSource::Emission PhotonSource::sample(const Scene& scene, Rng& rng) const 
         out.medium = scene.volumeAt(p.ray.o);
         return out;
     }
-    const int volume = scene.media()[e.medium].volume;
-    const Volume& medium = *scene.volumes()[volume].volume;
-    const TetMesh& mesh = medium.mesh();
+    const int index = scene.media()[e.medium].volume;
+    const Volume& volume = *scene.volumes()[index].volume;
+    const TetMesh& mesh = volume.mesh();
     const auto tet = e.firstTet + uint32_t(sampleCdf(e.tetCdf, rng.uniform()));
     const auto& v = mesh.tets[tet];
     const glm::dvec3 p0 = mesh.vertices[v[0]];
@@ -191,8 +191,8 @@ PhotonSource::Emission PhotonSource::sample(const Scene& scene, Rng& rng) const 
     const double u3 = rng.uniform(), u4 = rng.uniform();
     out.ray = {p, sampleUniformSphere({u3, u4})};
     // The point is uniform in the tet; its density relative to the tet's mean corrects for that.
-    out.flux = e.power * (medium.density(tet, p) / medium.density(tet, mesh.centroid(tet)) / chosen);
-    out.medium = {volume, WalkStart::inside(tet)};
+    out.flux = e.power * (volume.density(tet, p) / volume.density(tet, mesh.centroid(tet)) / chosen);
+    out.medium = {index, WalkStart::inside(tet)};
     out.fromMedium = true;
     return out;
 }

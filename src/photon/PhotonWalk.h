@@ -30,20 +30,20 @@ struct WalkResult {
 // (INFINITY where there is none). onScatter(event) is called at every scattering event, before
 // the new direction is drawn.
 template <class Limit, class OnScatter>
-WalkResult photonWalk(const Volume& medium, Ray ray, WalkStart start, const RGB& flux, SpectralPath& path, Rng& rng,
+WalkResult photonWalk(const Volume& volume, Ray ray, WalkStart start, const RGB& flux, SpectralPath& path, Rng& rng,
                       int maxEvents, Limit&& limit, OnScatter&& onScatter) {
     WalkResult result;
     for (; result.events < maxEvents; ++result.events) {
-        const FreeFlight flight = medium.sampleFlight(ray, start, limit(ray), path.hero, rng.uniform());
+        const FreeFlight flight = volume.sampleFlight(ray, start, limit(ray), path.hero, rng.uniform());
         if (!flight.scattered) {
             path.pass(flight.transmittance);
             result.ray = ray;
             result.exit = flight.exit;
             return result;
         }
-        const Medium& optics = medium.at(flight.tet);
-        const MediumParams& params = optics.params;
-        path.interact(flight.transmittance, optics.sigmaT * flight.density);
+        const Medium& medium = volume.at(flight.tet);
+        const MediumParams& params = medium.params;
+        path.interact(flight.transmittance, medium.sigmaT * flight.density);
         const RGB arriving = path.weight() * flux;
         result.absorbedFlux += arriving * params.sigmaA * flight.density;
         path.beta *= params.sigmaS * flight.density;
@@ -53,7 +53,7 @@ WalkResult photonWalk(const Volume& medium, Ray ray, WalkStart start, const RGB&
         if (keep == 0) break;
         path.beta /= keep;
         const double u0 = rng.uniform(), u1 = rng.uniform();
-        ray = {p, optics.phase.sample(ray.d, {u0, u1})};
+        ray = {p, medium.phase.sample(ray.d, {u0, u1})};
         start = WalkStart::inside(flight.tet);
     }
     result.absorbed = true;
