@@ -5,12 +5,17 @@
       date or clock time; no doc, code or script names an issue number or a session
   tests/docs_check.py links [--root DIR]   every relative link in README.md, bench/README.md and
       docs/**/*.md points to a file that exists (and, with #anchor, to a heading in it)
+  tests/docs_check.py code [--root DIR]    every code name that README.md, docs/*.md or a comment in
+      src/ and tests/ writes exists in the code (comments left out): a CamelCase name (in docs,
+      in backticks, as is a capitalized word alone in backticks), a `Class::member`, a `file.h`
+      or `file.cpp` path and a `src/...` path
   tests/docs_check.py readme [--root DIR]  README.md is a door, not a manual: at most 150 lines,
       and its first command for one's own mesh (`tetglow init`) within its first 60
 
 Prints one line per problem (file:line: what) and exits 1 when there is any.
 """
 import argparse
+import fnmatch
 import os
 import re
 import subprocess
@@ -23,18 +28,18 @@ TEXT = (".md", ".cpp", ".h", ".py", ".sh", ".txt", ".cmake", ".js", ".html", ".c
 SCANNED = ("README.md", "CMakeLists.txt", "setup.sh", "src", "tests", "bench", "fuzz", "web", "docs", "scenes", "cmake", ".ci")
 
 
-def tracked(root):
-    """The files of the source tree under the scanned paths: what git tracks or would track
-    (untracked but not ignored), or, outside a git checkout, every file but build outputs."""
+def tracked(root, tops=SCANNED):
+    """The files of the source tree under `tops`: what git tracks or would track (untracked but
+    not ignored), or, outside a git checkout, every file but build outputs."""
     try:
-        r = subprocess.run(["git", "-C", root, "ls-files", "--cached", "--others", "--exclude-standard", "--", *SCANNED],
+        r = subprocess.run(["git", "-C", root, "ls-files", "--cached", "--others", "--exclude-standard", "--", *tops],
                            capture_output=True, text=True)
         if r.returncode == 0:
             return [f for f in r.stdout.splitlines() if os.path.isfile(os.path.join(root, f))]
     except FileNotFoundError:  # no git on this machine
         pass
     files = []
-    for top in SCANNED:
+    for top in tops:
         if os.path.isfile(os.path.join(root, top)):
             files.append(top)
         for folder, dirs, names in os.walk(os.path.join(root, top)):
@@ -109,6 +114,192 @@ def check_links(root):
     return problems
 
 
+# Code names in docs and comments: the code they must exist in, the files whose comments are
+# checked, and the names of other projects (tests/docs_check_foreign.txt) that are not ours.
+CODE = ("src", "tests", "bench", "fuzz", "blender", "web", "cmake", "CMakeLists.txt")
+C_LIKE, SCRIPTS = (".h", ".cpp", ".hpp", ".c", ".js"), (".py", ".sh")
+IDENT = re.compile(r"[A-Za-z_]\w*")
+# Two humps or more (TetWalk, OpenEXR): one-hump words (Scene, Film) are English too.
+CAMEL = re.compile(r"(?<![\w.:/-])([A-Z]\w*?[a-z]\w*?[A-Z]\w*)(\*?)")
+MEMBER = re.compile(r"(?<![\w.:])([A-Z]\w*)::(~?[A-Za-z_]\w*)")
+PATH = re.compile(r"(?<![\w/.-])((?:\.{1,2}/)*(?:src/[\w.*/-]*|[\w*-][\w.*-]*(?:/[\w.*-]+)*\.(?:h|cpp)\b))")
+
+
+def split_c_like(text, quotes):
+    """(code with comments blanked, [(line, comment text)]) of C++ or JavaScript source. String
+    and raw-string literals stay code: a name an error message spells exists."""
+    code, comments, i, n, line = [], [], 0, len(text), 1
+    while i < n:
+        c = text[i]
+        if text.startswith("//", i) or text.startswith("/*", i):
+            end = text.find("\n", i) if c == "/" and text[i + 1] == "/" else text.find("*/", i + 2)
+            end = n if end < 0 else end + (0 if text[i + 1] == "/" else 2)
+            for k, part in enumerate(text[i:end].split("\n")):
+                comments.append((line + k, part))
+            code.append("".join(ch if ch == "\n" else " " for ch in text[i:end]))
+            line += text.count("\n", i, end)
+            i = end
+        elif c == "R" and text.startswith('"', i + 1) and "(" in text[i + 2:i + 20]:
+            delim = text[i + 2:text.index("(", i + 2)]
+            end = text.find(")" + delim + '"', i)
+            end = n if end < 0 else end + len(delim) + 2
+            code.append(text[i:end])
+            line += text.count("\n", i, end)
+            i = end
+        elif c in quotes and (c != "'" or not (i and text[i - 1].isalnum())):  # 1'000 is a digit separator
+            j = i + 1
+            while j < n and text[j] != c and (text[j] != "\n" or c == "`"):
+                j += 2 if text[j] == "\\" else 1
+            code.append(text[i:j + 1])
+            line += text.count("\n", i, j + 1)
+            i = j + 1
+        else:
+            code.append(c)
+            line += c == "\n"
+            i += 1
+    return "".join(code), comments
+
+
+def split_script(text):
+    """(code, [(line, comment text)]) of Python or shell: a # that starts a line's comment, outside quotes."""
+    code, comments = [], []
+    for n, row in enumerate(text.split("\n"), 1):
+        quote, cut = None, None
+        for k, ch in enumerate(row):
+            if quote:
+                quote = None if ch == quote and row[k - 1] != "\\" else quote
+            elif ch in "'\"":
+                quote = ch
+            elif ch == "#" and (k == 0 or row[k - 1] in " \t") and not row.startswith("#!"):
+                cut = k
+                break
+        code.append(row if cut is None else row[:cut])
+        if cut is not None:
+            comments.append((n, row[cut:]))
+    return "\n".join(code), comments
+
+
+def split_source(path, text):
+    if path.endswith(C_LIKE):
+        return split_c_like(text, "\"'`" if path.endswith(".js") else "\"'")
+    if path.endswith(SCRIPTS):
+        return split_script(text)
+    return text, []
+
+
+class CodeNames:
+    """What the code has: its identifiers (comments left out), where each type or namespace is
+    defined, and its files."""
+
+    def __init__(self, root):
+        self.files = tracked(root, CODE) + tracked(root)
+        self.code, self.comments = {}, {}
+        for path in set(self.files):
+            # This check's own files spell stale names on purpose; they are no part of the code.
+            if path.endswith(C_LIKE + SCRIPTS + (".txt", ".cmake")) and not os.path.basename(path).startswith("docs_check"):
+                with open(os.path.join(root, path), encoding="utf-8", errors="replace") as f:
+                    self.code[path], self.comments[path] = split_source(path, f.read())
+        self.idents = set()
+        for text in self.code.values():
+            self.idents.update(IDENT.findall(text))
+        self.root = root
+        self._defined = {}
+
+    def defined_in(self, name):
+        """The files whose code defines `name` as a class, struct, enum or namespace."""
+        if name not in self._defined:
+            pattern = re.compile(r"\b(?:class|struct|union|namespace|enum(?:\s+class)?)\s+" + name + r"\b(?!\s*;)")
+            self._defined[name] = [p for p, t in self.code.items() if p.endswith(C_LIKE) and pattern.search(t)]
+        return self._defined[name]
+
+    def has_member(self, owner, member):
+        if any(f"{owner}::{member}" in t for t in self.code.values()):
+            return True
+        files = self.defined_in(owner)
+        if not files:
+            return None  # not ours to judge: a type of another project
+        stems = {os.path.splitext(p)[0] for p in files}
+        return any(os.path.splitext(p)[0] in stems and re.search(r"\b" + re.escape(member.lstrip("~")) + r"\b", t)
+                   for p, t in self.code.items())
+
+    def has_path(self, path):
+        path = re.sub(r"^(\.{1,2}/)+", "", path).rstrip("/")
+        if "*" in path:
+            return any(fnmatch.fnmatch(f, path) or fnmatch.fnmatch(f, "*/" + path) for f in self.files)
+        if any(os.path.exists(os.path.join(self.root, top, path)) for top in ("", "src", "tests")):
+            return True
+        return any(f.endswith("/" + path) for f in self.files)
+
+    def has_camel(self, name, prefix):
+        if prefix:  # a test filter's Suite.Name*
+            return any(i.startswith(name) for i in self.idents)
+        return name in self.idents or (name.endswith("s") and name[:-1] in self.idents)  # InputErrors
+
+
+def foreign_names(root):
+    """Names of other projects (pbrt, Cycles, Embree, CGAL, TetGen, Blender, ...) that docs and
+    comments may write: tests/docs_check_foreign.txt, one a line, # comments."""
+    with open(os.path.join(root, "tests", "docs_check_foreign.txt"), encoding="utf-8") as f:
+        return {w for line in f for w in [line.split("#", 1)[0].strip()] if w}
+
+
+def stale_names(names, foreign, text, camel):
+    """The code names in `text` that the code does not have: `Class::member`, paths, and
+    CamelCase names when `camel`."""
+    stale = []
+    for owner, member in MEMBER.findall(text):
+        if owner in foreign or f"{owner}::{member}" in foreign:
+            continue
+        if names.has_member(owner, member) is False or (owner not in names.idents and not names.defined_in(owner)):
+            stale.append(f"{owner}::{member}")
+    for path in PATH.findall(text):
+        path = path.rstrip(".")  # a sentence's full stop
+        if path not in foreign and not names.has_path(path):
+            stale.append(path)
+    if camel:
+        for name, star in CAMEL.findall(text):
+            if name not in foreign and not names.has_camel(name, star):
+                stale.append(name + star)
+    return stale
+
+
+CODE_DOCS = ("README.md", "bench/README.md")
+BACKTICKS = re.compile(r"`([^`]+)`")
+
+
+def check_code(root):
+    names, foreign = CodeNames(root), foreign_names(root)
+    problems = []
+
+    def report(path, n, stale):
+        for name in dict.fromkeys(stale):
+            problems.append(f"{path}:{n}: names {name}, which the code does not have")
+
+    docs = [f for f in tracked(root) if re.fullmatch(r"docs/[^/]+\.md", f)] + list(CODE_DOCS)
+    for doc in sorted(set(docs)):
+        if not os.path.isfile(os.path.join(root, doc)):
+            continue
+        with open(os.path.join(root, doc), encoding="utf-8") as f:
+            lines = f.read().splitlines()
+        fenced = False
+        for n, line in enumerate(lines, 1):
+            if line.startswith("```"):
+                fenced = not fenced
+            if fenced or line.startswith("<!--"):
+                continue
+            # CamelCase only in backticks: prose names TetGen, OpenEXR and GitHub too. A span that is
+            # one capitalized word (`Scene`) is a type name as well.
+            spans = BACKTICKS.findall(line)
+            report(doc, n, stale_names(names, foreign, line, False) +
+                   [s for span in spans for s in stale_names(names, foreign, span, True)] +
+                   [w for w in spans if re.fullmatch(r"[A-Z]\w*", w) and w not in foreign and w not in names.idents])
+    for path in sorted(names.comments):
+        if path.startswith(("src/", "tests/")):
+            for n, comment in names.comments[path]:
+                report(path, n, stale_names(names, foreign, comment, True))
+    return problems
+
+
 README_LINES, FIRST_SCENE_BY = 150, 60
 
 
@@ -128,10 +319,10 @@ def check_readme(root):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("check", choices=["names", "links", "readme"])
+    parser.add_argument("check", choices=["names", "links", "code", "readme"])
     parser.add_argument("--root", default=os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
     a = parser.parse_args()
-    problems = {"names": check_names, "links": check_links, "readme": check_readme}[a.check](a.root)
+    problems = {"names": check_names, "links": check_links, "code": check_code, "readme": check_readme}[a.check](a.root)
     for p in problems:
         print(p)
     if problems:

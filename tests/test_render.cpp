@@ -21,7 +21,7 @@ namespace tetglow::test {
 namespace {
 
 // An index-matched surface (material "interface") is invisible to every ray: camera rays cross
-// it, and so must shadow rays (Scene::transmittance) and the single-scatter march's rays
+// it, and so must shadow rays (transmittance, PathStep.h) and the single-scatter march's rays
 // (Scene::intersectOpaque); a diffuse one in the same place blocks them.
 TEST(Render, IndexMatchedSurfacesPassEveryRay) {
     const RGB sigmaA(0.4, 1.1, 2.3);

@@ -38,7 +38,7 @@ def cycles(blender, scene, out, spp, seed, a):
 
 def tetglow(a, scene, out, method, seconds, seed):
     extra = []
-    if method == "photon":  # the photon paths per pass, from the image's pixels (docs/RESULTS.md, "Photon passes")
+    if method == "photon":  # the photon paths per pass, from the image's pixels (docs/RESULTS.md, "How should a photon pass split ...")
         w, h = map(int, a.res.split("x"))
         extra = ["--photons", str(max(1, round(a.photons_per_pixel * w * h)))]
     return timed([os.path.join(a.build, "tetglow"), "render", scene, "-o", out, *METHODS[method], *extra, "--time", f"{seconds:.3f}",

@@ -40,7 +40,7 @@ RGB sampleDirect(const Scene& scene, const glm::dvec3& p, Rng& rng, bool mis, Sc
 }
 
 // The visibility sampleDirect wants for shadow rays from `from`: their transmittance, with
-// Russian roulette (Scene::transmittance).
+// Russian roulette (transmittance, PathStep.h).
 inline auto shadowRays(const Scene& scene, const VolumeState& from, Rng& rng) {
     return [&scene, from, &rng](const Ray& r, double tMax) { return transmittance(scene, r, tMax, from, &rng); };
 }
@@ -54,8 +54,8 @@ inline auto phaseScattering(const HenyeyGreenstein& phase, const glm::dvec3& d) 
 }
 
 // Light scattered at p, inside tet `tet` of volume v, into the direction -d: one light
-// sample without MIS, its shadow ray walking the tets (Scene::transmittance, with roulette unless
-// the caller wants the exact transmittance).
+// sample without MIS, its shadow ray walking the tets (transmittance in PathStep.h, with
+// roulette unless the caller wants the exact transmittance).
 inline RGB directInMedium(const Scene& scene, int v, const glm::dvec3& p, const glm::dvec3& d, uint32_t tet, Rng& rng,
                           bool roulette = true) {
     if (scene.sealed(v)) return RGB(0);  // no shadow ray from inside reaches a light

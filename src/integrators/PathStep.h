@@ -1,10 +1,10 @@
 // The events every path loop shares: the volpath integrator's path, the photon integrator's
-// eye path, the photon tracer's light path and shadow rays (Scene::transmittance). Each loop
+// eye path, the photon tracer's light path and shadow rays (transmittance, below). Each loop
 // walks the medium of a straight stretch its own way (free flights, the column profile, the
 // photon walk, the transmittance), then ends the stretch here: the walk's exact exit face
 // replaces Embree's float hit, index-matched boundaries are crossed, and what is left is an
 // escape, an emitter or a surface event. After a surface event the path leaves the surface
-// here; Russian roulette is one of photon/Roulette.h's two rules.
+// here; Russian roulette is one of media/Roulette.h's two rules.
 #pragma once
 #include <optional>
 

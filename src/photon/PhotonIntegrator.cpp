@@ -25,20 +25,10 @@ constexpr double kMaxRadiusFraction = 0.2;  // of the medium's (or the scene's) 
 // What one stored photon costs at the peak of a pass: itself in the tracer's blocks and again
 // when they are joined, then in its map with the k-d tree, the beam BVH and its ball's volume.
 constexpr double kBytesPerStoredPhoton = 160;
-// A domain whose longest mean free path is shorter than this fraction of its bounding-box
-// diagonal is optically dense: the photon density changes within a mean free path of its
-// boundary (where the eye sees it) and within sqrt(max depth) mean free paths (where a truncated
-// walk stops), both far below any kernel radius a pass's photons fill. There the eye path walks
-// the medium as volpath does.
+// Optically dense: a longest mean free path under this fraction of the bounding-box diagonal.
 constexpr double kDenseMeanFreePath = 0.02;
 
-// Whether the eye path walks a domain of `volume` (of the optical size below) instead of reading
-// photons there. A dense domain, always. So does one that shadow rays from inside can leave (not
-// sealed) and whose longest mean free path is shorter than the largest kernel radius: its light
-// changes within a mean free path, a photon estimate blurs it until the radius has shrunk below
-// that, so its error falls only as the radius does (as t^-0.5 on blub), while the walk's, lit by
-// next-event estimation, falls as 1/t. Behind glass (sealed) the walk finds the light by chance
-// only, and photons stay.
+// Which domains the eye path walks: the rule and its reasons are in PhotonIntegrator.h.
 bool eyeWalks(const Scene& scene, int volume, double opticalSize) {
     return opticalSize * (scene.sealed(volume) ? kDenseMeanFreePath : kMaxRadiusFraction) > 1;
 }

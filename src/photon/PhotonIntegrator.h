@@ -19,6 +19,22 @@
 // first diffuse surface of an eye path takes only the caustic photons (from a light by specular
 // events alone) and gathers the rest by one more bounce, whose next diffuse surface takes all
 // its photons (Jensen's final gather: the kernel's blur stays off what the eye sees directly).
+//
+// Which media the eye path walks (eyeWalks). Where a kernel cannot resolve the light, the eye
+// path walks a photon domain as volpath does, lit by next-event estimation, and a pass keeps no
+// photons there:
+//   - an optically dense domain, whose longest mean free path is under 2% of its bounding-box
+//     diagonal (kDenseMeanFreePath): the photon density changes within a mean free path of its
+//     boundary (where the eye sees it) and within sqrt(max depth) mean free paths (where a
+//     truncated walk stops), both far below any kernel radius a pass's photons fill;
+//   - a domain that shadow rays from inside can leave (not sealed in a dielectric) whose longest
+//     mean free path is under the largest kernel radius, a fifth of the diagonal
+//     (kMaxRadiusFraction): its light changes within a mean free path, a photon estimate blurs
+//     it until the radius has shrunk below that, so its error falls only as the radius does (as
+//     t^-0.5 on blub), while the walk's falls as 1/t.
+// Behind glass (sealed) the walk finds the light by chance only, and photons stay. An eye ray
+// whose stretch meets a walked domain walks the whole stretch. Where every domain is walked and
+// nothing is a dielectric, passes trace no photons (tracesPhotons).
 #pragma once
 #include <memory>
 #include <vector>
@@ -49,10 +65,11 @@ public:
     RGB radiance(const Ray& ray, Rng& rng) const override;
     std::vector<std::string> warnings() const override;
     const PhotonStats& stats() const { return stats_; }
-    // Whether passes trace photons. They do not when the eye path walks every medium and no
-    // surface or medium boundary is a dielectric: the only photons left would be the diffuse
-    // surfaces', whose light paths with next-event estimation carry without the kernel's bias
-    // and, measured, with less error at equal time. Each eye path is then volpath's.
+    // Whether passes trace photons. They do not when the eye path walks every medium (the rule
+    // at the top of this file) and no surface or medium boundary is a dielectric: the only
+    // photons left would be the diffuse surfaces', whose light paths with next-event estimation
+    // carry without the kernel's bias and, measured, with less error at equal time. Each eye path
+    // is then volpath's.
     bool tracesPhotons() const { return tracing_; }
 
     // Radius factor of pass `pass` (from 0) for a kernel of dimension `dim`: the radius^dim
@@ -73,7 +90,7 @@ private:
         std::vector<float> invBallVolume;
         double largestRadius = 0;  // of this pass's photons: how far past a stretch balls reach
         float maxRadius = 0;
-        bool walked = false;  // no photons: the eye path walks it as volpath does (see eyeWalks)
+        bool walked = false;  // no photons: the eye path walks it as volpath does (eyeWalks, above)
     };
 
     // Light scattered and emitted towards ray.o along the stretch `column` of volume v.
