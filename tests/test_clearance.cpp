@@ -12,6 +12,7 @@
 #include "TestMeshes.h"
 #include "TestScenes.h"
 #include "integrators/PathStep.h"
+#include "media/ShadowRay.h"
 #include "scene/Scene.h"
 #include "tet/ClearanceGrid.h"
 #include "tet/Shapes.h"
@@ -70,10 +71,10 @@ TEST(ClearanceGrid, ShadowRouletteDecidedInTheClearBallKeepsTheTransmittance) {
     ASSERT_TRUE(centre.inside());
     const Volume& volume = *scene.volumes()[0].volume;
     // The sure depth: the smallest extinction over the bound on the distance to the boundary.
-    const double sure = volume.sureDepth(centre.start, ray.o, INFINITY);
+    const double sure = sureDepth(volume, centre.start, ray.o, INFINITY);
     EXPECT_GT(sure, 10 * (0.95 - 0.11));
     EXPECT_LE(sure, 10 * 1.0);
-    EXPECT_EQ(volume.sureDepth(centre.start, ray.o, 0.2), 10 * 0.2);  // a ray that ends inside the ball
+    EXPECT_EQ(sureDepth(volume, centre.start, ray.o, 0.2), 10 * 0.2);  // a ray that ends inside the ball
     // Tests at ln 20 + k ln 4 below it.
     const int tests = int(std::floor((sure - std::log(20.0)) / std::log(4.0))) + 1;
     ASSERT_GE(tests, 3);

@@ -13,6 +13,7 @@
 #include "TestMeshes.h"
 #include "TestScenes.h"
 #include "integrators/PathStep.h"
+#include "media/ShadowRay.h"
 #include "media/Volume.h"
 #include "scene/MeshFile.h"
 #include "scene/Scene.h"
@@ -212,9 +213,9 @@ TEST(RegionMediaExit, TransmittanceAlongAChordIsTheClosedForm) {
         // (to the float rounding of the tets' vertices) and the walk's (to the last bits).
         for (const double end : {double(INFINITY), 0.5 * chord}) {
             medium->setExitQueryAfter(0);
-            const RGB walked = medium->transmittance(ray, WalkStart::inside(uint32_t(tet)), end);
+            const RGB walked = transmittance(*medium, ray, WalkStart::inside(uint32_t(tet)), end);
             medium->setExitQueryAfter(1 + size_t(i % 4));
-            const RGB tr = medium->transmittance(ray, WalkStart::inside(uint32_t(tet)), end);
+            const RGB tr = transmittance(*medium, ray, WalkStart::inside(uint32_t(tet)), end);
             ASSERT_NEAR(tr.x, std::exp(-sigma * std::min(chord, end)), 1e-6);
             ASSERT_NEAR(tr.x, walked.x, 1e-12);
         }
@@ -237,8 +238,8 @@ void expectSameAsTheWalk(Volume& volume, uint64_t seed) {
         for (const size_t k : {0, 1}) {
             volume.setExitQueryAfter(k == 0 ? 0 : 1 + size_t(i % 3));
             Rng r(7, uint64_t(i));
-            shadows[k] = volume.shadowFlight(ray, start, INFINITY, r);
-            flights[k] = volume.sampleFlight(ray, start, INFINITY, 0, 1.0);
+            shadows[k] = shadowFlight(volume, ray, start, INFINITY, r);
+            flights[k] = sampleFlight(volume, ray, start, INFINITY, 0, 1.0);
         }
         for (const FreeFlight* f : {flights, shadows}) {
             ASSERT_EQ(f[1].exit.left, f[0].exit.left);
@@ -313,10 +314,10 @@ void expectJumpsAsTheWalk(Volume& volume, uint64_t seed) {
         const double v = u01(rng);
         const int hero = int(rng() % 3);
         volume.setExitQueryAfter(0);
-        const FreeFlight walked = volume.sampleFlight(ray, WalkStart::inside(uint32_t(tet)), INFINITY, hero, v);
+        const FreeFlight walked = sampleFlight(volume, ray, WalkStart::inside(uint32_t(tet)), INFINITY, hero, v);
         for (const WalkStart start : {WalkStart::inside(uint32_t(tet)), WalkStart::inRegion(hint)}) {
             ++flights;
-            const FreeFlight f = volume.sampleFlight(ray, start, INFINITY, hero, v, RGB(1), true);
+            const FreeFlight f = sampleFlight(volume, ray, start, INFINITY, hero, v, RGB(1), true);
             ASSERT_EQ(f.scattered, walked.scattered);
             for (int c = 0; c < 3; ++c) ASSERT_NEAR(f.transmittance[c], walked.transmittance[c], 1e-12);
             if (f.scattered) {
@@ -338,8 +339,8 @@ void expectJumpsAsTheWalk(Volume& volume, uint64_t seed) {
         const Ray from{p - 3.0 * ray.d, ray.d};
         if (const auto entry = volume.traversal().firstEntry(from, 0, INFINITY)) {
             const WalkStart surface = WalkStart::surface(entry->entryTriangle());
-            const FreeFlight w = volume.sampleFlight(from, surface, INFINITY, hero, v);
-            const FreeFlight f = volume.sampleFlight(from, surface, INFINITY, hero, v, RGB(1), true);
+            const FreeFlight w = sampleFlight(volume, from, surface, INFINITY, hero, v);
+            const FreeFlight f = sampleFlight(volume, from, surface, INFINITY, hero, v, RGB(1), true);
             ++entering;
             ASSERT_EQ(f.scattered, w.scattered);
             for (int c = 0; c < 3; ++c) ASSERT_NEAR(f.transmittance[c], w.transmittance[c], 1e-12);
@@ -354,13 +355,13 @@ void expectJumpsAsTheWalk(Volume& volume, uint64_t seed) {
         }
         volume.setExitQueryAfter(1);
         Rng r0(7, uint64_t(i)), r1(7, uint64_t(i));
-        const FreeFlight fromTet = volume.shadowFlight(ray, WalkStart::inside(uint32_t(tet)), INFINITY, r0);
-        const FreeFlight fromRegion = volume.shadowFlight(ray, WalkStart::inRegion(hint), INFINITY, r1);
+        const FreeFlight fromTet = shadowFlight(volume, ray, WalkStart::inside(uint32_t(tet)), INFINITY, r0);
+        const FreeFlight fromRegion = shadowFlight(volume, ray, WalkStart::inRegion(hint), INFINITY, r1);
         ASSERT_EQ(fromRegion.exit.triangle, fromTet.exit.triangle);
         ASSERT_NEAR(fromRegion.exit.t, fromTet.exit.t, 1e-12);
         for (int c = 0; c < 3; ++c) ASSERT_NEAR(fromRegion.transmittance[c], fromTet.transmittance[c], 1e-12);
-        const RGB tr = volume.transmittance(ray, WalkStart::inRegion(hint), INFINITY),
-                  trTet = volume.transmittance(ray, WalkStart::inside(uint32_t(tet)), INFINITY);
+        const RGB tr = transmittance(volume, ray, WalkStart::inRegion(hint), INFINITY),
+                  trTet = transmittance(volume, ray, WalkStart::inside(uint32_t(tet)), INFINITY);
         for (int c = 0; c < 3; ++c) ASSERT_NEAR(tr[c], trTet[c], 1e-12);
     }
     std::printf("%zu flights: %zu jumped to an interaction, %zu left the medium; %zu entering, %zu of them jumped\n",
@@ -409,7 +410,7 @@ void expectStretchesEndAsTheWalk(Volume& volume, uint64_t seed, bool crosses) {
             return false;
         });
         if (!intoAnother) leaves = walk.exitT();
-        const auto stretch = volume.regionStretch(ray, start, INFINITY, 1e6);
+        const auto stretch = regionStretch(volume, ray, start, INFINITY, 1e6);
         if (!stretch) {  // too close to call (an exit just ahead): the walk decides
             ++unsure;
             continue;
@@ -426,7 +427,7 @@ void expectStretchesEndAsTheWalk(Volume& volume, uint64_t seed, bool crosses) {
         // Looking ahead a tenth of the way: the end is that far, not known beyond.
         const RGB& sigma = volume.at(uint32_t(tet)).sigmaT;
         const double least = std::min({sigma.x, sigma.y, sigma.z});
-        const auto near = volume.regionStretch(ray, start, INFINITY, 0.1 * least * leaves);
+        const auto near = regionStretch(volume, ray, start, INFINITY, 0.1 * least * leaves);
         if (!near) continue;
         ASSERT_FALSE(near->whole);
         ASSERT_NEAR(near->end, 0.1 * leaves, 1e-12);
@@ -464,7 +465,7 @@ TEST(RegionMediaExit, VaryingDensityKeepsTheWalk) {
     const uint64_t queries = surfaceQueries();
     const int64_t tet = volume.traversal().locate(glm::dvec3(0.1, 0.2, 0.3));
     ASSERT_GE(tet, 0);
-    volume.transmittance({{0.1, 0.2, 0.3}, {1, 0, 0}}, WalkStart::inside(uint32_t(tet)), INFINITY);
+    transmittance(volume, {{0.1, 0.2, 0.3}, {1, 0, 0}}, WalkStart::inside(uint32_t(tet)), INFINITY);
     EXPECT_EQ(surfaceQueries(), queries);
 }
 
@@ -480,7 +481,7 @@ TEST(RegionMediaExit, APathLeavingAConvexMediumAsksNoQueryToMeetItAgain) {
         VolumeState state = scene.volumeAt(p);
         ASSERT_TRUE(state.inside());
         std::optional<Intersection> hit = scene.intersect(ray, state);
-        const FreeFlight flight = scene.volumes()[0].volume->sampleFlight(ray, state.start, INFINITY, 0, 1.0);
+        const FreeFlight flight = sampleFlight(*scene.volumes()[0].volume, ray, state.start, INFINITY, 0, 1.0);
         ASSERT_EQ(endStretch(scene, hit, flight.exit, ray, state), StretchEnd::Crossed);
         ASSERT_FALSE(state.inside());
         ++left;

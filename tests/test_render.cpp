@@ -11,6 +11,7 @@
 #include "integrators/Integrator.h"
 #include "integrators/PathStep.h"
 #include "integrators/VolPathIntegrator.h"
+#include "media/FreeFlight.h"
 #include "photon/ColumnProfile.h"
 #include "render/IntegratorFactory.h"
 #include "render/Renderer.h"
@@ -120,7 +121,7 @@ TEST(Render, ColumnProfileEventsAreFreeFlights) {
         const int c = i % 3;
         const double x = u(random) * 1.2;  // past the stretch's optical depth at times
         const double depth = x * column.depth()[c];
-        const FreeFlight flight = volume.sampleFlight(ray, centre.start, INFINITY, c, -std::expm1(-depth));
+        const FreeFlight flight = sampleFlight(volume, ray, centre.start, INFINITY, c, -std::expm1(-depth));
         const auto event = column.atDepth(c, depth);
         ASSERT_EQ(event.has_value(), flight.scattered) << i;
         if (!event) continue;

@@ -19,6 +19,7 @@
 #include <benchmark/benchmark.h>
 #include <glm/geometric.hpp>
 
+#include "media/ShadowRay.h"
 #include "media/Volume.h"
 #include "scene/MeshFile.h"
 #include "tet/Tetrahedralizer.h"
@@ -110,11 +111,11 @@ void BM_ShadowExit(benchmark::State& state) {
     size_t rays = 0;
     for (auto _ : state) {
         const size_t i = rays++ % f.rays.size();
-        benchmark::DoNotOptimize(f.volume->transmittance(f.rays[i], WalkStart::inside(f.tets[i]), INFINITY));
+        benchmark::DoNotOptimize(transmittance(*f.volume, f.rays[i], WalkStart::inside(f.tets[i]), INFINITY));
     }
     state.counters["rays/s"] = benchmark::Counter(double(rays), benchmark::Counter::kIsRate);
     countSteps(state, f, size_t(state.range(0)), rays, [&](size_t i) {
-        benchmark::DoNotOptimize(f.volume->transmittance(f.rays[i], WalkStart::inside(f.tets[i]), INFINITY));
+        benchmark::DoNotOptimize(transmittance(*f.volume, f.rays[i], WalkStart::inside(f.tets[i]), INFINITY));
     });
 }
 BENCHMARK(BM_ShadowExit)->Arg(0)->Arg(1)->Arg(2)->Arg(4)->Arg(8);
@@ -129,7 +130,7 @@ void BM_DenseShadowExit(benchmark::State& state) {
     size_t rays = 0;
     for (auto _ : state) {
         const size_t i = rays++ % f.rays.size();
-        benchmark::DoNotOptimize(f.volume->shadowFlight(f.rays[i], WalkStart::inside(f.tets[i]), INFINITY, rng));
+        benchmark::DoNotOptimize(shadowFlight(*f.volume, f.rays[i], WalkStart::inside(f.tets[i]), INFINITY, rng));
     }
     state.counters["rays/s"] = benchmark::Counter(double(rays), benchmark::Counter::kIsRate);
 }
@@ -150,11 +151,11 @@ void BM_DenseShadowSure(benchmark::State& state) {
         const size_t i = rays++ % f.rays.size();
         const WalkStart start = WalkStart::inside(f.tets[i]);
         ShadowRoulette roulette;
-        if (sure && !roulette.reach(f.volume->sureDepth(start, f.rays[i].o, INFINITY), rng)) {
+        if (sure && !roulette.reach(sureDepth(*f.volume, start, f.rays[i].o, INFINITY), rng)) {
             ++unwalked;
             continue;
         }
-        benchmark::DoNotOptimize(f.volume->shadowFlight(f.rays[i], start, INFINITY, rng, roulette));
+        benchmark::DoNotOptimize(shadowFlight(*f.volume, f.rays[i], start, INFINITY, rng, roulette));
     }
     state.counters["rays/s"] = benchmark::Counter(double(rays), benchmark::Counter::kIsRate);
     state.counters["unwalked"] = double(unwalked) / double(std::max<size_t>(1, rays));
@@ -173,7 +174,7 @@ void BM_FreeFlight(benchmark::State& state) {
     std::vector<double> u(f.rays.size());
     for (double& x : u) x = u01(rng);
     auto flight = [&](size_t i) {
-        return f.volume->sampleFlight(f.rays[i], WalkStart::inside(f.tets[i]), INFINITY, 0, u[i], RGB(1), jump);
+        return sampleFlight(*f.volume, f.rays[i], WalkStart::inside(f.tets[i]), INFINITY, 0, u[i], RGB(1), jump);
     };
     size_t flights = 0;
     for (auto _ : state) {

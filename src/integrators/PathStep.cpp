@@ -1,4 +1,5 @@
 #include "integrators/PathStep.h"
+#include "media/ShadowRay.h"
 
 namespace tetglow {
 
@@ -23,7 +24,7 @@ namespace {
 // false where one ended it.
 bool surelyReached(const Volume& volume, const Ray& ray, double tMax, const VolumeState& state, Rng& rng,
                    ShadowRoulette& roulette) {
-    return !volume.deepShadows() || roulette.reach(volume.sureDepth(state.start, ray.o, tMax), rng);
+    return !volume.deepShadows() || roulette.reach(sureDepth(volume, state.start, ray.o, tMax), rng);
 }
 
 }  // namespace
@@ -44,9 +45,9 @@ RGB transmittance(const Scene& scene, Ray ray, double tMax, VolumeState state, R
         if (state.inside()) {
             const Volume& volume = *scene.volumes()[state.volume].volume;
             const double end = hit ? hit->t : tMax;
-            const FreeFlight f = roulette ? volume.shadowFlight(ray, state.start, end, *roulette,
-                                                                crossings == 0 ? first : ShadowRoulette{})
-                                          : volume.sampleFlight(ray, state.start, end, 0, 1.0);
+            const FreeFlight f = roulette ? shadowFlight(volume, ray, state.start, end, *roulette,
+                                                         crossings == 0 ? first : ShadowRoulette{})
+                                          : sampleFlight(volume, ray, state.start, end, 0, 1.0);
             tr *= f.transmittance;
             if (isBlack(tr)) return tr;
             exit = f.exit;

@@ -8,6 +8,8 @@
 #pragma once
 #include <optional>
 
+#include "media/ShadowRay.h"
+#include "sampling/Rng.h"
 #include "scene/Scene.h"
 
 namespace tetglow {

@@ -1,4 +1,5 @@
 #include "integrators/VolPathIntegrator.h"
+#include "media/FreeFlight.h"
 
 #include "integrators/DirectLighting.h"
 #include "integrators/PathStep.h"
@@ -60,21 +61,21 @@ RGB VolPathIntegrator::trace(PathVertex v, int branches, Rng& rng) const {
             const double tMax = hit ? hit->t : INFINITY;
             if (!volume.scatters() && !volume.emissive()) {
                 // Nothing scatters or glows: attenuate exactly instead of sampling where light dies.
-                flight = volume.sampleFlight(ray, state.start, tMax, 0, 1.0);
+                flight = sampleFlight(volume, ray, state.start, tMax, 0, 1.0);
                 path.beta *= flight.transmittance;
                 if (!path.alive()) break;
             } else {
                 const double u = rng.uniform();
                 std::optional<RegionStretch> stretch;
                 if (!scene_.sealed(state.volume) && depth + 1 < maxDepth_)
-                    stretch = volume.regionStretch(ray, state.start, tMax, kLitStretchDepth);
+                    stretch = regionStretch(volume, ray, state.start, tMax, kLitStretchDepth);
                 // Where the stretch is not lit at a point of its own, the flight's interaction is.
                 const std::optional<StretchLight> lit =
                     stretch ? directWithin(*stretch, ray, path, state.volume, rng) : std::nullopt;
                 if (lit) L += lit->radiance;
                 const std::optional<FreeFlight> within =
-                    stretch ? volume.flightWithin(*stretch, path.hero, u, path.r) : std::nullopt;
-                flight = within ? *within : volume.sampleFlight(ray, state.start, tMax, path.hero, u, path.r, true);
+                    stretch ? flightWithin(volume, *stretch, path.hero, u, path.r) : std::nullopt;
+                flight = within ? *within : sampleFlight(volume, ray, state.start, tMax, path.hero, u, path.r, true);
                 // Regions without extinction glow along the whole stretch they hold, exactly.
                 L += path.beta * flight.glow;
                 if (!flight.scattered) {

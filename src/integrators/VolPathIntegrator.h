@@ -9,8 +9,8 @@
 #include <optional>
 
 #include "integrators/Integrator.h"
+#include "media/FreeFlight.h"
 #include "media/SpectralPath.h"
-#include "media/Volume.h"
 
 namespace tetglow {
 

@@ -1,8 +1,8 @@
-// Participating media confined to a tetrahedralized set of closed meshes, one medium per region
-// (VolumeBoundary: nested or touching meshes in one tet mesh; a cavity is a region whose
-// coefficients are all zero). Optical depth is exact: density is constant or linear inside
-// each tet, so every segment of a ray walk integrates in closed form, region by region, and
-// free-flight distances are sampled by inverting that integral.
+// A volume: one tet mesh of nested or touching closed meshes (VolumeBoundary), one medium per
+// region (a cavity is a region whose coefficients are all zero), and the walk of a ray through
+// its tets. Optical depth is exact: density is constant or linear inside each tet, so every
+// segment of a walk integrates in closed form, region by region. The samplers that use it are
+// media/FreeFlight.h and media/ShadowRay.h.
 #pragma once
 #include <algorithm>
 #include <cstdint>
@@ -13,8 +13,6 @@
 
 #include "base/Spectrum.h"
 #include "media/PhaseFunction.h"
-#include "media/Roulette.h"
-#include "sampling/Rng.h"
 #include "tet/ClearanceGrid.h"
 #include "tet/RegionExit.h"
 #include "tet/TetTraversal.h"
@@ -59,31 +57,6 @@ struct WalkExit {
         if (!walk.exited() || !(walk.exitT() < tMax)) return {};
         return {true, walk.exitTriangle(), walk.steps() == 0 ? kTouch : walk.exitTet(), walk.exitT()};
     }
-};
-
-struct FreeFlight {
-    bool scattered = false;  // an interaction at t (in tet); otherwise the ray passed tMax or left the medium
-    double t = 0;
-    uint32_t tet = 0;
-    bool located = true;   // false: tet is a tet of the interaction's region only (WalkStart::inRegion)
-    double density = 1;    // at the interaction
-    RGB transmittance{1};  // from the start to the interaction, or to where the flight ended
-    // Emission collected exactly on the way, in the regions without extinction (where the
-    // transmittance stays what it was on entering them): emission times density, integrated.
-    RGB glow{0};
-    WalkExit exit;  // without an interaction
-};
-
-// A stretch of a ray through one region of constant density, from t0 (its start, or where it
-// enters the medium) to `end`, found by one exit query: `whole` where what lies beyond end is known
-// too (the ray leaves the medium or stops at an interface there, exit.left, or end is the
-// stretch's tMax); otherwise end is only as far as the query looked.
-struct RegionStretch {
-    int32_t region = 0;
-    uint32_t tet = 0;  // the start's tet, or the tet the ray enters: a tet of the region near t0
-    double t0 = 0, end = 0;
-    bool whole = false;
-    WalkExit exit;
 };
 
 // What one region holds: its coefficients, and its density as one value >= 0 per tet vertex
@@ -134,43 +107,12 @@ public:
     template <class Visit>
     bool walkOn(TetWalk& walk, Visit&& visit) const;
 
-    // Free flight along `ray` (unit direction) from `start` up to tMax, the distance sampled
-    // exactly for the hero channel's extinction (see SpectralPath). `ratios` are the path's
-    // pdf ratios (SpectralPath::r), for the spectral MIS weight of FreeFlight::glow.
-    // With `jump`, a flight in a region of constant density may find the region's exit by one
-    // query of the surface BVH and jump to its interaction, whose tet it then leaves unlocated.
-    FreeFlight sampleFlight(const Ray& ray, WalkStart start, double tMax, int hero, double u,
-                            const RGB& ratios = RGB(1), bool jump = false) const;
-    // The stretch from `start` through the region of constant density it begins in, looking at
-    // most `depth` mean free paths of the region's smallest extinction ahead (and not beyond tMax).
-    // Nothing where the walk must decide (the ray only touches the medium, the region's density
-    // varies, or its exit is too close to another crossing to call) or where walking is cheaper
-    // (the region's mean free path is a few tet chords: sampleFlight's rule, for its mean extinction).
-    std::optional<RegionStretch> regionStretch(const Ray& ray, WalkStart start, double tMax, double depth) const;
-    // A free flight (see sampleFlight) inside `stretch`, without a walk: its interaction, which
-    // is left unlocated, or the stretch passed whole. Nothing where the interaction is too close
-    // to the stretch's end to call, or lies beyond an end that is not whole.
-    std::optional<FreeFlight> flightWithin(const RegionStretch& stretch, int hero, double u,
-                                           const RGB& ratios = RGB(1)) const;
-    // exp(-optical depth) from `start` to tMax or to where the ray leaves the medium (or
-    // stops at an interface).
-    RGB transmittance(const Ray& ray, WalkStart start, double tMax) const;
-    // The same for a shadow ray, with Russian roulette once the transmittance has fallen below
-    // 1/20 (as pbrt-v4's ratio tracking does): the walk stops there with probability 3/4 (a
-    // transmittance of 0, no exit) and a survivor counts 4 times, tested again whenever its
-    // weighted transmittance is below 1/20 (ShadowRoulette; `roulette` may hold tests decided
-    // before, by sureDepth). Unbiased; deep in a dense medium a shadow ray walks a few tets, not
-    // all to the boundary.
-    FreeFlight shadowFlight(const Ray& ray, WalkStart start, double tMax, Rng& rng, ShadowRoulette roulette = {}) const;
-    // An optical depth (its smallest channel's) that a ray from `origin`, in the region of
-    // `start`'s tet, surely gathers before tMax: in a region of constant density, along the ball
-    // around `origin` that holds no boundary (ClearanceGrid). 0 where the density varies, the ray
-    // starts on the surface, or no such ball is deep enough for the shadow roulette's first test.
-    double sureDepth(WalkStart start, const glm::dvec3& origin, double tMax) const;
-    // Whether sureDepth may be above 0 anywhere here (a region is dense enough for it).
     bool deepShadows() const { return !clearance_.empty(); }
+    // Balls around interior points that hold no boundary (empty unless deepShadows()).
+    const ClearanceGrid& clearance() const { return clearance_; }
+    // Region r's tets' mean chord; 0 where its density varies.
+    double tetChord(int32_t r) const { return tetChord_[size_t(r)]; }
 
-private:
     // walk() for a stretch that needs only the optical depth: once exitQueryAfter_ segments are
     // walked, the walk is inside a region of constant density and worthAsking(medium, the region's
     // mean chord of a tet) says so, the rest of the way to the region's exit (or tMax) goes to
@@ -179,30 +121,13 @@ private:
     template <class Visit, class Pass, class Worth>
     WalkExit walkToExit(const Ray& ray, WalkStart start, double tMax, Visit&& visit, Pass&& pass,
                         Worth&& worthAsking) const;
-
-    // The region and tet a stretch from `start` begins in; a start through the surface leaves its
-    // walk in *entered. Nothing where the ray only touches the medium.
-    std::optional<RegionStretch> stretchStart(const Ray& ray, WalkStart start, std::optional<TetWalk>& entered) const;
-    // Whether a stretch through `region` is found by an exit query: its density is constant and its
-    // mean free path spans more than kFlightSteps tet chords (else its flights walk, and so does it).
-    bool stretchAsks(int32_t region) const;
-    // The end of `stretch` by one exit query as far as reach (at most tMax); false where unsure.
-    bool findEnd(RegionStretch& stretch, const Ray& ray, double reach, double tMax) const;
-
     // An exit through an interface that flights cross, index-matched, inside the walk.
     bool crossesAt(const RegionExit& e) const {
         return e.kind == RegionExit::Kind::Exit && mesh().surfaceFaceFront[e.triangle] != UINT32_MAX &&
                !stopsAt(e.triangle);
     }
 
-    // An exit query that looks only as far as the interaction costs a few tet steps
-    // (bench_shadow's BM_FreeFlight), but leaves the interaction's tet to be located where the
-    // next ray walks: a flight asks it where it would walk more than kFlightSteps tets on average
-    // (its mean free path over the mean chord). 16 made the sphere scene walk (0.85x its samples
-    // per second); asking at every mean free path made jade's flights jump and its shadow rays
-    // locate (0.8x).
-    static constexpr double kFlightSteps = 4;
-
+private:
     std::vector<Medium> regions_;
     std::vector<double> tetChord_;  // per region: its tets' mean chord, 0 where its density varies
     bool emissive_ = false, scatters_ = false;

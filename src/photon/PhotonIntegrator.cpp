@@ -1,4 +1,5 @@
 #include "photon/PhotonIntegrator.h"
+#include "media/FreeFlight.h"
 
 #include <algorithm>
 #include <chrono>

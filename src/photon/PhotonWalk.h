@@ -4,6 +4,7 @@
 // exact boundary), stops at a dielectric interface or reaches a surface inside it, or when the
 // photon is absorbed.
 #pragma once
+#include "media/FreeFlight.h"
 #include "media/Roulette.h"
 #include "media/SpectralPath.h"
 #include "media/Volume.h"
@@ -34,7 +35,7 @@ WalkResult photonWalk(const Volume& volume, Ray ray, WalkStart start, const RGB&
                       int maxEvents, Limit&& limit, OnScatter&& onScatter) {
     WalkResult result;
     for (; result.events < maxEvents; ++result.events) {
-        const FreeFlight flight = volume.sampleFlight(ray, start, limit(ray), path.hero, rng.uniform());
+        const FreeFlight flight = sampleFlight(volume, ray, start, limit(ray), path.hero, rng.uniform());
         if (!flight.scattered) {
             path.pass(flight.transmittance);
             result.ray = ray;
