@@ -39,7 +39,7 @@ public:
         energy.emitted = e.flux;
         SpectralPath path = SpectralPath::pick(rng.uniform());
         Ray ray = e.ray;
-        VolumeState state = e.medium;
+        VolumeState state = e.state;
         // Next-event estimation follows light that has crossed only index-matched boundaries;
         // what else arrives is stored.
         bool direct = !e.fromMedium;
@@ -175,7 +175,7 @@ PhotonSource::Emission PhotonSource::sample(const Scene& scene, Rng& rng) const 
         const PhotonEmission p = scene.lights()[e.light]->emitPhoton({u0, u1}, {u2, u3});
         out.ray = p.ray;
         out.flux = p.flux / chosen;
-        out.medium = scene.volumeAt(p.ray.o);
+        out.state = scene.volumeAt(p.ray.o);
         return out;
     }
     const int index = scene.media()[e.medium].volume;
@@ -192,7 +192,7 @@ PhotonSource::Emission PhotonSource::sample(const Scene& scene, Rng& rng) const 
     out.ray = {p, sampleUniformSphere({u3, u4})};
     // The point is uniform in the tet; its density relative to the tet's mean corrects for that.
     out.flux = e.power * (volume.density(tet, p) / volume.density(tet, mesh.centroid(tet)) / chosen);
-    out.medium = {index, WalkStart::inside(tet)};
+    out.state = {index, WalkStart::inside(tet)};
     out.fromMedium = true;
     return out;
 }

@@ -63,7 +63,7 @@ public:
     struct Emission {
         Ray ray;
         RGB flux{0};
-        VolumeState medium;  // the volume the photon starts in
+        VolumeState state;  // the volume the photon starts in
         bool fromMedium = false;
     };
     Emission sample(const Scene& scene, Rng& rng) const;
