@@ -25,8 +25,9 @@ export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 # Sanitized code runs several times slower: tests that wait for a server scale their bounds.
 export TETGLOW_TEST_TIME_SCALE=6
 start=$SECONDS
-# The Blender add-on's tests (label blender) time Blender's own renders against tetglow's; the
-# tetglow paths they drive are the suite's own, so the sanitized run leaves them to the Release one.
+# The tests that drive Blender (label blender: the add-on's, GltfBlender) compare Blender's own renders
+# with tetglow's; the tetglow paths they drive are the suite's own, so the sanitized run leaves
+# them to the Release one.
 ctest --test-dir "$build" --output-on-failure -j "$jobs" -LE blender
 echo "sanitize: test suite passed in $((SECONDS - start)) s"
 

@@ -52,6 +52,24 @@ double convexChord(const TriangleMesh& convex, const Ray& ray) {
     return std::max(0.0, t1 - t0);
 }
 
+TriangleMesh roundedToFloat(TriangleMesh mesh) {
+    for (auto& p : mesh.positions) p = {roundToFloat(p.x), roundToFloat(p.y), roundToFloat(p.z)};
+    return mesh;
+}
+
+TriangleMesh caplessIcosphere() {
+    TriangleMesh m = roundedToFloat(icosphere(3, 1.0));
+    std::erase_if(m.triangles,
+                  [&](const auto& t) { return m.positions[t[0]].z + m.positions[t[1]].z + m.positions[t[2]].z > 2.7; });
+    return m;
+}
+
+glm::dvec3 onSphere(std::mt19937_64& rng, double radius) {
+    std::normal_distribution<double> n;
+    const glm::dvec3 d(n(rng), n(rng), n(rng));
+    return radius * d / glm::length(d);
+}
+
 std::string sharedMesh(const std::string& name) {
     const auto path = std::filesystem::path(TETGLOW_SOURCE_DIR) / ".." / "shared" / "meshes" / (name + ".obj");
     return std::filesystem::exists(path) ? path.string() : "";
@@ -62,6 +80,10 @@ std::vector<NamedMesh> referenceMeshes() {
     for (const char* name : {"blub", "spot", "bob"}) meshes.push_back({name, sharedMesh(name)});
     return meshes;
 }
+
+void PrintTo(const NamedMesh& m, std::ostream* os) { *os << m.name; }
+
+std::string meshName(const testing::TestParamInfo<NamedMesh>& info) { return info.param.name; }
 
 std::string tempDir() {
     // One directory per test, emptied the first time the test asks for it.

@@ -2,8 +2,12 @@
 #pragma once
 #include <functional>
 #include <optional>
+#include <ostream>
+#include <random>
 #include <string>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "tet/Shapes.h"
 #include "tet/Tetrahedralizer.h"
@@ -19,12 +23,22 @@ bool insideConvex(const TriangleMesh& convex, const glm::dvec3& p);
 // The length of the ray (t >= 0, in units of d) inside the convex mesh, by exact-enough plane tests.
 double convexChord(const TriangleMesh& convex, const Ray& ray);
 
+// `mesh` with its vertices rounded to float, as the mesh readers round them.
+TriangleMesh roundedToFloat(TriangleMesh mesh);
+// roundedToFloat(icosphere(3)) without its top cap (about 5% of the area): an open convex
+// polyhedron whose closed twin is known.
+TriangleMesh caplessIcosphere();
+// A point drawn uniformly on the sphere of `radius` about the origin.
+glm::dvec3 onSphere(std::mt19937_64& rng, double radius);
+
 // The demo fish and blub, spot, bob from ../shared/meshes (path "" when that folder is absent:
-// tests skip those with a message).
+// tests skip those with a message). The parameter of tests run on each (named by meshName).
 struct NamedMesh {
     std::string name, path;
 };
 std::vector<NamedMesh> referenceMeshes();
+void PrintTo(const NamedMesh& m, std::ostream* os);
+std::string meshName(const testing::TestParamInfo<NamedMesh>& info);
 std::string sharedMesh(const std::string& name);  // "" when ../shared/meshes is absent
 
 // A fresh temporary directory for this test.

@@ -1,5 +1,7 @@
 #include "TestScenes.h"
 
+#include "TestMeshes.h"
+
 #include "render/Renderer.h"
 #include "tet/Shapes.h"
 
@@ -8,8 +10,7 @@ namespace tetglow::test {
 MediumDesc sphereMedium(const RGB& sigmaA, const RGB& sigmaS, double g, int subdivisions) {
     MediumDesc m;
     m.name = "sphere";
-    m.boundary = icosphere(subdivisions, 1.0);
-    for (auto& p : m.boundary.positions) p = {roundToFloat(p.x), roundToFloat(p.y), roundToFloat(p.z)};
+    m.boundary = roundedToFloat(icosphere(subdivisions, 1.0));
     m.sigmaA = sigmaA;
     m.sigmaS = sigmaS;
     m.g = g;
@@ -41,18 +42,22 @@ LightDesc pointLight(const glm::dvec3& position, const RGB& intensity) {
     return l;
 }
 
+LightDesc quadLight(const glm::dvec3& corner, const glm::dvec3& edge0, const glm::dvec3& edge1, const RGB& radiance) {
+    LightDesc l;
+    l.type = LightType::Quad;
+    l.corner = corner;
+    l.edge0 = edge0;
+    l.edge1 = edge1;
+    l.radiance = radiance;
+    return l;
+}
+
 SceneDesc glowingSphereUnderQuad(int resolution) {
     MediumDesc m = sphereMedium(RGB(0.2, 0.5, 0.1), RGB(0.8, 0.6, 1.2), 0.5);
     m.emission = RGB(0.1, 0.2, 0.9);
     SceneDesc desc = sceneWith(m, resolution);
     desc.lights.push_back(environment(0.3));
-    LightDesc quad;
-    quad.type = LightType::Quad;
-    quad.corner = {-1, 3, -1};
-    quad.edge0 = {0, 0, 2};
-    quad.edge1 = {2, 0, 0};
-    quad.radiance = RGB(5);
-    desc.lights.push_back(quad);
+    desc.lights.push_back(quadLight({-1, 3, -1}, {0, 0, 2}, {2, 0, 0}, RGB(5)));
     return desc;
 }
 

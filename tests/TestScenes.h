@@ -14,6 +14,8 @@ MediumDesc sphereMedium(const RGB& sigmaA, const RGB& sigmaS, double g = 0, int 
 SceneDesc sceneWith(const MediumDesc& medium, int resolution);
 LightDesc environment(double radiance);
 LightDesc pointLight(const glm::dvec3& position, const RGB& intensity);
+// A one-sided rectangle light: its front faces along cross(edge0, edge1).
+LightDesc quadLight(const glm::dvec3& corner, const glm::dvec3& edge0, const glm::dvec3& edge1, const RGB& radiance);
 // A glowing, scattering, absorbing sphere (chromatic) under a quad light in a sky: every kind of
 // light an integrator handles, for tests of determinism and of unchanged means.
 SceneDesc glowingSphereUnderQuad(int resolution);

@@ -84,12 +84,7 @@ TEST(CompareBoundary, TetsExactOnATessellatedSphereAwayFromTheFacetGap) {
 // A convex polyhedron with its top cap missing (about 5% of the area): strict tets refuse it, the
 // parity test answers anyway, and wrongly for points that see the world through the hole.
 TEST(CompareBoundary, ParityIsWrongOnAMeshWithAHole) {
-    TriangleMesh closed = icosphere(3, 1.0);
-    for (auto& p : closed.positions) p = {roundToFloat(p.x), roundToFloat(p.y), roundToFloat(p.z)};
-    TriangleMesh holed = closed;
-    std::erase_if(holed.triangles, [&](const auto& t) {
-        return closed.positions[t[0]].z + closed.positions[t[1]].z + closed.positions[t[2]].z > 2.7;
-    });
+    const TriangleMesh closed = roundedToFloat(icosphere(3, 1.0)), holed = caplessIcosphere();
     ASSERT_LT(holed.triangles.size(), closed.triangles.size());
     expectTetsRefuse(holed, "not closed");
     const SurfaceBVH bvh(holed.positions, holed.triangles);
@@ -120,12 +115,7 @@ TEST(CompareBoundary, ParityIsWrongOnAMeshWithAHole) {
 // exceeds 1/2) hold the closed polyhedron but for part of the cap, the winding number agrees with
 // them away from the hole, and parity on the mesh as read is as wrong as above.
 TEST(CompareBoundary, RepairedTetsAgreeWithTheWindingNumberWhereParityFails) {
-    TriangleMesh closed = icosphere(3, 1.0);
-    for (auto& p : closed.positions) p = {roundToFloat(p.x), roundToFloat(p.y), roundToFloat(p.z)};
-    TriangleMesh holed = closed;
-    std::erase_if(holed.triangles, [&](const auto& t) {
-        return closed.positions[t[0]].z + closed.positions[t[1]].z + closed.positions[t[2]].z > 2.7;
-    });
+    const TriangleMesh closed = roundedToFloat(icosphere(3, 1.0)), holed = caplessIcosphere();
     const TetTraversal tets = tetsOf(holed);
     EXPECT_LE(tets.mesh().volume(), signedVolume(closed) * (1 + 1e-12));
     EXPECT_GT(tets.mesh().volume(), 0.97 * signedVolume(closed));

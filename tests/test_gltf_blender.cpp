@@ -245,10 +245,8 @@ TEST(GltfBlender, ExportedSceneRendersAsCyclesDoes) {
     ASSERT_EQ(rendered.exitCode, 0) << rendered.err;
     const Image image = readExr(dir + "/tetglow.exr");
     expectWithinNoise(image, readExr(dir + "/cycles.exr"), "Cycles on the Blender scene");
-    if (!fs::exists(peer)) {
-        std::printf("%s is missing: the Cycles peer is not compared\n", peer.c_str());
-        return;
-    }
+    // Compared with Cycles above; a skip says that the second comparison was not made.
+    if (!fs::exists(peer)) GTEST_SKIP() << peer << " is missing: the Cycles peer is not compared";
     const std::string json = dir + "/scene.json";
     const auto converted = test::runTetglow("convert " + glb + " -o " + json);
     ASSERT_EQ(converted.exitCode, 0) << converted.err;

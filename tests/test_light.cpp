@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include "TestScenes.h"
 #include "sampling/Rng.h"
 #include "sampling/Sampling.h"
 #include "scene/Light.h"
@@ -33,12 +34,7 @@ std::vector<Case> lights() {
     LightDesc diskSpot = spot;
     diskSpot.radius = 0.3;
     cases.push_back({"spot with a radius", diskSpot});
-    LightDesc quad;
-    quad.type = LightType::Quad;
-    quad.corner = {-0.5, 1.5, -0.5};
-    quad.edge0 = {1, 0, 0};
-    quad.edge1 = {0, 0.2, 1};
-    quad.radiance = {2, 1, 0.5};
+    LightDesc quad = quadLight({-0.5, 1.5, -0.5}, {1, 0, 0}, {0, 0.2, 1}, {2, 1, 0.5});
     cases.push_back({"quad (front side down)", quad});
     quad.twoSided = true;
     cases.push_back({"two-sided quad", quad});

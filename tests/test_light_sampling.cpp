@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include "TestScenes.h"
 #include "integrators/Integrator.h"
 #include "render/IntegratorFactory.h"
 #include "sampling/Rng.h"
@@ -78,16 +79,14 @@ TEST(SphericalRectangle, SamplesAreUniformInSolidAngle) {
     }
 }
 
+// The rectangle light [-0.5, 0.5] x [-0.3, 0.3] at y = 1 facing down, of the tests below.
+LightDesc rectangleAbove(const RGB& radiance) { return quadLight({-0.5, 1, -0.3}, {1, 0, 0}, {0, 0, 0.6}, radiance); }
+
 // A rectangle light facing down at y = 1: the irradiance next-event estimation gives on a
 // parallel receiver equals L pi F, sampled by solid angle, even 1e-8 below the light, or by
 // area (far away, where the solid angle is a sliver); pdf() agrees with sample().
 TEST(SphericalRectangle, RectangleLightIrradianceMatchesClosedForm) {
-    LightDesc desc;
-    desc.type = LightType::Quad;
-    desc.corner = {-0.5, 1, -0.3};
-    desc.edge0 = {1, 0, 0};
-    desc.edge1 = {0, 0, 0.6};
-    desc.radiance = {2, 1, 0.5};
+    const LightDesc desc = rectangleAbove({2, 1, 0.5});
     Bounds3 bounds;
     bounds.extend(glm::dvec3(-1));
     bounds.extend(glm::dvec3(1));
@@ -131,12 +130,7 @@ TEST(LightSelection, ChoicesFollowTheirPmf) {
     d.coneAngle = 20;
     d.coneDelta = 5;  // points away
     lights.push_back(makeLight(d, bounds));
-    d.type = LightType::Quad;
-    d.corner = {-0.5, 1, -0.3};
-    d.edge0 = {1, 0, 0};
-    d.edge1 = {0, 0, 0.6};
-    d.radiance = RGB(0.3);
-    lights.push_back(makeLight(d, bounds));
+    lights.push_back(makeLight(rectangleAbove(RGB(0.3)), bounds));
     d.type = LightType::Environment;
     d.radiance = RGB(0.02);
     lights.push_back(makeLight(d, bounds));
@@ -175,16 +169,11 @@ TEST(LightSelection, VolpathDirectLightOnAFloorMatchesClosedForm) {
     SceneDesc desc;
     desc.camera.position = {0, 3, 3};
     desc.camera.lookAt = {0, 0, 0};
-    LightDesc quadLight;
-    quadLight.type = LightType::Quad;
-    quadLight.corner = {-0.5, 1, -0.3};
-    quadLight.edge0 = {1, 0, 0};
-    quadLight.edge1 = {0, 0, 0.6};
-    quadLight.radiance = {3, 2, 1};
+    const LightDesc rectangle = rectangleAbove({3, 2, 1});
     LightDesc sky;
     sky.type = LightType::Environment;
     sky.radiance = {0.2, 0.3, 0.4};
-    desc.lights = {quadLight, sky};
+    desc.lights = {rectangle, sky};
     SurfaceDesc floor;
     floor.name = "floor";
     floor.mesh = quad({-20, 0, -20}, {0, 0, 40}, {40, 0, 0});
@@ -209,7 +198,7 @@ TEST(LightSelection, VolpathDirectLightOnAFloorMatchesClosedForm) {
         for (int c = 0; c < 3; ++c) {
             const double mean = sum[c] / samples,
                          se = std::sqrt(std::max(0.0, sum2[c] / samples - mean * mean) / samples);
-            const double exact = 0.5 * (quadLight.radiance[c] * F + sky.radiance[c] * (1 - F));
+            const double exact = 0.5 * (rectangle.radiance[c] * F + sky.radiance[c] * (1 - F));
             EXPECT_NEAR(mean, exact, 4 * se) << p.x << " " << p.z << " channel " << c;
         }
     }

@@ -29,8 +29,7 @@ namespace {
 MediumDesc absorber(const std::string& name, TriangleMesh mesh, double sigmaA) {
     MediumDesc m;
     m.name = name;
-    for (auto& p : mesh.positions) p = {roundToFloat(p.x), roundToFloat(p.y), roundToFloat(p.z)};
-    m.boundary = std::move(mesh);
+    m.boundary = roundedToFloat(std::move(mesh));
     m.sigmaA = RGB(sigmaA);
     m.sigmaS = RGB(0);
     m.tetOptions.useCache = false;
@@ -64,12 +63,6 @@ double exactDepth(const SceneDesc& s, const std::vector<int>& parent, const Ray&
         tau += s.media[r].sigmaA.x * length;
     }
     return tau * glm::length(ray.d);
-}
-
-glm::dvec3 onSphere(std::mt19937_64& rng, double radius) {
-    std::normal_distribution<double> n;
-    const glm::dvec3 d(n(rng), n(rng), n(rng));
-    return radius * d / glm::length(d);
 }
 
 TEST(NestedRender, TransmittanceThroughNestedSpheresAndACavityIsTheClosedForm) {
@@ -306,8 +299,7 @@ TEST(NestedRender, PhotonMappingOverAThinShellOfTheSameMediumAgreesWithVolpath) 
     outer.g = 0.3;
     MediumDesc inner = outer;
     inner.name = "inner";
-    inner.boundary = icosphere(3, 0.98);
-    for (auto& p : inner.boundary.positions) p = {roundToFloat(p.x), roundToFloat(p.y), roundToFloat(p.z)};
+    inner.boundary = roundedToFloat(icosphere(3, 0.98));
     SceneDesc desc = sceneWith(outer, 6);
     desc.media.push_back(inner);
     LightDesc point = pointLight({2, 3, 2}, RGB(20));  // no sky: the image is the medium's light alone

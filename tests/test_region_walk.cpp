@@ -61,12 +61,6 @@ struct NestedSpheres {
     }
 };
 
-glm::dvec3 onSphere(std::mt19937_64& rng, double radius) {
-    std::normal_distribution<double> n;
-    const glm::dvec3 d(n(rng), n(rng), n(rng));
-    return radius * d / glm::length(d);
-}
-
 TEST(RegionWalk, TransmittanceThroughNestedSpheresIsTheClosedForm) {
     const NestedSpheres scene;
     std::mt19937_64 rng(14);
@@ -75,7 +69,7 @@ TEST(RegionWalk, TransmittanceThroughNestedSpheresIsTheClosedForm) {
     double worst = 0;
     const uint64_t queriesBefore = surfaceQueries();
     for (int i = 0; i < kLines; ++i) {
-        const glm::dvec3 a = onSphere(rng, 1.3), b = onSphere(rng, 1.3);
+        const glm::dvec3 a = test::onSphere(rng, 1.3), b = test::onSphere(rng, 1.3);
         const Ray ray{a, b - a};
         const double exact = scene.exactDepth(ray);
         const double walked = scene.walkDepth(ray, 1.0, TetTraversal::kOutside, interfaces);
@@ -105,7 +99,7 @@ TEST(RegionWalk, RaysThroughVerticesAndEdgesOfTheInterfaces) {
         if (m.surfaceRegions[s][1] < 0) continue;  // the outer sphere: no interface
         const glm::dvec3 a = m.vertices[m.surface[s][0]], b = m.vertices[m.surface[s][1]];
         for (const glm::dvec3& target : {a, a + 0.5 * (b - a)}) {
-            const glm::dvec3 from = onSphere(rng, 1.3);
+            const glm::dvec3 from = test::onSphere(rng, 1.3);
             const Ray ray{from, 2.0 * (target - from)};
             // The whole line beyond `from` (the closed form counts every t >= 0).
             const double err =
@@ -163,7 +157,7 @@ TEST(RegionWalk, AWalkThatStaysInsideAsksEmbreeNothing) {
     for (int i = 0; i < 2000; ++i) {
         // From inside the core to a point inside the outer sphere's inscribed ball: the ray never
         // leaves the regions.
-        const glm::dvec3 a = glm::dvec3(0.2, 0.05, 0) + onSphere(rng, 0.2), b = onSphere(rng, 0.95);
+        const glm::dvec3 a = glm::dvec3(0.2, 0.05, 0) + test::onSphere(rng, 0.2), b = test::onSphere(rng, 0.95);
         const Ray ray{a, b - a};
         const int64_t start = scene.volume.locate(a);
         ASSERT_GE(start, 0);

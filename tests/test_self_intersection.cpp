@@ -3,13 +3,14 @@
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
 #include <map>
 #include <numbers>
 
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
+
+#include "TestMeshes.h"
 
 using namespace tetglow;
 
@@ -241,10 +242,8 @@ TEST(SelfIntersection, LargeSphere) {
 }
 
 TEST(SelfIntersection, SharedMeshesHaveNone) {
-    const std::filesystem::path dir = TETGLOW_SOURCE_DIR "/../shared/meshes";
-    if (!std::filesystem::exists(dir)) GTEST_SKIP() << dir << " not found";
-    for (const char* name : {"blub.obj", "spot.obj", "bob.obj"}) {
-        const TriangleMesh mesh = readMesh((dir / name).string());
-        EXPECT_FALSE(findSelfIntersection(mesh)) << name;
-    }
+    for (const char* name : {"blub", "spot", "bob"})
+        if (test::sharedMesh(name).empty()) GTEST_SKIP() << name << ".obj not tested: ../shared/meshes not found";
+    for (const char* name : {"blub", "spot", "bob"})
+        EXPECT_FALSE(findSelfIntersection(readMesh(test::sharedMesh(name)))) << name;
 }

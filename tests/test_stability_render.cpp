@@ -57,8 +57,7 @@ std::vector<Mode> modes(double step) {
 // A medium in a white environment of radiance 1, seen by a 6x6 camera.
 SceneDesc furnace(TriangleMesh boundary, const RGB& sigmaA, const RGB& sigmaS, double g) {
     MediumDesc m = sphereMedium(sigmaA, sigmaS, g);
-    m.boundary = std::move(boundary);
-    for (auto& p : m.boundary.positions) p = {roundToFloat(p.x), roundToFloat(p.y), roundToFloat(p.z)};
+    m.boundary = roundedToFloat(std::move(boundary));
     SceneDesc s = sceneWith(m, 6);
     s.lights.push_back(environment(1));
     return s;
@@ -123,7 +122,7 @@ TEST(StabilityRender, RaysThroughVerticesEdgesAndGrazingAnInterface) {
     core.sigmaA = RGB(inner);
     const glm::dvec3 centre = 0.5 * (bounds(core.boundary).lo + bounds(core.boundary).hi);
     for (auto& p : core.boundary.positions) p = centre + 0.5 * (p - centre);
-    for (auto& p : core.boundary.positions) p = {roundToFloat(p.x), roundToFloat(p.y), roundToFloat(p.z)};
+    core.boundary = roundedToFloat(std::move(core.boundary));
     desc.media.push_back(core);
     const Scene scene(desc);
     ASSERT_EQ(scene.volumes().size(), 1u);

@@ -478,15 +478,7 @@ TEST_P(TetCore, WalkFromInsideMatchesWalkFromOutside) {
     }
 }
 
-}  // namespace
-namespace test {
-void PrintTo(const NamedMesh& m, std::ostream* os) { *os << m.name; }
-}  // namespace test
-namespace {
-
-std::string meshName(const testing::TestParamInfo<test::NamedMesh>& info) { return info.param.name; }
-
-INSTANTIATE_TEST_SUITE_P(Meshes, TetCore, testing::ValuesIn(test::referenceMeshes()), meshName);
+INSTANTIATE_TEST_SUITE_P(Meshes, TetCore, testing::ValuesIn(test::referenceMeshes()), test::meshName);
 
 }  // namespace
 }  // namespace tetglow

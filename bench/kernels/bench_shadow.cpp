@@ -19,6 +19,7 @@
 #include <benchmark/benchmark.h>
 #include <glm/geometric.hpp>
 
+#include "../../tests/ExitQueryAccess.h"
 #include "media/ShadowRay.h"
 #include "media/Volume.h"
 #include "scene/MeshFile.h"
@@ -107,7 +108,7 @@ void setMeanFreePath(ShadowFixture& f, double path) {
 void BM_ShadowExit(benchmark::State& state) {
     ShadowFixture& f = shadowFixture();
     setMeanFreePath(f, f.diagonal);
-    f.volume->setExitQueryAfter(size_t(state.range(0)));
+    ExitQueryAccess::setExitQueryAfter(*f.volume, size_t(state.range(0)));
     size_t rays = 0;
     for (auto _ : state) {
         const size_t i = rays++ % f.rays.size();
@@ -125,7 +126,7 @@ BENCHMARK(BM_ShadowExit)->Arg(0)->Arg(1)->Arg(2)->Arg(4)->Arg(8);
 void BM_DenseShadowExit(benchmark::State& state) {
     ShadowFixture& f = shadowFixture();
     setMeanFreePath(f, 0.01 * f.diagonal);
-    f.volume->setExitQueryAfter(size_t(state.range(0)));
+    ExitQueryAccess::setExitQueryAfter(*f.volume, size_t(state.range(0)));
     Rng rng(1, 2);
     size_t rays = 0;
     for (auto _ : state) {
@@ -143,7 +144,7 @@ BENCHMARK(BM_DenseShadowExit)->Arg(0)->Arg(1)->Arg(2)->Arg(4)->Arg(8);
 void BM_DenseShadowSure(benchmark::State& state) {
     ShadowFixture& f = shadowFixture();
     setMeanFreePath(f, 0.01 * f.diagonal);
-    f.volume->setExitQueryAfter(1);
+    ExitQueryAccess::setExitQueryAfter(*f.volume, 1);
     const bool sure = state.range(0) == 1;
     Rng rng(1, 2);
     size_t rays = 0, unwalked = 0;

@@ -78,10 +78,10 @@ public:
     // and cross the others, index-matched, inside the walk. By default they cross every one.
     void setStops(std::vector<bool> stops) { stops_ = std::move(stops); }
     bool stopsAt(uint32_t triangle) const { return !stops_.empty() && stops_[triangle]; }
-    // Transmittance and shadow rays walk this many tets of a region of constant density, then
+    // Transmittance and shadow rays walk exitQueryAfter_ tets of a region of constant density, then
     // find its exit with one query of the surface BVH (regionExit), where the tets between carry no
-    // news; 0: walk every tet.
-    void setExitQueryAfter(size_t steps) { exitQueryAfter_ = steps; }
+    // news; 0: walk every tet. Production keeps 1; tests and benchmarks set it (tests/ExitQueryAccess.h).
+    friend struct ExitQueryAccess;
 
     const TetTraversal& traversal() const { return traversal_; }
     const TetMesh& mesh() const { return traversal_.mesh(); }
