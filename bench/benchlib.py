@@ -51,7 +51,8 @@ def render(binary, scene, output, *args):
     rate = re.search(r"rendering [0-9.]+ s \((\d+) samples/s\)", stdout)
     if not size or not rate or int(rate.group(1)) == 0:
         fail(f"no rendering time in tetglow's output: {stdout!r}")
-    samples = int(size.group(1)) * int(size.group(2)) * int(size.group(3))
+    average = re.search(r"spp \(the most a pixel took; ([0-9.]+) on average\)", stdout)  # --noise: adaptive
+    samples = int(size.group(1)) * int(size.group(2)) * (float(average.group(1)) if average else int(size.group(3)))
     return samples / int(rate.group(1)), usage.ru_maxrss / 1024
 
 

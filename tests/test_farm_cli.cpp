@@ -46,6 +46,16 @@ TEST(Farm, DryRunPrintsTheJobsItWouldSubmit) {
     EXPECT_FALSE(std::filesystem::exists(work)) << "a dry run writes nothing";
 }
 
+// Adaptive sampling splits: every task renders to the same target (each replays the pilot that
+// plans the tiles, render/AdaptiveSampling.h), so the parts merge into the single render.
+TEST(Farm, HandsTheNoiseTargetToEveryTask) {
+    const auto r =
+        runTetglow("farm " + kSphere + " --parts 3 --spp 64 --noise 0.004 -o " + tempDir() + "/s.exr --dry-run");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_TRUE(contains(r.out, "'--noise' '0.004'")) << r.out;
+    EXPECT_TRUE(contains(r.out, "ranges=( 0:21 21:42 42:64 )")) << r.out;
+}
+
 TEST(Farm, HelpSaysWhatEachTaskGets) {
     const auto r = runTetglow("farm --help");
     ASSERT_EQ(r.exitCode, 0) << r.err;

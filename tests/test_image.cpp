@@ -207,6 +207,34 @@ TEST(Image, DiffCommandJsonHasTheMeasurements) {
     EXPECT_NE(text.out.find("max_error   2 at pixel (1, 1)"), std::string::npos) << text.out;
 }
 
+// --tile: each tile's rel_mse, as compare() gives it for the tile cut out; a 3x2 image in tiles of
+// 2 has a 2x2 tile and a 1x2 one, and the pixel-weighted mean of the tiles is the whole image's.
+TEST(Image, DiffCommandTileErrorsAreTheTilesRelMse) {
+    Image test(3, 2), reference(3, 2);
+    for (int i = 0; i < 6; ++i) {
+        test.pixels[i] = glm::vec3(0.1f * i, 1, 2);
+        reference.pixels[i] = glm::vec3(0.05f * i, 1.5f, 2);
+    }
+    const std::string a = test::tempDir() + "/ta.exr", b = test::tempDir() + "/tb.exr";
+    writeExr(a, test);
+    writeExr(b, reference);
+    const auto r = test::runTetglow("diff " + a + " " + b + " --json --tile 2");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto tiles = nlohmann::json::parse(r.out).at("tile_rel_mse").get<std::vector<double>>();
+    ASSERT_EQ(tiles.size(), 2u);
+    auto cut = [](const Image& image, int x0, int w) {
+        Image c(w, 2);
+        for (int y = 0; y < 2; ++y)
+            for (int x = 0; x < w; ++x) c.at(x, y) = image.at(x0 + x, y);
+        return c;
+    };
+    const Image a0 = readExr(a), b0 = readExr(b);
+    EXPECT_DOUBLE_EQ(tiles[0], compare(cut(a0, 0, 2), cut(b0, 0, 2)).relMse);
+    EXPECT_DOUBLE_EQ(tiles[1], compare(cut(a0, 2, 1), cut(b0, 2, 1)).relMse);
+    EXPECT_NEAR((4 * tiles[0] + 2 * tiles[1]) / 6, compare(a0, b0).relMse, 1e-12);
+    EXPECT_GT(tiles[1], tiles[0]);  // the error grows to the right
+}
+
 TEST(Image, DiffCommandBadInputExitsWithOne) {
     const std::string good = test::tempDir() + "/good.exr", missing = test::tempDir() + "/missing.exr";
     writeExr(good, Image(3, 2));

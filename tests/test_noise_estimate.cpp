@@ -1,6 +1,6 @@
-// The noise estimate from two interleaved half-images: its closed form on a made-up film, its
-// agreement with the error against a long reference, and `noiseTarget` stopping at the same pass
-// on any thread count (the commands: test_render_cli.cpp).
+// The noise estimate from two interleaved half-images: its closed form on a made-up film and its
+// agreement with the error against a long reference (the noise target it plans adaptive sampling
+// for: test_adaptive_sampling.cpp; the commands: test_render_cli.cpp).
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -83,25 +83,6 @@ TEST(NoiseEstimate, IndependentHalvesEstimateTheErrorWithoutBias) {
                 EXPECT_GT(estimate / truth, 1.3);
         }
     }
-}
-
-TEST(NoiseEstimate, NoiseTargetStopsAtTheSamePassOnAnyThreadCount) {
-    const Scene scene(glowingSphereUnderQuad(24));
-    const auto integrator = makeIntegrator(scene, IntegratorDesc{});
-    RenderOptions options;
-    options.spp = 1000;
-    options.seed = 5;
-    options.noiseTarget = 0.01;
-    options.threads = 1;
-    const RenderResult one = render(scene, *integrator, options);
-    options.threads = 2;
-    const RenderResult two = render(scene, *integrator, options);
-    EXPECT_GE(one.passes, 4);
-    EXPECT_LT(one.passes, 1000);
-    EXPECT_LE(*one.noise, 0.01);
-    EXPECT_EQ(one.passes, two.passes);
-    EXPECT_EQ(0, std::memcmp(one.image.pixels.data(), two.image.pixels.data(),
-                             one.image.pixels.size() * sizeof(one.image.pixels[0])));
 }
 
 }  // namespace

@@ -8,8 +8,8 @@
 
 namespace tetglow {
 
-LiveRender::LiveRender(std::unique_ptr<Scene> scene, int threads)
-    : scene_(std::move(scene)), threads_(threads), worker_([this] { work(); }) {}
+LiveRender::LiveRender(std::unique_ptr<Scene> scene, int threads, double noiseTarget)
+    : scene_(std::move(scene)), threads_(threads), noiseTarget_(noiseTarget), worker_([this] { work(); }) {}
 
 LiveRender::~LiveRender() {
     {
@@ -94,7 +94,8 @@ void LiveRender::renderGeneration(const SceneDesc& desc, uint64_t generation) {
         std::lock_guard lock(mutex_);
         if (generation == generation_) warnings_ = integrator->warnings();
     }
-    options.spp = desc.integrator.spp;  // where `tetglow render` stops too
+    options.spp = desc.integrator.spp;   // where `tetglow render` stops too
+    options.noiseTarget = noiseTarget_;  // and the passes each tile takes
     options.passDone = [&](const PassReport& p) { publish(p.film.image(), p.passes, generation, seconds()); };
     render(*scene_, *integrator, options);
 }

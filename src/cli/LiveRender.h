@@ -27,8 +27,9 @@ struct LiveImage {
 
 class LiveRender {
 public:
-    // Renders nothing until the first restart(). threads: 0 for all cores.
-    LiveRender(std::unique_ptr<Scene> scene, int threads);
+    // Renders nothing until the first restart(). threads: 0 for all cores. noiseTarget > 0:
+    // adaptive sampling to it, the rule of `tetglow render --noise` (RenderOptions::noiseTarget).
+    LiveRender(std::unique_ptr<Scene> scene, int threads, double noiseTarget = 0);
     ~LiveRender();
     LiveRender(const LiveRender&) = delete;
     LiveRender& operator=(const LiveRender&) = delete;
@@ -48,6 +49,7 @@ private:
 
     std::unique_ptr<Scene> scene_;  // the worker's alone
     const int threads_;
+    const double noiseTarget_;
     mutable std::mutex mutex_;
     std::condition_variable wake_;
     std::optional<SceneDesc> pending_;

@@ -40,6 +40,7 @@ using Json = nlohmann::json;
 struct Options {
     std::string scene, camera, host = "127.0.0.1";
     int port = 8080, threads = 0;
+    double noise = 0;
 };
 
 constexpr Range kExposure{.lo = -20, .hi = 20};
@@ -152,8 +153,8 @@ public:
     }
 
     // Renders the scene and serves until SIGINT or SIGTERM.
-    void serve(std::unique_ptr<Scene> scene, int threads, const std::string& url) {
-        live_ = std::make_unique<LiveRender>(std::move(scene), threads);
+    void serve(std::unique_ptr<Scene> scene, int threads, double noise, const std::string& url) {
+        live_ = std::make_unique<LiveRender>(std::move(scene), threads, noise);
         {
             std::lock_guard lock(settingsMutex_);
             generation_ = live_->restart(settings_.scene());
@@ -399,7 +400,7 @@ void run(const Options& o) {
     printVolumes(*scene);
     std::signal(SIGINT, onStop);
     std::signal(SIGTERM, onStop);
-    server.serve(std::move(scene), o.threads, "http://" + o.host + ":" + std::to_string(port) + "/");
+    server.serve(std::move(scene), o.threads, o.noise, "http://" + o.host + ":" + std::to_string(port) + "/");
 }
 
 }  // namespace
@@ -418,6 +419,10 @@ void addPreviewCommand(CLI::App& app) {
         ->check(CLI::Range(0, 65535));
     cmd->add_option("--host", o->host, "Address to listen on (default 127.0.0.1: this machine only)");
     cmd->add_option("--threads", o->threads, "Render threads (default: all cores)")->check(CLI::Range(1, 1024));
+    cmd->add_option("--noise", o->noise,
+                    "Adaptive sampling as in `render --noise`: each 8x8 tile takes the passes that bring it to this "
+                    "estimated relative MSE")
+        ->check(inRange(kPositive));
     cmd->callback([o] { run(*o); });
 }
 

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "render/AdaptiveSampling.h"
 #include "scene/SceneDescription.h"
 
 namespace tetglow::cli {
@@ -18,8 +19,9 @@ std::string format(const char* pattern, double value) {
 
 }  // namespace
 
-double passesForNoise(int passes, double noise, double target) {
-    return std::max(std::ceil(passes * noise / target), double(kMinNoisePasses));
+double passesForNoise(int passes, double noise, double target, double planned) {
+    if (planned > 0) return planned;
+    return std::max(std::ceil(passes * noise / target), double(kPilotPasses));
 }
 
 std::string passesInWords(double passes) {
@@ -51,7 +53,7 @@ void Progress::pass(const PassReport& r) {
     if (plan_.timeLimit > 0) left = std::min(left, std::max(0.0, plan_.timeLimit - r.seconds));
     const bool pending = plan_.noiseTarget > 0 && !r.noise;
     if (plan_.noiseTarget > 0 && r.noise) {
-        const double needed = passesForNoise(r.passes, *r.noise, plan_.noiseTarget);
+        const double needed = passesForNoise(r.passes, *r.noise, plan_.noiseTarget, r.neededPasses);
         left = std::min(left, std::max(0.0, needed - r.passes) * perPass);
         if (!warned_ && needed > plan_.passes) {
             warned_ = true;
@@ -116,7 +118,8 @@ void Progress::finish(const RenderResult& result) {
         if (plan_.noiseTarget > 0) {
             text += ", before " + target + " (" + noise + ")";
             if (result.noise) {
-                const double needed = passesForNoise(result.passes, *result.noise, plan_.noiseTarget);
+                const double needed =
+                    passesForNoise(result.passes, *result.noise, plan_.noiseTarget, result.neededPasses);
                 text += "; it needs " + passesInWords(needed) +
                         (needed <= kMaxSpp ? " (--spp " + std::to_string(int(needed)) + ")" : "");
             }

@@ -38,10 +38,10 @@ private:
     bool shown_ = false, warned_ = false;
 };
 
-// The passes a noise estimate of `noise` after `passes` passes says the target needs (the
-// relative MSE falls as 1 / passes), in words: "about 309 passes", or "more than 1048576
-// passes" where that is more than any render takes.
-double passesForNoise(int passes, double noise, double target);
+// The passes the noisiest tile needs: `planned` once the pilot has planned them (PassReport::
+// neededPasses), else the image's noise estimate of `noise` after `passes` passes scaled to the
+// target (the relative MSE falls as 1 / passes), at least the pilot.
+double passesForNoise(int passes, double noise, double target, double planned);
 std::string passesInWords(double passes);
 
 }  // namespace tetglow::cli

@@ -105,6 +105,10 @@ std::vector<CLI::Option*> addRenderArgs(CLI::App* cmd, RenderArgs& o) {
                         "Render passes until this many seconds have passed, at most the spp of the scene or --spp "
                         "(photon: progressive)")
             ->check(inRange(kPositive)));
+    add(cmd->add_option("--noise", o.noise,
+                        "Adaptive sampling: every 8x8 tile of pixels takes the passes that bring its estimated "
+                        "relative MSE to this, planned after 16 passes; the spp, of the scene or --spp, caps them")
+            ->check(inRange(kPositive)));
     add(cmd->add_option("--exposure", o.exposure, "PNG preview exposure in stops")->check(kFinite));
     return options;
 }

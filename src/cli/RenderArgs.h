@@ -14,7 +14,7 @@ namespace tetglow::cli {
 struct RenderArgs {
     std::string scene, integrator, boundary, resolution, estimate, boundaryCorrection, finalGather, camera;
     int spp = 0, threads = 0, maxDepth = 0, k = 0;
-    double step = 0, exposure = 0, radius = 0, time = 0;
+    double step = 0, exposure = 0, radius = 0, time = 0, noise = 0;
     int64_t seed = -1, photons = 0;
 };
 

@@ -29,7 +29,6 @@ struct Options {
     RenderArgs args;
     std::string output, passRange, reference;
     int frame = -1;
-    double noise = 0;
     bool tetsOnly = false;
 };
 
@@ -40,7 +39,7 @@ std::string outputPath(const Options& o, const SceneDesc& scene) {
 void run(const Options& o) {
     SceneDesc desc = loadSceneWith(o.args);
     // A spp given caps a render for a time or to a noise target; none given leaves them their own stop.
-    const bool openEnded = o.noise > 0 || desc.integrator.timeLimit > 0;
+    const bool openEnded = o.args.noise > 0 || desc.integrator.timeLimit > 0;
     std::string passesFrom = o.args.spp ? "--spp" : "the scene's spp";
     if (openEnded && !desc.integrator.sppGiven && o.passRange.empty()) {
         desc.integrator.spp = kMaxSpp;
@@ -52,6 +51,11 @@ void run(const Options& o) {
         part.totalPasses = desc.integrator.spp;
         part.scene = o.args.scene;
         part.fingerprint = sceneFingerprint(desc);  // of the whole animation: the frame is checked on its own
+        if (o.args.noise > 0) {                     // it plans the samples: parts to another target are another render
+            char target[32];
+            std::snprintf(target, sizeof target, " noise %.17g", o.args.noise);
+            part.fingerprint += target;
+        }
     }
     if (o.frame >= desc.turntable.frames)
         throw InputError(o.args.scene + ": --frame " + std::to_string(o.frame) + " is past the scene's frames 0.." +
@@ -92,8 +96,7 @@ void run(const Options& o) {
     options.timeLimit = desc.integrator.timeLimit;
     options.seed = desc.integrator.seed;
     options.threads = o.args.threads;
-    options.noiseTarget = o.noise;
-    options.independentHalves = o.noise > 0;
+    options.noiseTarget = o.args.noise;
     options.cancel = &interrupted();
     Progress progress("render", {(part.endPass > 0 ? part.endPass : options.spp) - part.firstPass, passesFrom,
                                  options.timeLimit, options.noiseTarget, photon && photon->tracesPhotons()});
@@ -106,6 +109,8 @@ void run(const Options& o) {
     InterruptGuard guard;
     RenderResult result = render(scene, *integrator, options);
     progress.finish(result);
+    double samples = 0;  // per pixel, summed: adaptive sampling gives pixels different counts
+    for (size_t i = 0; i < result.film.pixelCount(); ++i) samples += result.film.count(i);
 
     if (!o.passRange.empty()) {
         // A part with an unfinished pass would merge into an image no single render gives.
@@ -119,6 +124,9 @@ void run(const Options& o) {
         writeExrAndPng(output, result.image, o.args.exposure);
     }
     const double pixels = double(desc.camera.width) * desc.camera.height;
+    char average[64] = "";
+    if (o.args.noise > 0)
+        std::snprintf(average, sizeof average, " (the most a pixel took; %.1f on average)", samples / pixels);
     if (interrupted())
         std::fprintf(stderr, "interrupted (%s): wrote %d complete passes%s\n", interruptName(), result.passes,
                      result.cancelled ? " (and the tiles of the next)" : "");
@@ -127,8 +135,8 @@ void run(const Options& o) {
                      (unsigned long long)result.droppedSamples);
     if (o.passRange.empty())
         std::printf(
-            "%s and %s: %dx%d, %d spp%s\n", output.c_str(), previewPath(output).c_str(), desc.camera.width,
-            desc.camera.height, result.passes,
+            "%s and %s: %dx%d, %d spp%s%s\n", output.c_str(), previewPath(output).c_str(), desc.camera.width,
+            desc.camera.height, result.passes, average,
             result.noise ? (", noise " + std::to_string(*result.noise) + " (estimated relative MSE)").c_str() : "");
     else
         std::printf("%s: part of %s frame %d: passes %s of %d, %dx%d\n", output.c_str(), o.args.scene.c_str(),
@@ -146,8 +154,7 @@ void run(const Options& o) {
                     (unsigned long long)s.surfacePhotons, s.bytes / 1e6);
     }
     std::printf("time: tetrahedralization %.2f s, photon tracing %.2f s, rendering %.2f s (%.0f samples/s)\n",
-                scene.tetrahedralizeSeconds(), tracing, result.seconds - tracing,
-                pixels * result.passes / result.seconds);
+                scene.tetrahedralizeSeconds(), tracing, result.seconds - tracing, samples / result.seconds);
     if (interrupted()) {
         std::fflush(stdout);
         std::exit(128 + interruptSignal());  // the shell's code for "stopped by the signal", with the image written
@@ -170,12 +177,6 @@ void addRenderCommand(CLI::App& app) {
         ->excludes(time);
     cmd->add_option("--frame", o->frame, "The frame of the scene's turntable to render (from 0)")
         ->check(inIntegers(0, INT32_MAX));
-    cmd->add_option(
-           "--noise", o->noise,
-           "Stop when the estimated relative MSE falls to this (from the fourth pass on; the spp, of the scene or "
-           "--spp, and --time cap it)")
-        ->check(inRange(kPositive))
-        ->excludes("--pass-range");
     cmd->add_option("--reference", o->reference,
                     "After each pass, print the relative MSE against this EXR and add it to a CSV beside the image")
         ->check(CLI::ExistingFile)

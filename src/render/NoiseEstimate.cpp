@@ -13,23 +13,23 @@ namespace tetglow {
 // pixel's error. Taking the smaller half there instead fixed the cloud but made the estimate 20
 // times the error on the photon-mapped fish, whose caustic pixels see sparse kernel hits
 // (docs/notes/2026-12-04-noise-estimate.md).
-std::optional<double> estimateRelMse(const Film& all, const Film& half) {
-    double sum = 0;
-    size_t terms = 0;
-    for (size_t i = 0; i < all.pixelCount(); ++i) {
-        const double n = all.count(i), nE = half.count(i), nO = n - nE;
-        if (nE == 0 || nO == 0) continue;
-        const double factor = nE * nO / (n * n);
-        for (int c = 0; c < 3; ++c) {
-            const double sumE = double(half.sum(i)[c]) / kFixedUnit, sumAll = double(all.sum(i)[c]) / kFixedUnit;
-            const double meanE = sumE / nE, meanO = (sumAll - sumE) / nO, mean = sumAll / n;
-            const double d = meanE - meanO;
-            sum += d * d * factor / (mean * mean + kRelMseFloor);
-            ++terms;
-        }
+void RelMseSum::addPixel(const Film& all, const Film& half, size_t i) {
+    const double n = all.count(i), nE = half.count(i), nO = n - nE;
+    if (nE == 0 || nO == 0) return;
+    const double factor = nE * nO / (n * n);
+    for (int c = 0; c < 3; ++c) {
+        const double sumE = double(half.sum(i)[c]) / kFixedUnit, sumAll = double(all.sum(i)[c]) / kFixedUnit;
+        const double meanE = sumE / nE, meanO = (sumAll - sumE) / nO, mean = sumAll / n;
+        const double d = meanE - meanO;
+        sum += d * d * factor / (mean * mean + kRelMseFloor);
+        ++terms;
     }
-    if (terms == 0) return std::nullopt;
-    return sum / double(terms);
+}
+
+std::optional<double> estimateRelMse(const Film& all, const Film& half) {
+    RelMseSum s;
+    for (size_t i = 0; i < all.pixelCount(); ++i) s.addPixel(all, half, i);
+    return s.mean();
 }
 
 }  // namespace tetglow

@@ -19,4 +19,13 @@ inline bool inFirstHalf(int pass) { return pass % 2 == 0; }
 // exact sums, so it is the same number at any thread count. None before each half has a sample.
 std::optional<double> estimateRelMse(const Film& all, const Film& half);
 
+// The same estimate over any set of pixels (a tile's, for adaptive sampling): their terms summed
+// one pixel at a time, in the caller's order.
+struct RelMseSum {
+    double sum = 0;
+    size_t terms = 0;
+    void addPixel(const Film& all, const Film& half, size_t i);
+    std::optional<double> mean() const { return terms ? std::optional(sum / double(terms)) : std::nullopt; }
+};
+
 }  // namespace tetglow

@@ -15,11 +15,10 @@ struct PassReport {
     int passes = 0;  // complete passes so far
     double seconds = 0;
     std::optional<double> noise;  // estimateRelMse (render/NoiseEstimate.h), from the second pass on
+    // noiseTarget: the passes the noisiest tile needs (before the cap), once the pilot has planned
+    // them (render/AdaptiveSampling.h); 0 before.
+    double neededPasses = 0;
 };
-
-// The fewest passes a noiseTarget stops after: with fewer, each half has one sample per pixel and
-// the estimate is too rough to trust.
-inline constexpr int kMinNoisePasses = 4;
 
 struct RenderOptions {
     int spp = 16;
@@ -29,9 +28,11 @@ struct RenderOptions {
     uint64_t seed = 0;
     int threads = 0;       // 0: all cores
     double timeLimit = 0;  // > 0: no pass starts after this many seconds (at least one runs)
-    // > 0: stop after the first complete odd pass (the halves equal, at least kMinNoisePasses
-    // passes) whose noise estimate is at most this. Decided between passes from exact sums, so
-    // the same seed stops at the same pass at any thread count.
+    // > 0: adaptive sampling (render/AdaptiveSampling.h): after the pilot's passes each tile of
+    // pixels takes the passes its own noise estimate says bring it to this relative MSE (at most
+    // spp), and the render stops when every tile has them. Implies independentHalves. Planned from
+    // the pilot's exact sums, so the same seed gives the same bits at any thread count, and parts
+    // (firstPass, endPass) replay the pilot to plan the same budgets as the whole render.
     double noiseTarget = 0;
     // The even and the odd passes draw from two independently scrambled sequences (a pass's index
     // in its half is pass / 2), so the halves are independent and the noise estimate of an even
@@ -51,15 +52,16 @@ struct RenderResult {
     RenderStop stop = RenderStop::Passes;
     Image image;
     Film film{0, 0};  // the exact sums behind `image`, for partial renders
-    int passes = 0;   // complete passes (samples per pixel)
+    int passes = 0;   // complete passes (samples per pixel; with noiseTarget, the most a pixel took)
     bool cancelled = false;
     uint64_t droppedSamples = 0;  // NaN or Inf radiance, discarded
     double seconds = 0;
     std::optional<double> noise;  // the last complete pass's estimate
+    double neededPasses = 0;      // noiseTarget: as in PassReport
 };
 
 // Pixel (x, y) in pass s uses Rng::pixelSample(seed, pixel index, s) only (or its half's seed and
-// s / 2, independentHalves), so the image is the
+// s / 2, independentHalves), and takes pass s when its tile's budget has it, so the image is the
 // same for any thread count and any tile schedule; the first numbers it draws (the point in the
 // pixel, then the path's) are stratified over the passes.
 RenderResult render(const Scene& scene, Integrator& integrator, const RenderOptions& options);
