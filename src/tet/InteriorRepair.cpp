@@ -18,6 +18,7 @@
 #include "tet/SelfIntersection.h"
 #include "tet/TetGenProcess.h"
 #include "tet/VolumeBoundary.h"
+#include "tet/WindingGrid.h"
 #include "tet/WindingNumber.h"
 
 namespace tetglow {
@@ -347,11 +348,34 @@ std::string plural(size_t n, const std::string& one, const std::string& many) {
     return std::to_string(n) + " " + (n == 1 ? one : many);
 }
 
+// The soup the winding number is taken of: welded, without zero-area and duplicate triangles,
+// each patch wound consistently (orientPatches). Returns its edges.
+EdgeMap cleanAndOrient(TriangleMesh& soup, RepairReport& report) {
+    report.applied = true;
+    weldVertices(soup);
+    const SoupCleaning cleaning = dropDegenerateAndDuplicates(soup);
+    report.degenerateDropped = cleaning.degenerate;
+    report.duplicatesDropped = cleaning.duplicates;
+    for (const auto& p : cleaning.degenerateAt) keep(report.degenerateAt, p);
+    for (const auto& p : cleaning.duplicateAt) keep(report.duplicateAt, p);
+    if (soup.triangles.empty()) throw InputError("mesh encloses no volume: every triangle has zero area");
+    EdgeMap edges = edgeTriangles(soup.triangles);
+    for (const auto& [key, users] : edges) {
+        report.holeEdges += users.size() == 1;
+        report.nonManifoldEdges += users.size() > 2;
+    }
+    orientPatches(soup, edges, report);
+    return edges;
+}
+
 }  // namespace
 
 std::string RepairReport::summary() const {
     char share[64];
     std::snprintf(share, sizeof share, "%.3g%%", boundaryArea > 0 ? 100 * spannedArea / boundaryArea : 0.0);
+    if (!approximateReason.empty())
+        return "the boundary is approximate, from the winding number on a grid of " +
+               std::to_string(kWindingGridCells) + " cells across, because " + approximateReason;
     std::string s = plural(holes.size(), "hole", "holes") + " spanned (" + share + " of the surface), " +
                     plural(crossingPairs, "crossing pair", "crossing pairs") + " resolved, " +
                     plural(partsUnioned, "part", "parts") + " unioned, " + plural(flippedTriangles, "face", "faces") +
@@ -367,22 +391,8 @@ std::string RepairReport::summary() const {
 
 RepairReport repairInterior(TriangleMesh& mesh) {
     RepairReport report;
-    report.applied = true;
     TriangleMesh soup = mesh;
-    weldVertices(soup);
-    const SoupCleaning cleaning = dropDegenerateAndDuplicates(soup);
-    report.degenerateDropped = cleaning.degenerate;
-    report.duplicatesDropped = cleaning.duplicates;
-    for (const auto& p : cleaning.degenerateAt) keep(report.degenerateAt, p);
-    for (const auto& p : cleaning.duplicateAt) keep(report.duplicateAt, p);
-    if (soup.triangles.empty()) throw InputError("mesh encloses no volume: every triangle has zero area");
-
-    const EdgeMap edges = edgeTriangles(soup.triangles);
-    for (const auto& [key, users] : edges) {
-        report.holeEdges += users.size() == 1;
-        report.nonManifoldEdges += users.size() > 2;
-    }
-    orientPatches(soup, edges, report);
+    const EdgeMap edges = cleanAndOrient(soup, report);
     const auto pairs = findSelfIntersections(soup);
     report.crossingPairs = pairs.size();
     for (const auto& [i, j] : pairs) keep(report.crossingAt, centroid(soup, i));
@@ -511,20 +521,40 @@ ValidationReport prepareSurface(TriangleMesh& mesh, bool strict) {
             const std::string all = surveyProblems(original);
             throw InputError(std::string(refusal.what()) + (all.empty() ? "" : "; in all: " + all));
         }
+        const TriangleMesh input = original;
         mesh = std::move(original);
-        RepairReport repair = repairInterior(mesh);
-        repair.reason = refusal.what();
         ValidationReport report;
         try {
-            report = validateAndRepair(mesh, true);
-        } catch (const InputError& e) {
-            throw InputError(std::string("the repaired mesh is still invalid (") + e.what() +
-                             "); the input: " + refusal.what());
+            RepairReport repair = repairInterior(mesh);
+            repair.reason = refusal.what();
+            try {
+                report = validateAndRepair(mesh, true);
+            } catch (const InputError& e) {
+                throw InputError(std::string("the repaired mesh is still invalid (") + e.what() + ")");
+            }
+            report.repair = std::move(repair);
+            report.notes = {report.repair.summary()};
+        } catch (const InputError& failure) {
+            // A mesh that encloses nothing has nothing to approximate either.
+            if (std::string(failure.what()).rfind("mesh encloses no volume", 0) == 0) throw;
+            mesh = input;
+            report = approximateSurface(mesh, failure.what());
+            report.repair.reason = refusal.what();
         }
-        report.repair = std::move(repair);
-        report.notes = {report.repair.summary()};
         return noteCancelled(std::move(report));
     }
+}
+
+ValidationReport approximateSurface(TriangleMesh& mesh, const std::string& reason) {
+    const std::string problems = surveyProblems(mesh);
+    RepairReport repair;
+    cleanAndOrient(mesh, repair);
+    mesh = windingGridBoundary(mesh);
+    ValidationReport report = validateAndRepair(mesh, true);
+    report.repair = std::move(repair);
+    report.repair.approximateReason = reason + (problems.empty() ? "" : "; the input has " + problems);
+    report.notes = {report.repair.summary()};
+    return report;
 }
 
 }  // namespace tetglow

@@ -20,8 +20,14 @@ RepairReport repairInterior(TriangleMesh& mesh);
 
 // validateAndRepair; where that refuses the mesh (other than for non-finite coordinates or no
 // triangles), repairInterior and then validateAndRepair, unless `strict`: then the refusal,
-// with every problem found counted and located.
+// with every problem found counted and located. Where the repair fails other than for a mesh
+// that encloses no volume, approximateSurface.
 ValidationReport prepareSurface(TriangleMesh& mesh, bool strict);
+
+// Replaces `mesh` by the boundary of the grid cells its winding number puts inside
+// (windingGridBoundary), validated, with `reason` (why the exact path failed) and every problem
+// of the input (surveyProblems) in the report's repair.approximateReason.
+ValidationReport approximateSurface(TriangleMesh& mesh, const std::string& reason);
 
 // Every problem validation refuses, counted, each kind with the position of its first case
 // ("" for a valid mesh). Positions must be finite.

@@ -17,6 +17,9 @@ struct RepairReport {
     size_t holeEdges = 0, nonManifoldEdges = 0, crossingPairs = 0, partsUnioned = 0;
     size_t unsplitTriangles = 0;  // crossing triangles CGAL could not split, left out of the constraints
     std::string unsplitReason;
+    // Why the boundary is the winding number's labels on a grid (WindingGrid.h) instead of the
+    // input's triangles: the exact repair, or TetGen on its result, failed ("" when not).
+    std::string approximateReason;
     struct Hole {
         glm::dvec3 centre{0};  // area-weighted centroid of the faces spanning it
         double area = 0;

@@ -60,6 +60,11 @@ std::array<uint32_t, 3> sortedFace(const std::array<uint32_t, 4>& v, int j) {
     return f;
 }
 
+// Surfaces that put one space in two regions: a scene to fix, not a failure of TetGen's.
+struct InconsistentRegions : InputError {
+    using InputError::InputError;
+};
+
 // The refusal of a space between the surfaces that two of their faces put in different regions:
 // the mesh, both faces' positions and sides, and what makes that happen.
 struct SideOfFace {
@@ -166,7 +171,7 @@ TetMesh assemble(const VolumeBoundary& boundary, const RawTets& raw, const std::
                         cellRegion[id] = side.region;
                         decidedBy[id] = side;
                     } else if (cellRegion[id] != side.region)
-                        throw InputError(inconsistentRegions(boundary, names, decidedBy[id], side));
+                        throw InconsistentRegions(inconsistentRegions(boundary, names, decidedBy[id], side));
                 } else if (nbr[t][j] >= 0 && cell[nbr[t][j]] < 0) {
                     cell[nbr[t][j]] = id;
                     stack.push_back(uint32_t(nbr[t][j]));
@@ -309,22 +314,38 @@ TetMesh tetrahedralize(std::vector<TriangleMesh> surfaces, const std::vector<std
     const auto start = std::chrono::steady_clock::now();
     if (reports) reports->clear();
     checkSurfacesMemory(surfaces, names);
-    double largestVolume = 0;  // the regions' union holds at least this much
+    const auto named = [&](size_t i, const std::string& text) {
+        return names[i].empty() ? text : names[i] + ": " + text;
+    };
+    // The meshes as given, for approximateSurface when TetGen fails on what validation made of them.
+    const std::vector<TriangleMesh> inputs = options.strict ? std::vector<TriangleMesh>{} : surfaces;
+    std::vector<ValidationReport> validations(surfaces.size());
     for (size_t i = 0; i < surfaces.size(); ++i) {
         try {
-            const ValidationReport validation = prepareSurface(surfaces[i], options.strict);
-            largestVolume = std::max(largestVolume, validation.volume);
-            if (reports) reports->push_back(validation);
+            validations[i] = prepareSurface(surfaces[i], options.strict);
         } catch (const InputError& e) {
-            throw InputError(names[i].empty() ? e.what() : names[i] + ": " + e.what());
+            throw InputError(named(i, e.what()));
         }
     }
+    TetStats local;
+    const auto noteApproximations = [&] {
+        local.approximateWarning.clear();
+        for (size_t i = 0; i < surfaces.size(); ++i) {
+            const RepairReport& r = validations[i].repair;
+            if (r.approximateReason.empty()) continue;
+            local.approximateWarning +=
+                (local.approximateWarning.empty() ? "" : "; ") +
+                named(i, r.summary() + (r.reason.empty() ? "" : " (the input: " + r.reason + ")"));
+        }
+    };
+    noteApproximations();
+    double largestVolume = 0;  // the regions' union holds at least this much
+    for (const ValidationReport& v : validations) largestVolume = std::max(largestVolume, v.volume);
     checkTetCount(largestVolume, options.maxVolume);
     VolumeBoundary boundary = buildRegionComplex(surfaces, names);
     placeInsidePoints(boundary, surfaces, names);
     const std::string switches = options.switches();
     const uint64_t key = cacheKey(boundary, switches);
-    TetStats local;
     std::filesystem::path file;
     if (options.useCache) {
         if (auto dir = cacheDirectory(options.cacheDir); !dir.empty()) {
@@ -358,7 +379,38 @@ TetMesh tetrahedralize(std::vector<TriangleMesh> surfaces, const std::vector<std
                 file.string() + ": damaged tet cache entry (" + problem + "); not used, tetrahedralizing again";
             std::fprintf(stderr, "tetglow: warning: %s\n", local.cacheWarning.c_str());
         }
-        mesh = assemble(boundary, runIsolated(boundary, switches), names);
+        try {
+            mesh = assemble(boundary, runIsolated(boundary, switches), names);
+        } catch (const InconsistentRegions&) {
+            throw;
+        } catch (const InputError& failure) {
+            std::string failed;
+            for (size_t i = 0; i < surfaces.size(); ++i)
+                if (!names[i].empty()) failed += (failed.empty() ? "" : " + ") + names[i];
+            const std::string why = failed.empty() ? failure.what() : failed + ": " + failure.what();
+            // Every mesh not yet approximate is approximated: TetGen does not say which one it failed on.
+            bool changed = false;
+            for (size_t i = 0; i < inputs.size(); ++i) {
+                if (!validations[i].repair.approximateReason.empty()) continue;
+                surfaces[i] = inputs[i];
+                const std::string validation = validations[i].repair.reason;
+                validations[i] = approximateSurface(
+                    surfaces[i], "TetGen failed on the validated surface (" + oneLine(failure.what()) + ")");
+                validations[i].repair.reason = validation;
+                changed = true;
+            }
+            if (!changed) throw InputError(why);
+            noteApproximations();
+            boundary = buildRegionComplex(surfaces, names);
+            placeInsidePoints(boundary, surfaces, names);
+            try {
+                mesh = assemble(boundary, runIsolated(boundary, switches), names);
+            } catch (const InputError& e) {
+                throw InputError(why + "; on the approximate boundary too: " + e.what());
+            }
+            file.clear();  // the entry is keyed by the surfaces TetGen failed on
+            local.cacheProblem = "not cached: the boundary is approximate";
+        }
         if (!file.empty()) {
             std::error_code ec;
             std::filesystem::create_directories(file.parent_path(), ec);
@@ -371,6 +423,9 @@ TetMesh tetrahedralize(std::vector<TriangleMesh> surfaces, const std::vector<std
             }
         }
     }
+    if (reports) *reports = validations;
+    if (!local.approximateWarning.empty())
+        std::fprintf(stderr, "tetglow: warning: %s\n", local.approximateWarning.c_str());
     local.maxVolumeWarning = maxVolumeWarning(mesh, options.maxVolume);
     if (!local.maxVolumeWarning.empty()) std::fprintf(stderr, "tetglow: warning: %s\n", local.maxVolumeWarning.c_str());
     local.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -28,6 +28,10 @@ struct TetStats {
     std::string cacheWarning;  // why a cache entry found was not used (also printed to stderr); "" if none
     // Tets larger than TetOptions::maxVolume, and why (also printed to stderr); "" if none.
     std::string maxVolumeWarning;
+    // The meshes whose boundary is approximate (winding-number labels on a grid, WindingGrid.h)
+    // because their repair or TetGen failed, each named with the failure and where its problems
+    // lie (also printed to stderr); "" if none.
+    std::string approximateWarning;
 };
 
 // The most tets a tetrahedralization may have (about 3 GB with TetGen's own data): a max volume
@@ -36,7 +40,9 @@ inline constexpr double kMaxTets = 1e7;
 void checkTetCount(double volume, double maxVolume);
 
 // Validates and repairs `surface` (see prepareSurface), then tetrahedralizes its interior.
-// TetGen runs in a child process, so its crashes and thrown ints become InputErrors here.
+// TetGen runs in a child process, so its crashes and thrown ints become InputErrors here; unless
+// `strict`, TetGen failing is answered by approximating the surfaces (approximateSurface) and
+// trying once more, with a warning.
 TetMesh tetrahedralize(TriangleMesh surface, const TetOptions& options = {}, TetStats* stats = nullptr,
                        ValidationReport* report = nullptr);
 
