@@ -41,18 +41,6 @@ RGB VolPathIntegrator::trace(PathVertex v, int branches, Rng& rng) const {
     VolumeState& state = v.state;
     SpectralPath& path = v.path;
     int& depth = v.depth;
-    auto emitterWeight = [&](const Light& light, const glm::dvec3& point, uint32_t triangle) {
-        return v.specular ? 1.0
-                          : powerHeuristic(v.lastPdf,
-                                           v.lastScale * lightPdf(scene_, light, v.lastPoint, ray.d, point, triangle));
-    };
-    auto survives = [&](PathVertex& at) {
-        if (!at.path.alive()) return false;
-        const double keep = eyePathSurvival(at.path.weight(), at.depth, rng);
-        if (keep == 0) return false;
-        at.path.beta /= keep;
-        return true;
-    };
     for (int crossings = 0; crossings < kMaxCrossings; ++crossings) {
         auto hit = scene_.intersect(ray, state);
         FreeFlight flight;
@@ -105,7 +93,7 @@ RGB VolPathIntegrator::trace(PathVertex v, int branches, Rng& rng) const {
                         next.lastPoint = p;
                         next.ray = {p, wi};
                         next.state = here;
-                        return survives(next);
+                        return survives(next, rng);
                     };
                     // Only on a stretch its region's exit query found: where flights walk (a dense
                     // medium), the rest of a path is long and costs more than its camera ray's stretch.
@@ -124,37 +112,57 @@ RGB VolPathIntegrator::trace(PathVertex v, int branches, Rng& rng) const {
         if (end == StretchEnd::Crossed) continue;
         if (end == StretchEnd::Escaped) {
             if (const Light* env = scene_.environment())
-                L += path.weight() * env->emitted(ray.d, 0) * emitterWeight(*env, ray.o + ray.d, 0);
+                L += path.weight() * env->emitted(ray.d, 0) * emitterWeight(v, *env, ray.o + ray.d, 0);
             break;
         }
         if (end == StretchEnd::Emitter) {
             const Light& light = *scene_.lights()[hit->index];
-            L += path.weight() * light.emitted(ray.d, hit->triangle) * emitterWeight(light, hit->p, hit->triangle);
+            L += path.weight() * light.emitted(ray.d, hit->triangle) * emitterWeight(v, light, hit->p, hit->triangle);
             break;
         }
-        const MaterialDesc& material = scene_.material(*hit);
-        if (++depth >= maxDepth_) break;
-        if (!isSpecular(material)) {
-            const VolumeState here = scene_.afterHit(*hit, ray.d, state);
-            L += path.weight() * sampleDirect(
-                                     scene_, hit->p, rng, true,
-                                     [&](const glm::dvec3& wi) {
-                                         return Scattering{evaluateMaterial(material, ray.d, hit->n, wi),
-                                                           materialPdf(material, ray.d, hit->n, wi)};
-                                     },
-                                     shadowRays(scene_, here, rng));
-        }
-        const double u0 = rng.uniform(), u1 = rng.uniform();
-        const BsdfSample bs = sampleMaterial(material, ray.d, hit->n, {u0, u1});
-        path.beta *= bs.weight;
-        v.specular = bs.specular;
-        v.lastPdf = bs.pdf;
-        v.lastScale = 1;
-        v.lastPoint = hit->p;
-        leaveSurface(scene_, *hit, bs.direction, ray, state);
-        if (!survives(v)) break;
+        if (!scatterAtSurface(v, *hit, rng, L)) break;
     }
     return L;
+}
+
+double VolPathIntegrator::emitterWeight(const PathVertex& v, const Light& light, const glm::dvec3& point,
+                                        uint32_t triangle) const {
+    return v.specular ? 1.0
+                      : powerHeuristic(v.lastPdf,
+                                       v.lastScale * lightPdf(scene_, light, v.lastPoint, v.ray.d, point, triangle));
+}
+
+bool VolPathIntegrator::survives(PathVertex& v, Rng& rng) const {
+    if (!v.path.alive()) return false;
+    const double keep = eyePathSurvival(v.path.weight(), v.depth, rng);
+    if (keep == 0) return false;
+    v.path.beta /= keep;
+    return true;
+}
+
+bool VolPathIntegrator::scatterAtSurface(PathVertex& v, const Intersection& hit, Rng& rng, RGB& L) const {
+    const MaterialDesc& material = scene_.material(hit);
+    if (++v.depth >= maxDepth_) return false;
+    const Ray& ray = v.ray;
+    if (!isSpecular(material)) {
+        const VolumeState here = scene_.afterHit(hit, ray.d, v.state);
+        L += v.path.weight() * sampleDirect(
+                                   scene_, hit.p, rng, true,
+                                   [&](const glm::dvec3& wi) {
+                                       return Scattering{evaluateMaterial(material, ray.d, hit.n, wi),
+                                                         materialPdf(material, ray.d, hit.n, wi)};
+                                   },
+                                   shadowRays(scene_, here, rng));
+    }
+    const double u0 = rng.uniform(), u1 = rng.uniform();
+    const BsdfSample bs = sampleMaterial(material, ray.d, hit.n, {u0, u1});
+    v.path.beta *= bs.weight;
+    v.specular = bs.specular;
+    v.lastPdf = bs.pdf;
+    v.lastScale = 1;
+    v.lastPoint = hit.p;
+    leaveSurface(scene_, hit, bs.direction, v.ray, v.state);
+    return survives(v, rng);
 }
 
 std::optional<VolPathIntegrator::StretchLight> VolPathIntegrator::directWithin(const RegionStretch& stretch,

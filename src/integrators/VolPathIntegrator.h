@@ -50,6 +50,13 @@ private:
     // The light along the path from v; at its next interaction in a medium, on a stretch found by
     // an exit query, it branches in `branches` directions, each carrying that share of its light.
     RGB trace(PathVertex v, int branches, Rng& rng) const;
+    // The MIS weight of an emitter the path from v reaches at `point` (on `triangle` of an area light).
+    double emitterWeight(const PathVertex& v, const Light& light, const glm::dvec3& point, uint32_t triangle) const;
+    // Russian roulette on the eye path (eyePathSurvival): false where v ends, else its weight raised.
+    bool survives(PathVertex& v, Rng& rng) const;
+    // At a surface `hit`: direct light by next-event estimation into L, then the material's sampled
+    // direction for v; false where the path ends.
+    bool scatterAtSurface(PathVertex& v, const Intersection& hit, Rng& rng, RGB& L) const;
     // Direct light at a point of a stretch, and how much likelier its conditioned free-flight pdf
     // chose that point than the free flight would: the factor of the MIS weight of an emitter
     // that phase sampling reaches after the flight interacts on the stretch.
