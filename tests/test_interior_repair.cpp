@@ -69,6 +69,24 @@ TEST(WindingNumber, ExactVersusTree) {
     EXPECT_NEAR(closed.exact(glm::dvec3(3, 0, 0)), 0.0, 1e-12);
 }
 
+// Near 1/2, classify opens the tree until the error bounds cannot move the value across 1/2:
+// its side is the exact sum's at points on a grid through an open sphere's mouth, where much
+// of the space lies near 1/2.
+TEST(WindingNumber, ClassifyIsOnTheExactSide) {
+    const TriangleMesh open = punch(icosphere(4), {0, 0, 1}, 1.2);
+    const WindingNumber winding(open);
+    int near = 0;
+    for (int i = -6; i <= 6; ++i)
+        for (int j = -6; j <= 6; ++j)
+            for (int k = 0; k <= 12; ++k) {
+                const glm::dvec3 p(0.137 * i + 0.01, 0.137 * j + 0.003, 0.1 * k - 0.05);
+                const double exact = winding.exact(p);
+                near += std::abs(exact - 0.5) < 0.05;
+                EXPECT_EQ(winding.classify(p) > 0.5, exact > 0.5) << p.x << " " << p.y << " " << p.z;
+            }
+    EXPECT_GT(near, 20);  // the band the tree alone cannot decide is exercised
+}
+
 TEST(InteriorRepair, CleanMeshesTakeTheExactPath) {
     for (const TriangleMesh& m : {box(), icosphere(3), merge(box(), box(glm::dvec3(0.25), glm::dvec3(0.75)))}) {
         ValidationReport report;
@@ -402,6 +420,92 @@ TEST(InteriorRepair, OpenDomeEnclosesItsLens) {
     EXPECT_GT(mesh.volume(), 0.05 * cap);
     EXPECT_LT(mesh.volume(), cap);
     EXPECT_GT(report.repair.spannedArea, 0.1 * report.repair.boundaryArea);
+}
+
+// A hollow sphere: an outer shell with one small hole, and a closed inner shell. Its own winding
+// decides what the inner shell bounds, as on the exact path without the hole: wound inward, a
+// cavity (the medium is the outer sphere less the inner, 3.63 here); wound outward, nothing
+// (winding number 2 inside it: the whole sphere is medium). Spanning the hole changes neither.
+TEST(InteriorRepair, AHoleInTheOuterShellLeavesTheCavityAsItsShellSays) {
+    const TriangleMesh outer = icosphere(3), inner = icosphere(2, 0.5);
+    TriangleMesh cavity = inner;
+    for (auto& t : cavity.triangles) std::swap(t[1], t[2]);
+    const TriangleMesh holed = punch(outer, outer.positions[0], 0.1);  // the five faces around a vertex
+    ASSERT_EQ(outer.triangles.size() - holed.triangles.size(), 5u);
+    for (const bool isCavity : {true, false}) {
+        const TriangleMesh& core = isCavity ? cavity : inner;
+        const double expected = signedVolume(outer) - (isCavity ? signedVolume(inner) : 0);
+        EXPECT_NEAR(tets(merge(outer, core)).volume(), expected, 1e-6 * expected) << isCavity;  // the exact path
+        ValidationReport report;
+        const TetMesh mesh = tets(merge(holed, core), &report);
+        ASSERT_TRUE(report.repair.applied);
+        EXPECT_EQ(report.repair.holes.size(), 1u);
+        EXPECT_NEAR(mesh.volume(), expected, 1e-3 * expected) << isCavity << ": " << report.repair.summary();
+        EXPECT_EQ(inputTrianglesOnBoundary(core, mesh), isCavity ? core.triangles.size() : 0u);
+    }
+}
+
+// A sphere with a hole beside a closed sphere wound inward throughout: the closed one is a solid,
+// as on the exact path (its own shell says so), and the holed one is spanned. The whole was
+// turned by its total signed volume, here negative: the holed sphere became inward and was lost
+// (the volume of one sphere, "0 holes spanned").
+TEST(InteriorRepair, AClosedPartWoundInwardBesideAHoledOneIsASolid) {
+    const TriangleMesh sphere = icosphere(3);
+    const TriangleMesh holed = punch(sphere, sphere.positions[0], 0.1);
+    TriangleMesh flipped = icosphere(3, 1.0, {3, 0, 0});
+    for (auto& t : flipped.triangles) std::swap(t[1], t[2]);
+    ValidationReport report;
+    const TetMesh mesh = tets(merge(holed, flipped), &report);
+    ASSERT_TRUE(report.repair.applied);
+    EXPECT_EQ(report.repair.holes.size(), 1u) << report.repair.summary();
+    EXPECT_NEAR(mesh.volume(), 2 * signedVolume(sphere), 1e-3 * signedVolume(sphere)) << report.repair.summary();
+    EXPECT_EQ(report.repair.flippedTriangles, flipped.triangles.size());
+}
+
+// Closed cylinders whose caps are tessellated on their own, as CAD exporters do face by face:
+// twice the side's corners around each cap, so the rims meet in T-junctions and cross a little.
+// Such cracks are open by their edges only; the winding number beside them is whole, so they
+// get no lattice of points (which cost a lattice per cap, 85,000 points on a 67-part engine,
+// and TetGen crashed on it), and the repair gives the cylinders' volume. A hole still gets one.
+TEST(InteriorRepair, CracksBetweenFacesGetNoLattice) {
+    TriangleMesh cylinders;
+    double expected = 0;
+    for (int c = 0; c < 2; ++c) {
+        const int sides = 48;
+        const double r = 1 - 0.5 * c, height = 1.5, x = 3.0 * c;
+        TriangleMesh m;
+        for (int i = 0; i <= 1; ++i)
+            for (int k = 0; k < sides; ++k)
+                m.positions.push_back(
+                    {x + r * std::cos(2 * M_PI * k / sides), r * std::sin(2 * M_PI * k / sides), height * i});
+        for (uint32_t k = 0; k < uint32_t(sides); ++k) {
+            const uint32_t a = k, b = (k + 1) % sides;
+            m.triangles.push_back({a, b, b + sides});
+            m.triangles.push_back({a, b + sides, a + sides});
+        }
+        for (const bool top : {false, true}) {
+            const uint32_t centre = uint32_t(m.positions.size());
+            m.positions.push_back({x, 0, top ? height : 0});
+            for (int k = 0; k < 2 * sides; ++k)
+                m.positions.push_back(
+                    {x + r * std::cos(M_PI * k / sides), r * std::sin(M_PI * k / sides), top ? height : 0});
+            for (uint32_t k = 0; k < uint32_t(2 * sides); ++k) {
+                const uint32_t a = centre + 1 + k, b = centre + 1 + (k + 1) % (2 * sides);
+                m.triangles.push_back(top ? std::array{centre, a, b} : std::array{centre, b, a});
+            }
+        }
+        // The caps' polygon of 2 * sides corners holds the side's polygon of sides corners.
+        expected += height * 0.5 * 2 * sides * r * r * std::sin(M_PI / sides);
+        cylinders = merge(cylinders, m);
+    }
+    ValidationReport report;
+    const TetMesh mesh = tets(cylinders, &report);
+    ASSERT_TRUE(report.repair.applied);
+    EXPECT_EQ(report.repair.latticePoints, 0u) << report.repair.summary();
+    EXPECT_NEAR(mesh.volume(), expected, 0.01 * expected) << report.repair.summary();
+    ValidationReport holed;
+    tets(punch(icosphere(4), {0, 0, 1}, 0.5), &holed);
+    EXPECT_GT(holed.repair.latticePoints, 0u);
 }
 
 // Six thin tetrahedra through a common point, every one crossing every other: CGAL 5.5's

@@ -50,6 +50,14 @@ def punch(vs, fs, centres, radius):
     return [t for t in fs if far(t)]
 
 
+class Failed(Exception):
+    """tetrahedralize refused the mesh: its message, and the time it took to."""
+
+    def __init__(self, message, seconds, cpu):
+        super().__init__(message)
+        self.message, self.seconds, self.cpu = message, seconds, cpu
+
+
 def run(binary, mesh):
     """Wall seconds, CPU seconds (user + system, TetGen's child included: on a loaded machine the
     fairer figure) and peak resident MiB (GNU time: tetglow or its TetGen child, the larger)."""
@@ -57,9 +65,11 @@ def run(binary, mesh):
     r = subprocess.run(["/usr/bin/time", "-f", "%U %S %M", binary, "tetrahedralize", mesh, "--no-cache"],
                        capture_output=True, text=True)
     seconds = time.monotonic() - start
-    if r.returncode != 0:
-        fail(f"tetrahedralize {mesh}: {r.stderr.strip()[-300:]}")
     user, system, peak_kib = r.stderr.strip().splitlines()[-1].split()
+    if r.returncode != 0:
+        errors = [line for line in r.stderr.splitlines() if line.startswith("tetglow: error: ")]
+        raise Failed(errors[-1][len("tetglow: error: "):] if errors else r.stderr.strip()[-300:], seconds,
+                     float(user) + float(system))
     summary = [line for line in r.stdout.splitlines() if line.startswith(("repaired", "tetrahedra"))]
     return seconds, float(user) + float(system), int(peak_kib) / 1024, summary
 
@@ -84,7 +94,10 @@ def main():
         write_obj(broken, [(bv, punch(bv, bf, holes, 0.05)), ([(x + 0.9, y + 0.1, z) for x, y, z in sv], sf)])
         rows = []
         for name, mesh in (("clean (exact path)", clean), ("holes + crossing (repair)", broken)):
-            best = min((run(binary, mesh) for _ in range(a.repeats)), key=lambda r: r[1])
+            try:
+                best = min((run(binary, mesh) for _ in range(a.repeats)), key=lambda r: r[1])
+            except Failed as e:
+                fail(f"tetrahedralize {mesh}: {e.message}")
             rows.append((name, sum(1 for line in open(mesh) if line.startswith("f ")), *best))
     print(f"machine: {machine()}\n")
     print("| mesh | triangles | wall seconds | CPU seconds | peak MiB |")

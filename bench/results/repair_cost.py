@@ -2,10 +2,11 @@
 """Cost of validation and repair against the number of shells and of crossings: `tetglow
 tetrahedralize --no-cache` on N disjoint tetrahedra (the exact path: every shell's nesting is
 decided), on K thin boxes turned about a common axis in general position (the repair: every
-box crosses every other) and on fans of B thin tetrahedra, through one axis (CGAL cannot split
-them: the winding number's grid) and in general position. Prints a docs/RESULTS.md table.
+box crosses every other), on fans of B thin tetrahedra, through one axis (CGAL cannot split
+them: the winding number's grid) and in general position, and on the 67-part engine of
+engine_mesh.py (open, crossing and CAD-tessellated parts; --engine). Prints a docs/RESULTS.md table.
 
-    bench/results/repair_cost.py [--build DIR] [--shells N ...] [--boxes K ...] [--fans B ...]"""
+    bench/results/repair_cost.py [--build DIR] [--shells N ...] [--boxes K ...] [--fans B ...] [--engine]"""
 import argparse
 import math
 import os
@@ -15,6 +16,7 @@ import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))  # bench/, for benchlib
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))  # bench/results, for repair_bench
+import engine_mesh  # noqa: E402
 import repair_bench  # noqa: E402
 from benchlib import machine  # noqa: E402
 
@@ -74,13 +76,18 @@ def fan(blades, general):
 
 
 def run(binary, mesh):
-    """Wall and CPU seconds of tetrahedralize (repair_bench's run) and the crossing pairs resolved."""
-    seconds, cpu, _, summary = repair_bench.run(binary, mesh)
+    """Wall and CPU seconds of tetrahedralize (repair_bench's run), the crossing pairs resolved,
+    whether the boundary came out approximate (the winding number's grid), and the outcome (""
+    when it tetrahedralized, else its error)."""
+    try:
+        seconds, cpu, _, summary = repair_bench.run(binary, mesh)
+    except repair_bench.Failed as e:
+        return e.seconds, e.cpu, 0, False, e.message
     text = " ".join(summary)
     # The winding number's grid reports the input's crossings instead of those it resolved.
     crossings = re.search(r"(\d+) crossing pairs? (?:resolved|\(first at)", text)
     approximate = "the boundary is approximate" in text
-    return seconds, cpu, int(crossings.group(1)) if crossings else 0, approximate
+    return seconds, cpu, int(crossings.group(1)) if crossings else 0, approximate, ""
 
 
 def main():
@@ -89,6 +96,7 @@ def main():
     ap.add_argument("--shells", type=int, nargs="*", default=[1000, 5000, 20000])
     ap.add_argument("--boxes", type=int, nargs="*", default=[5, 10, 20, 40])
     ap.add_argument("--fans", type=int, nargs="*", default=[53])
+    ap.add_argument("--engine", action="store_true", help="also the 67-part engine (engine_mesh.py)")
     a = ap.parse_args()
     binary = os.path.join(a.build, "tetglow")
     rows = []
@@ -107,12 +115,18 @@ def main():
                 write_obj(mesh, fan(b, general), FACES)
                 where = "in general position" if general else "through one axis"
                 rows.append((f"fan of {b} blades {where}", 4 * b, b, *run(binary, mesh)))
+        if a.engine:
+            mesh = os.path.join(work, "engine.obj")
+            parts = engine_mesh.engine()
+            engine_mesh.write_obj(mesh, parts)
+            rows.append(("67-part engine", sum(len(fs) for _, _, fs in parts), len(parts), *run(binary, mesh)))
     print(f"machine: {machine()}\n")
     print("| mesh | triangles | shells | crossing pairs | wall seconds | CPU seconds |")
     print("|------|-----------|--------|----------------|--------------|-------------|")
-    for name, tris, shells, sec, cpu, crossings, approximate in rows:
+    for name, tris, shells, sec, cpu, crossings, approximate, error in rows:
         name += " (grid)" if approximate else ""
-        print(f"| {name} | {tris} | {shells} | {crossings} | {sec:.2f} | {cpu:.2f} |")
+        pairs = f"error: {error}" if error else crossings
+        print(f"| {name} | {tris} | {shells} | {pairs} | {sec:.2f} | {cpu:.2f} |")
 
 
 if __name__ == "__main__":

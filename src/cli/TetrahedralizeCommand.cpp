@@ -75,6 +75,7 @@ nlohmann::json repairJson(const RepairReport& r) {
             {"spanned_area", r.spannedArea},
             {"boundary_area", r.boundaryArea},
             {"hole_edges", r.holeEdges},
+            {"lattice_points", r.latticePoints},
             {"non_manifold_edges", r.nonManifoldEdges},
             {"crossing_pairs", r.crossingPairs},
             {"crossings_at", positions(r.crossingAt)},

@@ -1,6 +1,7 @@
 #include "tet/InteriorRepair.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <numeric>
@@ -14,8 +15,10 @@
 
 #include "tet/InsideLabels.h"
 #include "tet/IntersectionResolution.h"
+#include "tet/PartWinding.h"
 #include "tet/Predicates.h"
 #include "tet/SelfIntersection.h"
+#include "tet/ShellNesting.h"
 #include "tet/TetGenProcess.h"
 #include "tet/VolumeBoundary.h"
 #include "tet/WindingGrid.h"
@@ -65,12 +68,19 @@ bool traverses(const std::array<uint32_t, 3>& f, uint32_t a, uint32_t b) {
 }
 
 // Consistent winding across every edge that two triangles share (a patch), keeping the winding
-// of the larger area of each patch; then the whole mesh outward (positive volume). Patches that
-// meet only at non-manifold edges or cross keep their own winding, so a cavity wound inward stays one.
-void orientPatches(TriangleMesh& soup, const EdgeMap& edges, RepairReport& report) {
+// of the larger area of each patch. Patches that meet only at non-manifold edges or cross keep
+// their own winding. A closed patch (each of its edges shared by two of its triangles) takes the
+// winding of the outermost closed patch around it, turned outward, as on the exact path (a part
+// wound inward throughout is the same solid; one wound against the part around it is its
+// cavity); the open patches are turned outward together (positive volume), and a closed patch
+// that lies inside them (their winding number above 1/2) keeps its winding against them.
+// Returns which triangles belong to closed patches.
+std::vector<char> orientPatches(TriangleMesh& soup, const EdgeMap& edges, RepairReport& report) {
     const size_t n = soup.triangles.size();
-    std::vector<char> flipped(n, 0), visited(n, 0);
-    std::vector<uint32_t> stack, patch;
+    std::vector<char> flipped(n, 0), visited(n, 0), closed(n, 0);
+    std::vector<uint32_t> stack;
+    std::vector<std::vector<uint32_t>> patches;
+    std::vector<char> patchClosed;
     const auto flip = [&](uint32_t t) {
         std::swap(soup.triangles[t][1], soup.triangles[t][2]);
         flipped[t] ^= 1;
@@ -79,7 +89,8 @@ void orientPatches(TriangleMesh& soup, const EdgeMap& edges, RepairReport& repor
         if (visited[start]) continue;
         visited[start] = 1;
         stack = {start};
-        patch.clear();
+        std::vector<uint32_t> patch;
+        bool isClosed = true;
         double flippedArea = 0, keptArea = 0;
         while (!stack.empty()) {
             const uint32_t t = stack.back();
@@ -89,7 +100,10 @@ void orientPatches(TriangleMesh& soup, const EdgeMap& edges, RepairReport& repor
             const auto& f = soup.triangles[t];
             for (int k = 0; k < 3; ++k) {
                 const auto& users = edges.at(edgeKey(f[k], f[(k + 1) % 3]));
-                if (users.size() != 2) continue;
+                if (users.size() != 2) {
+                    isClosed = false;
+                    continue;
+                }
                 const uint32_t other = users[0] == t ? users[1] : users[0];
                 if (visited[other]) continue;
                 visited[other] = 1;
@@ -103,14 +117,47 @@ void orientPatches(TriangleMesh& soup, const EdgeMap& edges, RepairReport& repor
         }
         if (flippedArea > keptArea)
             for (uint32_t t : patch) flip(t);
+        for (uint32_t t : patch) closed[t] = isClosed;
+        patches.push_back(std::move(patch));
+        patchClosed.push_back(isClosed);
     }
-    if (signedVolume(soup) < 0)
-        for (uint32_t t = 0; t < n; ++t) flip(t);
+    TriangleMesh open = soup;
+    open.triangles.clear();
+    for (uint32_t t = 0; t < n; ++t)
+        if (!closed[t]) open.triangles.push_back(soup.triangles[t]);
+    if (signedVolume(open) < 0) {
+        for (uint32_t t = 0; t < n; ++t)
+            if (!closed[t]) flip(t);
+        for (auto& f : open.triangles) std::swap(f[1], f[2]);
+    }
+    std::vector<std::vector<uint32_t>> shells;
+    std::vector<double> volume;
+    for (size_t i = 0; i < patches.size(); ++i)
+        if (patchClosed[i]) {
+            shells.push_back(patches[i]);
+            double v = 0;
+            const glm::dvec3 o = soup.corner(patches[i][0], 0);
+            for (uint32_t t : patches[i])
+                v += glm::dot(soup.corner(t, 0) - o, glm::cross(soup.corner(t, 1) - o, soup.corner(t, 2) - o));
+            volume.push_back(v);
+        }
+    const auto containers = containingShells(soup, shells);
+    const WindingNumber openWinding(open);
+    for (size_t s = 0; s < shells.size(); ++s) {
+        size_t outermost = s;
+        for (uint32_t o : containers[s])
+            if (std::abs(volume[o]) > std::abs(volume[outermost])) outermost = o;
+        const uint32_t t = shells[outermost][0];
+        if (std::abs(openWinding.approximate(centroid(soup, t))) > 0.5) continue;  // wound against the open parts
+        if (volume[outermost] < 0)
+            for (uint32_t u : shells[s]) flip(u);
+    }
     for (uint32_t t = 0; t < n; ++t) {
         if (!flipped[t]) continue;
         ++report.flippedTriangles;
         keep(report.flippedAt, centroid(soup, t));
     }
+    return closed;
 }
 
 // Parts: triangles connected through shared edges. Those that cross another part are unioned.
@@ -163,10 +210,15 @@ double distanceToSegment(const glm::dvec3& p, const glm::dvec3& a, const glm::dv
 // axis-aligned faces, rounded to float like every vertex of the repaired surface, and only
 // strictly inside `box` (a ball may reach past the padded box TetGen fills). A hole
 // less than kSmallHole rim edges across gets none: the tets between its rim vertices span it
-// flat, where lattice points beside the surface would let tets poke out of it.
-std::vector<glm::dvec3> holeLattice(const TriangleMesh& soup, const EdgeMap& edges, const WindingNumber& winding,
+// flat, where lattice points beside the surface would let tets poke out of it. Nor does a
+// crack, rims that run both ways along the same curve, as where a CAD exporter tessellates
+// each face of a solid on its own (T-junctions): its rim's vector area is next to nothing
+// (below kCrack of its length times its edges' length, where an open hole has at least half
+// that length times its radius), and the winding number beside it is whole.
+std::vector<glm::dvec3> holeLattice(const TriangleMesh& soup, const EdgeMap& edges, const PartWinding& winding,
                                     const Bounds3& box, const glm::dvec3& offset) {
-    static constexpr double kLatticeAcross = 16, kBallScale = 1.25, kLatticeBudget = 200000, kSmallHole = 2;
+    static constexpr double kLatticeAcross = 16, kBallScale = 1.25, kLatticeBudget = 200000, kSmallHole = 2,
+                            kCrack = 0.25;
     static constexpr int kBisections = 10;
     static constexpr double kRimClearance = 0.5;
     std::vector<uint64_t> rim;
@@ -176,9 +228,10 @@ std::vector<glm::dvec3> holeLattice(const TriangleMesh& soup, const EdgeMap& edg
     UnionFind loops(soup.positions.size());
     for (uint64_t e : rim) loops.unite(uint32_t(e >> 32), uint32_t(e));
     struct Ball {
-        glm::dvec3 centre{0};
+        glm::dvec3 centre{0}, vectorArea{0};
         double radius = 0, edgeLength = 0, spacing = 0;
         size_t edges = 0;
+        bool open = false;
         std::vector<uint64_t> rim;
     };
     std::unordered_map<uint32_t, Ball> balls;
@@ -193,13 +246,21 @@ std::vector<glm::dvec3> holeLattice(const TriangleMesh& soup, const EdgeMap& edg
     for (uint64_t e : rim) {
         Ball& b = balls[loops.find(uint32_t(e))];
         const glm::dvec3 c = b.centre / double(2 * b.edges);
-        b.radius = std::max(b.radius, glm::length(soup.positions[uint32_t(e >> 32)] - c));
+        const glm::dvec3 p = soup.positions[uint32_t(e >> 32)] - c, q = soup.positions[uint32_t(e)] - c;
+        b.radius = std::max(b.radius, glm::length(p));
+        // The rim runs as its one triangle does.
+        b.vectorArea +=
+            0.5 * (traverses(soup.triangles[edges.at(e)[0]], uint32_t(e >> 32), uint32_t(e)) ? glm::cross(p, q)
+                                                                                             : glm::cross(q, p));
     }
     double total = 0;
     for (auto& [root, b] : balls) {
         b.centre /= double(2 * b.edges);
         b.radius *= kBallScale;
         b.edgeLength /= double(b.edges);
+        b.open = b.radius >= kSmallHole * b.edgeLength &&
+                 glm::length(b.vectorArea) >= kCrack * double(b.edges) * b.edgeLength * b.edgeLength;
+        if (!b.open) continue;
         b.spacing = std::max(b.edgeLength, 2 * b.radius / kLatticeAcross);
         total += 4.19 * std::pow(b.radius / b.spacing, 3);  // 4 pi / 3 lattice points per unit ball
     }
@@ -220,7 +281,7 @@ std::vector<glm::dvec3> holeLattice(const TriangleMesh& soup, const EdgeMap& edg
     };
     for (uint32_t root : roots) {
         const Ball& b = balls[root];
-        if (b.radius < kSmallHole * b.edgeLength) continue;
+        if (!b.open) continue;
         const double s = b.spacing * coarsen;
         const int n = int(std::ceil(b.radius / s)), side = 2 * n + 1;
         const auto at = [&](int i, int j, int k) { return b.centre + s * (glm::dvec3(i, j, k) + offset); };
@@ -349,8 +410,13 @@ std::string plural(size_t n, const std::string& one, const std::string& many) {
 }
 
 // The soup the winding number is taken of: welded, without zero-area and duplicate triangles,
-// each patch wound consistently (orientPatches). Returns its edges.
-EdgeMap cleanAndOrient(TriangleMesh& soup, RepairReport& report) {
+// each patch wound consistently (orientPatches). Returns its edges and which triangles belong to
+// closed patches.
+struct OrientedSoup {
+    EdgeMap edges;
+    std::vector<char> closed;
+};
+OrientedSoup cleanAndOrient(TriangleMesh& soup, RepairReport& report) {
     report.applied = true;
     weldVertices(soup);
     const SoupCleaning cleaning = dropDegenerateAndDuplicates(soup);
@@ -364,9 +430,23 @@ EdgeMap cleanAndOrient(TriangleMesh& soup, RepairReport& report) {
         report.holeEdges += users.size() == 1;
         report.nonManifoldEdges += users.size() > 2;
     }
-    orientPatches(soup, edges, report);
-    return edges;
+    std::vector<char> closed = orientPatches(soup, edges, report);
+    return {std::move(edges), std::move(closed)};
 }
+
+// A line on stderr as each stage of a long repair ends (once it has taken kQuiet seconds), so
+// that a large input shows where its time goes instead of nothing until the end.
+class StageProgress {
+public:
+    void stage(const std::string& what) const {
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+        if (seconds >= kQuiet) std::fprintf(stderr, "tetglow: repair: %s (%.1f s)\n", what.c_str(), seconds);
+    }
+
+private:
+    static constexpr double kQuiet = 2;
+    const std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+};
 
 }  // namespace
 
@@ -390,10 +470,12 @@ std::string RepairReport::summary() const {
 }
 
 RepairReport repairInterior(TriangleMesh& mesh) {
+    const StageProgress progress;
     RepairReport report;
     TriangleMesh soup = mesh;
-    const EdgeMap edges = cleanAndOrient(soup, report);
+    const auto [edges, closed] = cleanAndOrient(soup, report);
     const auto pairs = findSelfIntersections(soup);
+    progress.stage("found " + plural(pairs.size(), "crossing pair", "crossing pairs"));
     report.crossingPairs = pairs.size();
     for (const auto& [i, j] : pairs) keep(report.crossingAt, centroid(soup, i));
     report.partsUnioned = crossingParts(soup, edges, pairs);
@@ -403,6 +485,7 @@ RepairReport repairInterior(TriangleMesh& mesh) {
     // lattice's, then Steiner points.
     VolumeBoundary plc;
     ResolvedSurface resolved = resolveIntersections(soup, pairs);
+    progress.stage("split the crossings into " + plural(resolved.surface.triangles.size(), "triangle", "triangles"));
     plc.surface = std::move(resolved.surface);
     report.unsplitTriangles = resolved.unsplit;
     report.unsplitReason = resolved.unsplitReason;
@@ -418,7 +501,7 @@ RepairReport repairInterior(TriangleMesh& mesh) {
     addPaddedBox(plc.surface);
     // Labels from the cleaned and oriented input, not from its split pieces: the same field,
     // without the rounding of the split points.
-    const WindingNumber winding(soup);
+    const PartWinding winding(soup, closed);
     // TetGen 1.5 fails an assertion on some lattices near the input (flip41 on an open sphere of
     // 8 rings and 64 sides without its top three bands); the lattice moved within its cell
     // avoids the configuration.
@@ -433,6 +516,9 @@ RepairReport repairInterior(TriangleMesh& mesh) {
         plc.surface.positions.insert(plc.surface.positions.end(), lattice.begin(), lattice.end());
         try {
             tets = unpack(runIsolated(plc, "pYnQz"));
+            report.latticePoints = lattice.size();
+            progress.stage("tetrahedralized the box with " + plural(lattice.size(), "lattice point", "lattice points") +
+                           ": " + plural(tets.tets.size(), "tet", "tets"));
             break;
         } catch (const TetGenCrash&) {
             if (&offset == &kLatticeOffsets[std::size(kLatticeOffsets) - 1]) throw;
@@ -448,6 +534,7 @@ RepairReport repairInterior(TriangleMesh& mesh) {
                                     0.25);
         }
     });
+    progress.stage("took the winding number at every tet");
     report.minWinding = *std::min_element(w.begin(), w.end());
     report.maxWinding = *std::max_element(w.begin(), w.end());
     const std::vector<char> inside = report.maxWinding > 0.5 ? insideLabels(tets.points, tets.tets, tets.neighbours, w,

@@ -16,6 +16,7 @@ struct RepairReport {
     size_t degenerateDropped = 0, duplicatesDropped = 0, flippedTriangles = 0;
     size_t holeEdges = 0, nonManifoldEdges = 0, crossingPairs = 0, partsUnioned = 0;
     size_t unsplitTriangles = 0;  // crossing triangles CGAL could not split, left out of the constraints
+    size_t latticePoints = 0;     // points added around the holes (none around small holes and cracks)
     std::string unsplitReason;
     // Why the boundary is the winding number's labels on a grid (WindingGrid.h) instead of the
     // input's triangles: the exact repair, or TetGen on its result, failed ("" when not).

@@ -274,19 +274,25 @@ uint64_t cacheKey(const VolumeBoundary& boundary, const std::string& switches) {
     return h;
 }
 
+// A failure of the meshes `names` with their names in front ("a.obj + b.obj: ..."), where it
+// does not start with the first already (every refusal names the file it refuses).
+std::string namedError(const std::vector<std::string>& names, const std::string& message) {
+    std::string named;
+    for (const std::string& n : names)
+        if (!n.empty()) named += (named.empty() ? "" : " + ") + n;
+    if (named.empty() || message.rfind(names[0], 0) == 0) return message;
+    return named + ": " + message;
+}
+
 // Before validation allocates anything: the meshes, named, refused when tetrahedralizing them
 // would not fit in memory.
 void checkSurfacesMemory(const std::vector<TriangleMesh>& surfaces, const std::vector<std::string>& names) {
     size_t triangles = 0;
-    std::string named;
-    for (size_t i = 0; i < surfaces.size(); ++i) {
-        triangles += surfaces[i].triangles.size();
-        if (!names[i].empty()) named += (named.empty() ? "" : " + ") + names[i];
-    }
+    for (const TriangleMesh& s : surfaces) triangles += s.triangles.size();
     try {
         checkMeshingMemory(triangles);
     } catch (const InputError& e) {
-        throw InputError(named.empty() ? e.what() : named + ": " + e.what());
+        throw InputError(namedError(names, e.what()));
     }
 }
 
@@ -342,7 +348,7 @@ TetMesh tetrahedralize(std::vector<TriangleMesh> surfaces, const std::vector<std
     double largestVolume = 0;  // the regions' union holds at least this much
     for (const ValidationReport& v : validations) largestVolume = std::max(largestVolume, v.volume);
     checkTetCount(largestVolume, options.maxVolume);
-    VolumeBoundary boundary = buildRegionComplex(surfaces, names);
+    VolumeBoundary boundary = buildVolumeBoundary(surfaces, names);
     placeInsidePoints(boundary, surfaces, names);
     const std::string switches = options.switches();
     const uint64_t key = cacheKey(boundary, switches);
@@ -384,10 +390,7 @@ TetMesh tetrahedralize(std::vector<TriangleMesh> surfaces, const std::vector<std
         } catch (const InconsistentRegions&) {
             throw;
         } catch (const InputError& failure) {
-            std::string failed;
-            for (size_t i = 0; i < surfaces.size(); ++i)
-                if (!names[i].empty()) failed += (failed.empty() ? "" : " + ") + names[i];
-            const std::string why = failed.empty() ? failure.what() : failed + ": " + failure.what();
+            const std::string why = namedError(names, failure.what());
             // Every mesh not yet approximate is approximated: TetGen does not say which one it failed on.
             bool changed = false;
             for (size_t i = 0; i < inputs.size(); ++i) {
@@ -401,7 +404,7 @@ TetMesh tetrahedralize(std::vector<TriangleMesh> surfaces, const std::vector<std
             }
             if (!changed) throw InputError(why);
             noteApproximations();
-            boundary = buildRegionComplex(surfaces, names);
+            boundary = buildVolumeBoundary(surfaces, names);
             placeInsidePoints(boundary, surfaces, names);
             try {
                 mesh = assemble(boundary, runIsolated(boundary, switches), names);

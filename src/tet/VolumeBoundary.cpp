@@ -144,7 +144,7 @@ VolumeBoundary singleRegion(const TriangleMesh& surface) {
     return c;
 }
 
-VolumeBoundary buildRegionComplex(const std::vector<TriangleMesh>& surfaces, const std::vector<std::string>& names) {
+VolumeBoundary buildVolumeBoundary(const std::vector<TriangleMesh>& surfaces, const std::vector<std::string>& names) {
     const size_t n = surfaces.size();
     VolumeBoundary c;
     // Vertices: exact duplicates across surfaces merged, in order of first appearance.
@@ -190,7 +190,7 @@ VolumeBoundary buildRegionComplex(const std::vector<TriangleMesh>& surfaces, con
                         std::to_string(b.triangle) + " of " + names[b.surface] +
                         " (media may nest or share whole triangles, not overlap; an open vessel is one closed, "
                         "cup-shaped mesh, not a solid with a cavity reaching its rim: docs/FORMAT.md, cavities)");
-        throw std::logic_error("buildRegionComplex: a surface intersects itself after validation");
+        throw std::logic_error("buildVolumeBoundary: a surface intersects itself after validation");
     }
     c.parent = findNesting(surfaces, vertexIds, names);
     std::vector<int> depth(n, 0);
@@ -210,7 +210,7 @@ VolumeBoundary validatedBoundary(std::vector<TriangleMesh> surfaces, const std::
             throw InputError(names[i] + ": " + e.what());
         }
     }
-    return buildRegionComplex(surfaces, names);
+    return buildVolumeBoundary(surfaces, names);
 }
 
 void placeInsidePoints(VolumeBoundary& boundary, const std::vector<TriangleMesh>& surfaces,

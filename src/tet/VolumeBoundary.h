@@ -31,7 +31,7 @@ VolumeBoundary singleRegion(const TriangleMesh& surface);
 // From validated surfaces (validateAndRepair), named in messages by `names`, without inside points.
 // Throws InputError when two surfaces cross or touch other than along shared triangles (naming
 // both and one pair of triangles) or have the same inside.
-VolumeBoundary buildRegionComplex(const std::vector<TriangleMesh>& surfaces, const std::vector<std::string>& names);
+VolumeBoundary buildVolumeBoundary(const std::vector<TriangleMesh>& surfaces, const std::vector<std::string>& names);
 
 // Validates and repairs each surface (prepareSurface; errors prefixed with its name), then
 // builds their boundary as above.

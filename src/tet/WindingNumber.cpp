@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <queue>
 
 #include <glm/geometric.hpp>
 
@@ -44,6 +45,7 @@ void WindingNumber::build(uint32_t index, uint32_t begin, uint32_t end) {
         node.area += n;
         node.centre += area * (a + b + c) / 3.0;
         total += area;
+        node.areaSum += area;
         box.extend((a + b + c) / 3.0);
     }
     node.centre = total > 0 ? node.centre / total : 0.5 * (box.lo + box.hi);
@@ -97,9 +99,57 @@ double WindingNumber::approximate(const glm::dvec3& p) const {
     return omega / kFourPi;
 }
 
+// A cluster seen from p as its dipole differs from its triangles' solid angle by at most
+// 2 r A / (d - r)^3 (A: its triangles' area, r: its radius, d: p's distance from its centre;
+// the gradient of (x - p) / |x - p|^3 is at most 2 / |x - p|^3, and every point of the cluster
+// lies within r of the centre). Clusters are opened, the largest bound first, until the bounds
+// cannot move the sum across `level`; leaves and clusters that p may lie in are summed exactly.
+double WindingNumber::certified(const glm::dvec3& p, double level) const {
+    struct Far {
+        double bound, omega;
+        uint32_t node;
+        bool operator<(const Far& o) const { return bound < o.bound; }
+    };
+    std::priority_queue<Far> far;
+    double omega = 0, bound = 0;
+    std::vector<uint32_t> stack{0};
+    const auto open = [&] {
+        while (!stack.empty()) {
+            const uint32_t index = stack.back();
+            stack.pop_back();
+            const Node& n = nodes_[index];
+            const glm::dvec3 d = n.centre - p;
+            const double dist = glm::length(d);
+            if (n.left == 0) {
+                for (uint32_t i = n.begin; i < n.end; ++i) omega += solidAngle(order_[i], p);
+            } else if (dist > n.radius) {
+                const double gap = dist - n.radius;
+                const Far f{2 * n.radius * n.areaSum / (gap * gap * gap), glm::dot(n.area, d) / (dist * dist * dist),
+                            index};
+                omega += f.omega;
+                bound += f.bound;
+                far.push(f);
+            } else {
+                stack.push_back(n.left);
+                stack.push_back(n.left + 1);
+            }
+        }
+    };
+    open();
+    while (!far.empty() && !(std::abs(omega - kFourPi * level) > bound)) {
+        const Far f = far.top();
+        far.pop();
+        omega -= f.omega;
+        bound -= f.bound;
+        stack = {nodes_[f.node].left, nodes_[f.node].left + 1};
+        open();
+    }
+    return omega / kFourPi;
+}
+
 double WindingNumber::classify(const glm::dvec3& p, double band) const {
     const double w = approximate(p);
-    return std::abs(w - 0.5) < band ? exact(p) : w;
+    return std::abs(w - 0.5) < band && !order_.empty() ? certified(p, 0.5) : w;
 }
 
 }  // namespace tetglow

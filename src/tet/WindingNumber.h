@@ -23,11 +23,14 @@ public:
     double approximate(const glm::dvec3& p) const;
     // Every triangle's solid angle summed (Van Oosterom-Strackee), O(triangles).
     double exact(const glm::dvec3& p) const;
-    // approximate, or exact where it is within `band` of 1/2: the side of 1/2 it is on is then
-    // the exact one's, to double precision, wherever the tree's error is below the band (twice
-    // the error measured in WindingNumber.ExactVersusTree; each exact sum costs as much as
-    // thousands of tree evaluations on a large mesh).
+    // approximate, or where that is within `band` of 1/2 (twice the error measured in
+    // WindingNumber.ExactVersusTree) a value on the exact sum's side of 1/2, to double precision:
+    // the tree opened best first, the cluster with the largest error bound each time, until the
+    // bounds' sum is below the value's distance from 1/2. Near an open part, where much of the
+    // space lies near 1/2, that opens a few clusters where the exact sum took every triangle.
     double classify(const glm::dvec3& p, double band = 0.05) const;
+    // Whether the exact winding number at p is above `level` (by the same opening of the tree).
+    bool above(const glm::dvec3& p, double level) const { return certified(p, level) > level; }
 
     static constexpr double kFarRatio = 2.5;
 
@@ -35,12 +38,15 @@ private:
     struct Node {
         glm::dvec3 centre{0}, area{0};          // area-weighted centroid; sum of area vectors (half the cross products)
         double radius = 0;                      // the farthest corner from centre
+        double areaSum = 0;                     // sum of the triangles' areas
         uint32_t begin = 0, end = 0, left = 0;  // triangles order_[begin, end); children left, left + 1 (0: a leaf)
     };
     double solidAngle(uint32_t t, const glm::dvec3& p) const {
         return tetglow::solidAngle(soup_.corner(t, 0), soup_.corner(t, 1), soup_.corner(t, 2), p);
     }
     void build(uint32_t index, uint32_t begin, uint32_t end);
+    // A value on the exact winding number's side of `level`.
+    double certified(const glm::dvec3& p, double level) const;
 
     const TriangleMesh& soup_;
     std::vector<uint32_t> order_;
