@@ -182,21 +182,14 @@ size_t volumePhotonsOf(const Scene& scene) {
     return photon.stats().volumePhotons;
 }
 
-// Index-matched, a medium whose mean free path is shorter than the largest kernel radius (a fifth
-// of its diagonal) is walked by the eye path, lit by shadow rays: photons blurred its light, and
-// their error fell as t^-0.5 (blub.json, mean free path a tenth of its diagonal, at 3 to 10 times
-// Cycles' MSE). A thinner medium, and the same one behind glass (where shadow rays cannot reach
-// the light), keep their photons.
-TEST(DensePhoton, AMediumTheKernelCannotResolveIsWalkedWhereShadowRaysLeaveIt) {
+// Behind glass under a point light, where shadow rays cannot reach the light, the walk's mean
+// is not the image's and cannot measure the photons' bias: a medium that is not dense keeps its
+// photons there (index-matched, the pilot chooses: test_photon_choice.cpp).
+TEST(DensePhoton, BehindGlassUnderAPointLightAMediumKeepsItsPhotons) {
     const double diagonal = 2 * std::sqrt(3.0);  // of the unit sphere's bounding box
     SceneDesc s = denseSphere(8);
     s.media[0].sigmaA = RGB(0.1 * 10 / diagonal);
     s.media[0].sigmaS = RGB(0.9 * 10 / diagonal);  // a mean free path of a tenth of the diagonal
-    EXPECT_EQ(volumePhotonsOf(Scene(s)), 0u);
-    SceneDesc thin = s;
-    thin.media[0].sigmaA *= 0.4;
-    thin.media[0].sigmaS *= 0.4;  // a quarter
-    EXPECT_GT(volumePhotonsOf(Scene(thin)), 50u);
     s.media[0].boundaryMaterial = {MaterialType::Dielectric, RGB(0.5), 1.5};
     EXPECT_GT(volumePhotonsOf(Scene(s)), 50u);
 }

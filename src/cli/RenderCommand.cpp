@@ -142,6 +142,19 @@ void run(const Options& o) {
         std::printf("%s: part of %s frame %d: passes %s of %d, %dx%d\n", output.c_str(), o.args.scene.c_str(),
                     part.frame, o.passRange.c_str(), part.totalPasses, desc.camera.width, desc.camera.height);
     double tracing = 0;
+    if (photon)
+        for (const DomainChoice& c : photon->choices()) {
+            if (!c.measured) continue;
+            std::string names;
+            for (int m : c.media) names += (names.empty() ? "" : "+") + scene.media()[size_t(m)].name;
+            std::printf(
+                "photons: %s %s: predicted relative MSE at %llu passes %.3g with photons, %.3g walked (%d of the "
+                "pilot's %d probes met it); walks %s\n",
+                names.c_str(), c.walked ? "walked" : "photons", (unsigned long long)c.passes, c.photonMse, c.walkMse,
+                c.probes, PhotonIntegrator::kPilotProbes,
+                c.walksPayFrom ? ("pay from " + std::to_string(c.walksPayFrom) + " passes").c_str()
+                               : "do not pay within 65536 passes");
+        }
     if (photon && !photon->tracesPhotons())
         std::printf(
             "photons: none traced: every medium is walked and no surface is a dielectric, so paths carry "
@@ -153,6 +166,8 @@ void run(const Options& o) {
                     (unsigned long long)s.paths, (unsigned long long)s.volumePhotons,
                     (unsigned long long)s.surfacePhotons, s.bytes / 1e6);
     }
+    if (photon && photon->stats().pilotSeconds > 0)
+        std::printf("time: photon pilot %.2f s (before the render)\n", photon->stats().pilotSeconds);
     std::printf("time: tetrahedralization %.2f s, photon tracing %.2f s, rendering %.2f s (%.0f samples/s)\n",
                 scene.tetrahedralizeSeconds(), tracing, result.seconds - tracing, samples / result.seconds);
     if (interrupted()) {

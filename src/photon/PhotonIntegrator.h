@@ -12,7 +12,9 @@
 //     dividing by the part of the ball inside the medium) or by the beam radiance estimate
 //     (`beam`: every photon ball the ray crosses, integrated exactly along the ray, no step).
 // Photons are kept per medium (region), pooled over regions of one same medium that meet
-// without an interface (PhotonDomains): a photon is only ever found from the domain that
+// without an interface (PhotonDomains). Each domain that scatters gets, from a pilot before the
+// render, the estimate whose predicted error at the render's pass count is lower: its photons,
+// or the eye path walking it as volpath does (PhotonChoice). A photon is only ever found from the domain that
 // scattered it, and a kernel's volume is its volume inside that domain (its boundary and the
 // other media's and dielectric interfaces stop it). A diffuse surface gets direct light by next-event estimation and
 // caustics from the surface photons with a cone filter; with final gathering (final_gather), the
@@ -20,21 +22,18 @@
 // events alone) and gathers the rest by one more bounce, whose next diffuse surface takes all
 // its photons (Jensen's final gather: the kernel's blur stays off what the eye sees directly).
 //
-// Which media the eye path walks (eyeWalks). Where a kernel cannot resolve the light, the eye
-// path walks a photon domain as volpath does, lit by next-event estimation, and a pass keeps no
-// photons there:
-//   - an optically dense domain, whose longest mean free path is under 2% of its bounding-box
-//     diagonal (kDenseMeanFreePath): the photon density changes within a mean free path of its
-//     boundary (where the eye sees it) and within sqrt(max depth) mean free paths (where a
-//     truncated walk stops), both far below any kernel radius a pass's photons fill;
-//   - a domain that shadow rays from inside can leave (not sealed in a dielectric) whose longest
-//     mean free path is under the largest kernel radius, a fifth of the diagonal
-//     (kMaxRadiusFraction): its light changes within a mean free path, a photon estimate blurs
-//     it until the radius has shrunk below that, so its error falls only as the radius does (as
-//     t^-0.5 on blub), while the walk's falls as 1/t.
-// Behind glass (sealed) the walk finds the light by chance only, and photons stay. An eye ray
-// whose stretch meets a walked domain walks the whole stretch. Where every domain is walked and
-// nothing is a dielectric, passes trace no photons (tracesPhotons).
+// Which media the eye path walks (choose): where a kernel cannot resolve the light, the eye path
+// walks a photon domain as volpath does, lit by next-event estimation, and a pass keeps no photons
+// there. A pilot before the render measures, for each domain that scatters, the photon estimate's
+// variance and its kernel's bias and the walk's variance, and gives the domain the estimate whose
+// predicted error at the render's pass count is lower (PhotonChoice.h). Decided without it:
+//   - a domain that does not scatter keeps photons;
+//   - an optically dense domain (kDenseMeanFreePath) is walked;
+//   - in a scene with a dielectric every other domain keeps photons (unmeasurable(): behind
+//     glass the walk finds the light by chance only, a tail no pilot sees);
+//   - a domain that fewer than kMinPilotProbes pilot pixels see keeps photons.
+// An eye ray whose stretch meets a walked domain walks the whole stretch. Where every domain is
+// walked and nothing is a dielectric, passes trace no photons (tracesPhotons).
 #pragma once
 #include <memory>
 #include <vector>
@@ -43,6 +42,7 @@
 #include "integrators/VolPathIntegrator.h"
 #include "photon/ClippedBall.h"
 #include "photon/ColumnProfile.h"
+#include "photon/PhotonChoice.h"
 #include "photon/PhotonDiscs.h"
 #include "photon/PhotonDomains.h"
 #include "photon/PhotonMap.h"
@@ -52,13 +52,38 @@ namespace tetglow {
 
 struct PhotonStats {
     double tracingSeconds = 0;                                  // photon tracing and map building, all passes
+    double pilotSeconds = 0;                                    // the pilot that chose each domain's estimate
     uint64_t paths = 0, volumePhotons = 0, surfacePhotons = 0;  // all passes
     size_t bytes = 0;                                           // the largest pass's maps
     EnergyBalance energy;                                       // all passes
 };
 
+// The estimate a photon domain got, and why.
+struct DomainChoice {
+    std::vector<int> media;  // the domain's scene media
+    bool walked = false;     // the eye path walks it; else its photons are read
+    // Chosen from the pilot's measurement (else: it does not scatter, or the scene has a
+    // dielectric, where the walk finds caustic light by chance only and the pilot cannot see
+    // that; then it is walked only if optically dense).
+    bool measured = false;
+    int probes = 0;                     // pilot eye paths that met it
+    EstimateErrors errors;              // per pass, relative to the whole image
+    uint64_t passes = 0;                // the render's: the count the prediction is for
+    double photonMse = 0, walkMse = 0;  // predicted at `passes`
+    uint64_t walksPayFrom = 0;          // the crossover (0: not within kMaxPredictedPasses)
+};
+
 class PhotonIntegrator : public Integrator {
 public:
+    // The pilot: this many probe pixels (a regular subset of the image), two independent passes
+    // of photons (each read at two radii) and of eye paths.
+    static constexpr int kPilotProbes = 4096;
+    static constexpr uint64_t kMaxPredictedPasses = 1 << 16;
+    // Fewer probes than this met a domain: too few to judge, and it keeps its photons (a 6 x 6
+    // image's pilot walked a thin medium, whose 16 passes then read 4.5% off volpath's mean of
+    // the 36 pixels, against 2% with photons).
+    static constexpr int kMinPilotProbes = 100;
+
     PhotonIntegrator(const Scene& scene, const IntegratorDesc& desc);
     ~PhotonIntegrator() override;
     void beginPass(uint64_t pass, const std::atomic<bool>* cancel = nullptr) override;
@@ -71,6 +96,7 @@ public:
     // carry without the kernel's bias and, measured, with less error at equal time. Each eye path
     // is then volpath's.
     bool tracesPhotons() const { return tracing_; }
+    const std::vector<DomainChoice>& choices() const { return choices_; }
 
     // Radius factor of pass `pass` (from 0) for a kernel of dimension `dim`: the radius^dim
     // shrinks by (i + alpha) / (i + 1) from pass i to i + 1.
@@ -90,8 +116,18 @@ private:
         std::vector<float> invBallVolume;
         double largestRadius = 0;  // of this pass's photons: how far past a stretch balls reach
         float maxRadius = 0;
-        bool walked = false;  // no photons: the eye path walks it as volpath does (eyeWalks, above)
+        bool walked = false;  // no photons: the eye path walks it as volpath does (see choose)
     };
+
+    // Measures, for every domain that scatters, both estimates on the pilot and sets `walked`.
+    void choose();
+    // Traces the photons of pass `pass` (from `seed`) and builds their maps, the volume kernels at
+    // `radiusFactor` times the radius of pass `radiusPass`.
+    void loadPhotons(uint64_t seed, uint64_t pass, uint64_t radiusPass, double radiusFactor,
+                     std::optional<std::chrono::steady_clock::time_point> deadline, const std::atomic<bool>* cancel);
+    // One eye path. The domain `walkedToo` is walked as well (-1: none); `met`, if given, gets a 1
+    // for each domain a stretch of the path reads photons from.
+    RGB eyePath(const Ray& ray, Rng& rng, int walkedToo, char* met) const;
 
     // Light scattered and emitted towards ray.o along the stretch `column` of volume v.
     RGB inMedium(int v, const Ray& ray, const ColumnProfile& column, Rng& rng) const;
@@ -129,6 +165,7 @@ private:
     double volumeScale_ = 1, surfaceScale_ = 1;                      // this pass's radius factors
     std::optional<std::chrono::steady_clock::time_point> deadline_;  // of the time limit, if any
     PhotonStats stats_;
+    std::vector<DomainChoice> choices_;  // per photon domain
 };
 
 }  // namespace tetglow
