@@ -1,6 +1,6 @@
 // A point's distance to the medium's boundary bounded from below by a coarse grid (ClearanceGrid),
 // against the closed form inside a convex mesh; and the shadow roulette's tests that this bound
-// makes certain, decided before any walk (Volume::sureDepth), keep the transmittance.
+// makes certain, decided before any walk (sureDepth), keep the transmittance.
 #include <algorithm>
 #include <cmath>
 #include <limits>

@@ -385,7 +385,7 @@ TEST(RegionMediaExit, FlightsThatJumpCrossOrStopAtInterfacesLikeTheWalk) {
     expectJumpsAsTheWalk(volume, 10);
 }
 
-// A stretch (Volume::regionStretch: one exit query) ends where the walk of every tet leaves
+// A stretch (regionStretch: one exit query) ends where the walk of every tet leaves
 // its region: whole, with the walk's exit triangle, tet and t, where the walk leaves the medium or
 // stops at an interface; not whole where the ray goes on across an interface into another region
 // or where the exit lies beyond the depth the stretch looks ahead.

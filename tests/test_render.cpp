@@ -71,7 +71,7 @@ TEST(Render, SurfacesInsideAMediumBlockShadowRaysFromInside) {
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(tr[c], std::exp(-chord * sigmaA[c]), 1e-3) << c;  // the sphere's facets
 }
 
-// Shadow rays with Russian roulette (Volume::shadowFlight) have the exact transmittance as
+// Shadow rays with Russian roulette (shadowFlight) have the exact transmittance as
 // their mean: 0 or exp(-depth) times 4 per survival. A channel that keeps the transmittance
 // above 1/20 leaves no room for roulette: then every estimate is exact.
 TEST(Render, ShadowRayRouletteKeepsTheTransmittance) {
@@ -98,7 +98,7 @@ TEST(Render, ShadowRayRouletteKeepsTheTransmittance) {
 
 // The photon integrator draws its single-scattering distance from the eye stretch's column
 // profile (ColumnProfile::atDepth) instead of walking the tets again: the same point and tet as
-// a free flight (Volume::sampleFlight) with that optical depth as its target, also where the
+// a free flight (sampleFlight) with that optical depth as its target, also where the
 // density varies linearly inside each tet.
 TEST(Render, ColumnProfileEventsAreFreeFlights) {
     MediumDesc m = sphereMedium(RGB(0.2, 0.5, 1.0), RGB(1, 2, 3));

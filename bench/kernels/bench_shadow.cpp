@@ -104,7 +104,7 @@ void setMeanFreePath(ShadowFixture& f, double path) {
         std::vector<MediumField>(std::max<size_t>(1, f.volume->mesh().regionCount()), MediumField{p, {}}));
 }
 
-// Transmittance to the boundary (Volume::transmittance), mean free path the box's diagonal.
+// Transmittance to the boundary (transmittance), mean free path the box's diagonal.
 void BM_ShadowExit(benchmark::State& state) {
     ShadowFixture& f = shadowFixture();
     setMeanFreePath(f, f.diagonal);

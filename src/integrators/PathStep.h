@@ -39,7 +39,7 @@ void leaveSurface(const Scene& scene, const Intersection& hit, const glm::dvec3&
 
 // A shadow ray's loop: the transmittance along ray (unit direction) up to tMax, starting in
 // `state`. Index-matched boundaries and media pass light; anything else blocks it. With
-// `roulette`, walks through media end early by Russian roulette (Volume::shadowFlight): the same
+// `roulette`, walks through media end early by Russian roulette (shadowFlight): the same
 // expectation for less work, as next-event estimation wants.
 RGB transmittance(const Scene& scene, Ray ray, double tMax, VolumeState state, Rng* roulette = nullptr);
 

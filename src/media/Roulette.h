@@ -31,7 +31,7 @@ inline double photonSurvival(const RGB& relativeFlux, Rng& rng) {
     return !(keep > 0) || rng.uniform() >= keep ? 0 : keep;
 }
 
-// A shadow ray's Russian roulette (Volume::shadowFlight): once the optical depth it has
+// A shadow ray's Russian roulette (shadowFlight): once the optical depth it has
 // gathered (its smallest channel's) passes `at`, where its weighted transmittance is below 1/20,
 // it ends with probability 3/4 and a survivor counts 4 times, tested again where that is below
 // 1/20 once more. Each test draws one number.
