@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -102,6 +103,25 @@ PhotonIntegrator::PhotonIntegrator(const Scene& scene, const IntegratorDesc& des
 }
 
 PhotonIntegrator::~PhotonIntegrator() = default;
+
+IntegratorStats PhotonIntegrator::stats() const {
+    IntegratorStats out;
+    out.biased = tracing_;
+    if (!tracing_) {
+        out.lines.push_back(
+            "photons: none traced: every medium is walked and no surface is a dielectric, so paths carry all the "
+            "light, as in volpath");
+        return out;
+    }
+    out.tracingSeconds = stats_.tracingSeconds;
+    char line[256];
+    std::snprintf(line, sizeof line,
+                  "photons: %llu paths traced, %llu stored in media, %llu on surfaces, %.1f MB of maps per pass",
+                  (unsigned long long)stats_.paths, (unsigned long long)stats_.volumePhotons,
+                  (unsigned long long)stats_.surfacePhotons, stats_.bytes / 1e6);
+    out.lines.push_back(line);
+    return out;
+}
 
 std::vector<std::string> PhotonIntegrator::warnings() const {
     std::vector<std::string> lines;
