@@ -2,7 +2,7 @@
 #include <vector>
 
 #include "FuzzInput.h"
-#include "tet/TriangleMesh.h"
+#include "scene/ObjReader.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     std::vector<std::string> warnings;

@@ -1,6 +1,6 @@
 // The OFF reader, on the bytes as readMeshFile hands them over.
 #include "FuzzInput.h"
-#include "tet/TriangleMesh.h"
+#include "scene/OffReader.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     try {

@@ -81,8 +81,8 @@ TEST(DensePhoton, AWalkedMediumStoresNoPhotons) {
     desc.photons = 2000;
     PhotonIntegrator photon(paned, desc);
     photon.beginPass(0);
-    EXPECT_GT(photon.stats().paths, 0u);
-    EXPECT_EQ(photon.stats().volumePhotons, 0u);
+    EXPECT_GT(photon.photonStats().paths, 0u);
+    EXPECT_EQ(photon.photonStats().volumePhotons, 0u);
 }
 
 // A thin medium beside the view (a small sphere at x = 3): its photons keep the photon passes
@@ -129,8 +129,8 @@ TEST(DensePhoton, WhereEveryMediumIsWalkedAndNothingRefractsNoPhotonIsTraced) {
     auto paths = [&](const Scene& scene) {
         PhotonIntegrator photon(scene, desc);
         photon.beginPass(0);
-        EXPECT_EQ(photon.tracesPhotons(), photon.stats().paths > 0);
-        return photon.stats().paths;
+        EXPECT_EQ(photon.tracesPhotons(), photon.photonStats().paths > 0);
+        return photon.photonStats().paths;
     };
     const Scene scene(s);
     EXPECT_EQ(paths(scene), 0u);
@@ -150,6 +150,41 @@ TEST(DensePhoton, WhereEveryMediumIsWalkedAndNothingRefractsNoPhotonIsTraced) {
     SceneDesc thin = s;
     thin.media.push_back(thinAside());
     EXPECT_GT(paths(Scene(thin)), 0u);
+}
+
+// What `tetglow render` prints of the integrator after a render is Integrator::stats(): photon
+// mapping reports the photons it traced and that its noise estimate leaves out a bias, or that it
+// traced none; volpath reports nothing.
+TEST(DensePhoton, StatsReportThePhotonsTraced) {
+    SceneDesc s = denseSphere(12);
+    s.surfaces.push_back({"floor", quad({-3, -1.2, -3}, {0, 0, 6}, {6, 0, 0}), {MaterialType::Diffuse, RGB(0.6)}});
+    IntegratorDesc desc;
+    desc.type = IntegratorType::Photon;
+    desc.photons = 2000;
+    const Scene walked(s);
+    PhotonIntegrator none(walked, desc);
+    none.beginPass(0);
+    const IntegratorStats noneStats = static_cast<const Integrator&>(none).stats();
+    EXPECT_FALSE(noneStats.biased);
+    EXPECT_EQ(noneStats.tracingSeconds, 0);
+    ASSERT_EQ(noneStats.lines.size(), 1u);
+    EXPECT_EQ(noneStats.lines[0].rfind("photons: none traced", 0), 0u) << noneStats.lines[0];
+
+    s.surfaces[0].material = {MaterialType::Dielectric, RGB(0), 1.5};
+    const Scene glass(s);
+    PhotonIntegrator traced(glass, desc);
+    traced.beginPass(0);
+    const IntegratorStats stats = static_cast<const Integrator&>(traced).stats();
+    EXPECT_TRUE(stats.biased);
+    EXPECT_GT(stats.tracingSeconds, 0);
+    EXPECT_EQ(stats.tracingSeconds, traced.photonStats().tracingSeconds);
+    ASSERT_EQ(stats.lines.size(), 1u);
+    const std::string paths = "photons: " + std::to_string(traced.photonStats().paths) + " paths traced, ";
+    EXPECT_EQ(stats.lines[0].rfind(paths, 0), 0u) << stats.lines[0];
+
+    const IntegratorStats volpath = VolPathIntegrator(walked, 8).stats();
+    EXPECT_FALSE(volpath.biased);
+    EXPECT_TRUE(volpath.lines.empty());
 }
 
 // A dense core inside a thin medium, index-matched: an eye ray that meets the core walks its
@@ -179,7 +214,7 @@ size_t volumePhotonsOf(const Scene& scene) {
     desc.photons = 20000;  // about 1 in 60 reaches the sphere
     PhotonIntegrator photon(scene, desc);
     photon.beginPass(0);
-    return photon.stats().volumePhotons;
+    return photon.photonStats().volumePhotons;
 }
 
 // Behind glass under a point light, where shadow rays cannot reach the light, the walk's mean

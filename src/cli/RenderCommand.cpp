@@ -14,7 +14,6 @@
 #include "cli/Progress.h"
 #include "cli/ReferenceLog.h"
 #include "cli/RenderArgs.h"
-#include "photon/PhotonIntegrator.h"
 #include "render/ImageIO.h"
 #include "render/IntegratorFactory.h"
 #include "render/PartialRender.h"
@@ -36,16 +35,24 @@ std::string outputPath(const Options& o, const SceneDesc& scene) {
     return o.output.empty() ? defaultOutput(o.args, scene) : o.output;
 }
 
-void run(const Options& o) {
-    SceneDesc desc = loadSceneWith(o.args);
+// What the options make of the scene: its passes, the part and frame to render, and where to.
+struct Plan {
+    SceneDesc desc;
+    PartInfo part;
+    std::string passesFrom;  // what set the passes, for the progress
+    std::string output;
+};
+
+Plan planRender(const Options& o) {
+    Plan p{loadSceneWith(o.args), {}, o.args.spp ? "--spp" : "the scene's spp", ""};
+    SceneDesc& desc = p.desc;
     // A spp given caps a render for a time or to a noise target; none given leaves them their own stop.
     const bool openEnded = o.args.noise > 0 || desc.integrator.timeLimit > 0;
-    std::string passesFrom = o.args.spp ? "--spp" : "the scene's spp";
     if (openEnded && !desc.integrator.sppGiven && o.passRange.empty()) {
         desc.integrator.spp = kMaxSpp;
-        passesFrom = "the most there are: neither the scene nor --spp gives a spp";
+        p.passesFrom = "the most there are: neither the scene nor --spp gives a spp";
     }
-    PartInfo part;
+    PartInfo& part = p.part;
     if (!o.passRange.empty()) {
         std::tie(part.firstPass, part.endPass) = parseRange("--pass-range", o.passRange, desc.integrator.spp, "passes");
         part.totalPasses = desc.integrator.spp;
@@ -62,68 +69,71 @@ void run(const Options& o) {
                          std::to_string(desc.turntable.frames - 1));
     part.frame = std::max(o.frame, 0);
     desc.camera = cameraAtFrame(desc, part.frame);
-    const std::string output = outputPath(o, desc);
-    if (std::filesystem::path(output).extension() != ".exr")
-        throw InputError(output + ": the output must be an .exr file");
-    if (!o.tetsOnly) {
-        prepareOutput(output, desc.inputs);
-        if (o.passRange.empty()) prepareOutput(previewPath(output), desc.inputs);
-    }
+    p.output = outputPath(o, desc);
+    if (std::filesystem::path(p.output).extension() != ".exr")
+        throw InputError(p.output + ": the output must be an .exr file");
+    return p;
+}
+
+// Checks the files a render will write before it starts; the reference's log is one of them.
+std::optional<ReferenceLog> prepareOutputs(const Options& o, const Plan& p) {
+    prepareOutput(p.output, p.desc.inputs);
+    if (o.passRange.empty()) prepareOutput(previewPath(p.output), p.desc.inputs);
     std::optional<ReferenceLog> reference;
-    if (!o.reference.empty() && !o.tetsOnly) {
-        prepareOutput(errorLogPath(output), desc.inputs);
-        reference.emplace(o.reference, errorLogPath(output), desc.camera.width, desc.camera.height);
+    if (!o.reference.empty()) {
+        prepareOutput(errorLogPath(p.output), p.desc.inputs);
+        reference.emplace(o.reference, errorLogPath(p.output), p.desc.camera.width, p.desc.camera.height);
     }
+    return reference;
+}
 
-    const Scene scene(desc);
-    printVolumes(scene);
-    if (o.tetsOnly) {
-        // The farm's tasks count on this cache: without it each of them tetrahedralizes again.
-        for (const auto& m : scene.volumes())
-            if (m.stats.cacheFile.empty())
-                throw InputError("render --tetrahedralize-only: medium " + m.name +
-                                 ": cannot fill the tet cache: " + m.stats.cacheProblem);
-        return;
-    }
-    const auto integrator = makeIntegrator(scene, desc.integrator);
-    for (const std::string& w : integrator->warnings()) std::fprintf(stderr, "tetglow: warning: %s\n", w.c_str());
-    const auto* photon = dynamic_cast<const PhotonIntegrator*>(integrator.get());
+// The farm's tasks count on this cache: without it each of them tetrahedralizes again.
+void checkTetCache(const Scene& scene) {
+    for (const auto& m : scene.volumes())
+        if (m.stats.cacheFile.empty())
+            throw InputError("render --tetrahedralize-only: medium " + m.name +
+                             ": cannot fill the tet cache: " + m.stats.cacheProblem);
+}
 
+RenderOptions renderOptions(const Options& o, const Plan& p) {
     RenderOptions options;
-    options.spp = desc.integrator.spp;
-    options.firstPass = part.firstPass;
-    options.endPass = part.endPass;
-    options.timeLimit = desc.integrator.timeLimit;
-    options.seed = desc.integrator.seed;
+    options.spp = p.desc.integrator.spp;
+    options.firstPass = p.part.firstPass;
+    options.endPass = p.part.endPass;
+    options.timeLimit = p.desc.integrator.timeLimit;
+    options.seed = p.desc.integrator.seed;
     options.threads = o.args.threads;
     options.noiseTarget = o.args.noise;
     options.cancel = &interrupted();
-    Progress progress("render", {(part.endPass > 0 ? part.endPass : options.spp) - part.firstPass, passesFrom,
-                                 options.timeLimit, options.noiseTarget, photon && photon->tracesPhotons()});
-    options.passDone = [&](const PassReport& r) {
-        progress.pass(r);
-        if (reference) reference->pass(r);
-    };
-    // From the first pass until the files are renamed into place: a signal in the middle of the
-    // write lets the write finish.
-    InterruptGuard guard;
-    RenderResult result = render(scene, *integrator, options);
-    progress.finish(result);
-    double samples = 0;  // per pixel, summed: adaptive sampling gives pixels different counts
-    for (size_t i = 0; i < result.film.pixelCount(); ++i) samples += result.film.count(i);
+    return options;
+}
 
+void writeResult(const Options& o, const Plan& p, RenderResult& result) {
     if (!o.passRange.empty()) {
         // A part with an unfinished pass would merge into an image no single render gives.
         if (result.cancelled) {
-            std::fprintf(stderr, "interrupted (%s): %s (passes %s) was not written\n", interruptName(), output.c_str(),
-                         o.passRange.c_str());
+            std::fprintf(stderr, "interrupted (%s): %s (passes %s) was not written\n", interruptName(),
+                         p.output.c_str(), o.passRange.c_str());
             std::exit(128 + interruptSignal());
         }
-        writePartial(output, {part, std::move(result.film)});
+        writePartial(p.output, {p.part, std::move(result.film)});
     } else {
-        writeExrAndPng(output, result.image, o.args.exposure);
+        writeExrAndPng(p.output, result.image, o.args.exposure);
     }
-    const double pixels = double(desc.camera.width) * desc.camera.height;
+}
+
+// What was written, what went wrong on the way, and where the time went.
+// The samples taken, summed over the pixels: adaptive sampling gives pixels different counts.
+double samplesTaken(const Film& film) {
+    double samples = 0;
+    for (size_t i = 0; i < film.pixelCount(); ++i) samples += film.count(i);
+    return samples;
+}
+
+void reportResult(const Options& o, const Plan& p, const RenderResult& result, double samples, const Scene& scene,
+                  const IntegratorStats& stats) {
+    const CameraDesc& camera = p.desc.camera;
+    const double pixels = double(camera.width) * camera.height;
     char average[64] = "";
     if (o.args.noise > 0)
         std::snprintf(average, sizeof average, " (the most a pixel took; %.1f on average)", samples / pixels);
@@ -135,41 +145,44 @@ void run(const Options& o) {
                      (unsigned long long)result.droppedSamples);
     if (o.passRange.empty())
         std::printf(
-            "%s and %s: %dx%d, %d spp%s%s\n", output.c_str(), previewPath(output).c_str(), desc.camera.width,
-            desc.camera.height, result.passes, average,
+            "%s and %s: %dx%d, %d spp%s%s\n", p.output.c_str(), previewPath(p.output).c_str(), camera.width,
+            camera.height, result.passes, average,
             result.noise ? (", noise " + std::to_string(*result.noise) + " (estimated relative MSE)").c_str() : "");
     else
-        std::printf("%s: part of %s frame %d: passes %s of %d, %dx%d\n", output.c_str(), o.args.scene.c_str(),
-                    part.frame, o.passRange.c_str(), part.totalPasses, desc.camera.width, desc.camera.height);
-    double tracing = 0;
-    if (photon)
-        for (const DomainChoice& c : photon->choices()) {
-            if (!c.measured) continue;
-            std::string names;
-            for (int m : c.media) names += (names.empty() ? "" : "+") + scene.media()[size_t(m)].name;
-            std::printf(
-                "photons: %s %s: predicted relative MSE at %llu passes %.3g with photons, %.3g walked (%d of the "
-                "pilot's %d probes met it); walks %s\n",
-                names.c_str(), c.walked ? "walked" : "photons", (unsigned long long)c.passes, c.photonMse, c.walkMse,
-                c.probes, PhotonIntegrator::kPilotProbes,
-                c.walksPayFrom ? ("pay from " + std::to_string(c.walksPayFrom) + " passes").c_str()
-                               : "do not pay within 65536 passes");
-        }
-    if (photon && !photon->tracesPhotons())
-        std::printf(
-            "photons: none traced: every medium is walked and no surface is a dielectric, so paths carry "
-            "all the light, as in volpath\n");
-    else if (photon) {
-        const PhotonStats& s = photon->stats();
-        tracing = s.tracingSeconds;
-        std::printf("photons: %llu paths traced, %llu stored in media, %llu on surfaces, %.1f MB of maps per pass\n",
-                    (unsigned long long)s.paths, (unsigned long long)s.volumePhotons,
-                    (unsigned long long)s.surfacePhotons, s.bytes / 1e6);
-    }
-    if (photon && photon->stats().pilotSeconds > 0)
-        std::printf("time: photon pilot %.2f s (before the render)\n", photon->stats().pilotSeconds);
+        std::printf("%s: part of %s frame %d: passes %s of %d, %dx%d\n", p.output.c_str(), o.args.scene.c_str(),
+                    p.part.frame, o.passRange.c_str(), p.part.totalPasses, camera.width, camera.height);
+    for (const std::string& line : stats.lines) std::printf("%s\n", line.c_str());
     std::printf("time: tetrahedralization %.2f s, photon tracing %.2f s, rendering %.2f s (%.0f samples/s)\n",
-                scene.tetrahedralizeSeconds(), tracing, result.seconds - tracing, samples / result.seconds);
+                scene.tetrahedralizeSeconds(), stats.tracingSeconds, result.seconds - stats.tracingSeconds,
+                samples / result.seconds);
+}
+
+void run(const Options& o) {
+    Plan p = planRender(o);
+    std::optional<ReferenceLog> reference;
+    if (!o.tetsOnly) reference = prepareOutputs(o, p);
+
+    const Scene scene(p.desc);
+    printVolumes(scene);
+    if (o.tetsOnly) return checkTetCache(scene);
+    const auto integrator = makeIntegrator(scene, p.desc.integrator);
+    for (const std::string& w : integrator->warnings()) std::fprintf(stderr, "tetglow: warning: %s\n", w.c_str());
+
+    RenderOptions options = renderOptions(o, p);
+    Progress progress("render", {(p.part.endPass > 0 ? p.part.endPass : options.spp) - p.part.firstPass, p.passesFrom,
+                                 options.timeLimit, options.noiseTarget, integrator->stats().biased});
+    options.passDone = [&](const PassReport& r) {
+        progress.pass(r);
+        if (reference) reference->pass(r);
+    };
+    // From the first pass until the files are renamed into place: a signal in the middle of the
+    // write lets the write finish.
+    InterruptGuard guard;
+    RenderResult result = render(scene, *integrator, options);
+    progress.finish(result);
+    const double samples = samplesTaken(result.film);  // before a part's film is written away
+    writeResult(o, p, result);
+    reportResult(o, p, result, samples, scene, integrator->stats());
     if (interrupted()) {
         std::fflush(stdout);
         std::exit(128 + interruptSignal());  // the shell's code for "stopped by the signal", with the image written

@@ -10,6 +10,13 @@
 
 namespace tetglow {
 
+// What an integrator has to report of a render besides its image.
+struct IntegratorStats {
+    bool biased = false;             // the noise estimate leaves out a bias (a photon kernel's blur)
+    double tracingSeconds = 0;       // light tracing before the eye paths (photon mapping), all passes
+    std::vector<std::string> lines;  // for the user after the render, one line each
+};
+
 class Integrator {
 public:
     virtual ~Integrator() = default;
@@ -22,6 +29,8 @@ public:
     // Light this integrator cannot carry to some medium of the scene, one line per medium
     // (scene/UnsampledLight.h), for the user to be told before the render.
     virtual std::vector<std::string> warnings() const { return {}; }
+    // So far: after the render, of all its passes; before it, whether it is biased.
+    virtual IntegratorStats stats() const { return {}; }
 };
 
 }  // namespace tetglow

@@ -24,7 +24,7 @@ ColumnProfile::ColumnProfile(const Volume& volume, const Ray& ray, WalkStart sta
         if (tOut > tIn) {
             const double piece = volume.densityIntegral(s.tet, ray, tIn, tOut);
             const RGB depth = volume.at(s.tet).sigmaT * piece;
-            pieces_.push_back({tIn, tOut, s.tet, total_, depth_, depth / (tOut - tIn)});
+            pieces_.push_back({{s.tet, tIn, tOut}, total_, depth_, depth / (tOut - tIn)});
             total_ += piece;
             depth_ += depth;
         }

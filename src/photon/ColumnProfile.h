@@ -13,9 +13,8 @@ namespace tetglow {
 
 class ColumnProfile {
 public:
-    struct Piece {
-        double tIn, tOut;
-        uint32_t tet;
+    // The part of a walk's segment within the stretch, with what the profile adds to it.
+    struct Piece : WalkSegment {
         double columnIn;  // from the start to tIn
         RGB depthIn;      // optical depth from the start to tIn
         RGB rate;         // optical depth per unit length, on average over the piece

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -237,6 +238,42 @@ void PhotonIntegrator::choose() {
 }
 
 PhotonIntegrator::~PhotonIntegrator() = default;
+
+IntegratorStats PhotonIntegrator::stats() const {
+    IntegratorStats out;
+    out.biased = tracing_;
+    char line[512];
+    for (const DomainChoice& c : choices_) {
+        if (!c.measured) continue;
+        std::string names;
+        for (int m : c.media) names += (names.empty() ? "" : "+") + scene_.media()[size_t(m)].name;
+        const std::string pays = c.walksPayFrom ? "pay from " + std::to_string(c.walksPayFrom) + " passes"
+                                                : "do not pay within 65536 passes";
+        std::snprintf(line, sizeof line,
+                      "photons: %s %s: predicted relative MSE at %llu passes %.3g with photons, %.3g walked (%d of the "
+                      "pilot's %d probes met it); walks %s",
+                      names.c_str(), c.walked ? "walked" : "photons", (unsigned long long)c.passes, c.photonMse,
+                      c.walkMse, c.probes, kPilotProbes, pays.c_str());
+        out.lines.push_back(line);
+    }
+    if (!tracing_) {
+        out.lines.push_back(
+            "photons: none traced: every medium is walked and no surface is a dielectric, so paths carry all the "
+            "light, as in volpath");
+    } else {
+        out.tracingSeconds = stats_.tracingSeconds;
+        std::snprintf(line, sizeof line,
+                      "photons: %llu paths traced, %llu stored in media, %llu on surfaces, %.1f MB of maps per pass",
+                      (unsigned long long)stats_.paths, (unsigned long long)stats_.volumePhotons,
+                      (unsigned long long)stats_.surfacePhotons, stats_.bytes / 1e6);
+        out.lines.push_back(line);
+    }
+    if (stats_.pilotSeconds > 0) {
+        std::snprintf(line, sizeof line, "time: photon pilot %.2f s (before the render)", stats_.pilotSeconds);
+        out.lines.push_back(line);
+    }
+    return out;
+}
 
 std::vector<std::string> PhotonIntegrator::warnings() const {
     std::vector<std::string> lines;

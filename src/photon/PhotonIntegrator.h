@@ -89,7 +89,8 @@ public:
     void beginPass(uint64_t pass, const std::atomic<bool>* cancel = nullptr) override;
     RGB radiance(const Ray& ray, Rng& rng) const override;
     std::vector<std::string> warnings() const override;
-    const PhotonStats& stats() const { return stats_; }
+    IntegratorStats stats() const override;  // the photons traced
+    const PhotonStats& photonStats() const { return stats_; }
     // Whether passes trace photons. They do not when the eye path walks every medium (the rule
     // at the top of this file) and no surface or medium boundary is a dielectric: the only
     // photons left would be the diffuse surfaces', whose light paths with next-event estimation

@@ -306,6 +306,59 @@ std::map<int, TriangleMesh> placedMeshes(const GltfDocument& doc, const JsonValu
     return byMaterial;
 }
 
+// The scene the extras start: its integrator and the environment's light.
+SceneDesc sceneOfExtras(const std::string& path, const SceneExtras& extras) {
+    SceneDesc s;
+    s.path = path;
+    s.integrator = extras.integrator;
+    if (extras.environment != RGB(0)) {
+        LightDesc env;
+        env.type = LightType::Environment;
+        env.radiance = extras.environment;
+        s.lights.push_back(env);
+    }
+    return s;
+}
+
+// A node's mesh placed in the world, as the role of its material makes it: a surface, a light
+// or a medium's boundary.
+void addPlacedMesh(SceneDesc& s, const MaterialRole& r, const std::string& name, const std::string& label,
+                   TriangleMesh placed) {
+    switch (r.kind) {
+        case MaterialRole::Kind::Surface: s.surfaces.push_back({name, std::move(placed), r.surface}); break;
+        case MaterialRole::Kind::Light: {
+            LightDesc l;
+            l.type = LightType::Mesh;
+            l.radiance = r.radiance;
+            l.twoSided = r.twoSided;
+            l.mesh = std::move(placed);
+            s.lights.push_back(std::move(l));
+            break;
+        }
+        case MaterialRole::Kind::Medium: {
+            MediumDesc m = r.medium;
+            m.name = name;
+            m.label = label;
+            m.boundary = std::move(placed);
+            s.media.push_back(std::move(m));
+            break;
+        }
+    }
+}
+
+// No camera node, or none named `cameraName`: the error names the camera nodes there are.
+[[noreturn]] void noCamera(const JsonValue& sceneValue, const std::string& cameraName,
+                           const std::vector<std::string>& cameraNodes) {
+    if (cameraName.empty()) sceneValue.error("the scene has no camera node");
+    sceneValue.error("no camera node named '" + shorten(cameraName, 40) + "' (camera nodes: " +
+                     (cameraNodes.empty() ? std::string("none") : [&] {
+                         std::string list;
+                         for (const auto& c : cameraNodes) list += (list.empty() ? "" : ", ") + c;
+                         return list;
+                     }()) +
+                     ")");
+}
+
 }  // namespace
 
 bool looksLikeGltf(const std::string& path, const std::string& data) {
@@ -334,15 +387,7 @@ SceneDesc loadGltfScene(const std::string& path, std::string data, const std::st
 
     const JsonValue sceneValue = sceneOf(doc);
     const SceneExtras extras = readSceneExtras(doc, sceneValue);
-    SceneDesc s;
-    s.path = path;
-    s.integrator = extras.integrator;
-    if (extras.environment != RGB(0)) {
-        LightDesc env;
-        env.type = LightType::Environment;
-        env.radiance = extras.environment;
-        s.lights.push_back(env);
-    }
+    SceneDesc s = sceneOfExtras(path, extras);
     bool haveCamera = false;
     std::vector<std::string> cameraNodes;
     size_t triangles = 0;
@@ -379,39 +424,10 @@ SceneDesc loadGltfScene(const std::string& path, std::string data, const std::st
             if (material >= int(materials.size()))
                 node.error("a primitive names material " + std::to_string(material) + "; the file has " +
                            std::to_string(materials.size()));
-            const MaterialRole& r = material < 0 ? none : materials[size_t(material)];
-            switch (r.kind) {
-                case MaterialRole::Kind::Surface: s.surfaces.push_back({name, std::move(placed), r.surface}); break;
-                case MaterialRole::Kind::Light: {
-                    LightDesc l;
-                    l.type = LightType::Mesh;
-                    l.radiance = r.radiance;
-                    l.twoSided = r.twoSided;
-                    l.mesh = std::move(placed);
-                    s.lights.push_back(std::move(l));
-                    break;
-                }
-                case MaterialRole::Kind::Medium: {
-                    MediumDesc m = r.medium;
-                    m.name = name;
-                    m.label = label;
-                    m.boundary = std::move(placed);
-                    s.media.push_back(std::move(m));
-                    break;
-                }
-            }
+            addPlacedMesh(s, material < 0 ? none : materials[size_t(material)], name, label, std::move(placed));
         }
     }
-    if (!haveCamera) {
-        if (cameraName.empty()) sceneValue.error("the scene has no camera node");
-        sceneValue.error("no camera node named '" + shorten(cameraName, 40) + "' (camera nodes: " +
-                         (cameraNodes.empty() ? std::string("none") : [&] {
-                             std::string list;
-                             for (const auto& c : cameraNodes) list += (list.empty() ? "" : ", ") + c;
-                             return list;
-                         }()) +
-                         ")");
-    }
+    if (!haveCamera) noCamera(sceneValue, cameraName, cameraNodes);
     for (const auto& w : warnings) std::cerr << w << '\n';
     if (!emitsLight(s))
         sceneValue.error("nothing emits light: no KHR_lights_punctual light, emissive material or glowing medium");

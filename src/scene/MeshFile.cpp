@@ -7,6 +7,8 @@
 #include "base/InputFile.h"
 #include "scene/AssimpReader.h"
 #include "scene/GltfVersion.h"
+#include "scene/ObjReader.h"
+#include "scene/OffReader.h"
 #include "scene/PlyReader.h"
 #include "scene/StlReader.h"
 #include "scene/TextEncoding.h"

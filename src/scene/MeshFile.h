@@ -1,9 +1,10 @@
 // Every mesh file tetglow reads goes through readMeshFile: JSON mesh shapes (media, cavities,
 // surfaces, mesh lights), pbrt-v3's plymesh, tetrahedralize and compare-boundary. The format is
 // told by the content, the extension deciding only where the content does not:
-//   OBJ, OFF: tet/TriangleMesh.h (polygons: tet/PolygonTriangulation.h); PLY: scene/PlyReader.h; STL:
-//   scene/StlReader.h; glTF 2.0 and GLB, FBX, Collada, through Assimp: scene/AssimpReader.h (glTF 1.0
-//   refused: scene/GltfVersion.h). UTF-16 text is decoded first (scene/TextEncoding.h).
+//   OBJ: scene/ObjReader.h; OFF: scene/OffReader.h (their polygons: tet/PolygonTriangulation.h);
+//   PLY: scene/PlyReader.h; STL: scene/StlReader.h; glTF 2.0 and GLB, FBX, Collada, through Assimp:
+//   scene/AssimpReader.h (glTF 1.0 refused: scene/GltfVersion.h). UTF-16 text is decoded first
+//   (scene/TextEncoding.h).
 #pragma once
 #include <string>
 #include <vector>

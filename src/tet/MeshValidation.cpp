@@ -10,6 +10,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "tet/FloodFill.h"
 #include "tet/Predicates.h"
 #include "tet/SelfIntersection.h"
 #include "tet/ShellNesting.h"
@@ -272,38 +273,26 @@ bool sameDirection(const std::array<uint32_t, 3>& s, const std::array<uint32_t, 
 // Shells connect across edges of two triangles only: parts pinched together along an edge stay two.
 std::vector<uint32_t> orientShells(TriangleMesh& mesh, const std::unordered_map<uint64_t, std::vector<uint32_t>>& edges,
                                    ValidationReport& report) {
-    const uint32_t none = UINT32_MAX;
-    std::vector<uint32_t> shell(mesh.triangles.size(), none);
-    std::vector<uint32_t> stack;
-    for (uint32_t start = 0; start < mesh.triangles.size(); ++start) {
-        if (shell[start] != none) continue;
-        const uint32_t id = static_cast<uint32_t>(report.components++);
-        shell[start] = id;
-        stack.push_back(start);
-        while (!stack.empty()) {
-            const uint32_t t = stack.back();
-            stack.pop_back();
+    return floodFill(
+        mesh.triangles.size(), [&](uint32_t) { ++report.components; },
+        [&](uint32_t t, uint32_t, const auto& reach) {
             for (int k = 0; k < 3; ++k) {
                 const uint32_t a = mesh.triangles[t][k], b = mesh.triangles[t][(k + 1) % 3];
                 const auto& pair = edges.at(edgeKey(a, b));
                 if (pair.size() != 2) continue;
                 const uint32_t n = pair[0] == t ? pair[1] : pair[0];
                 const bool flip = sameDirection(mesh.triangles[t], mesh.triangles[n], a, b);
-                if (shell[n] == none) {
+                if (reach(n)) {
                     if (flip) {
                         std::swap(mesh.triangles[n][1], mesh.triangles[n][2]);
                         ++report.flippedTriangles;
                     }
-                    shell[n] = id;
-                    stack.push_back(n);
                 } else if (flip) {
                     throw InputError("mesh is not orientable (like a Moebius strip): " + face(t) + " and " + face(n) +
                                      " cannot be wound consistently");
                 }
             }
-        }
-    }
-    return shell;
+        });
 }
 
 double shellVolume(const TriangleMesh& mesh, const std::vector<uint32_t>& shell) {

@@ -11,6 +11,7 @@
 
 #include "base/Hash.h"
 #include "tet/CacheDirectory.h"
+#include "tet/FloodFill.h"
 #include "tet/InteriorRepair.h"
 #include "tet/MeshingMemory.h"
 #include "tet/Predicates.h"
@@ -91,113 +92,127 @@ std::string inconsistentRegions(const VolumeBoundary& boundary, const std::vecto
            side(b) + ", so one of these faces lies inside a solid or two surfaces meet without sharing faces";
 }
 
-// Builds the TetMesh: positive orientation, encoded adjacency, boundary faces <-> surface
-// triangles, tets grouped by region. TetGen fills every space the triangles enclose; the
-// connected pieces between triangles (cells) take their region from the side of a triangle
-// they lie on, exactly, and cells outside every region (such as the cavity of a hollow mesh)
-// are removed. With -A, TetGen's attribute of each kept tet must agree: the inside point's region + 1,
-// or a number of TetGen's own (0 or above the regions') for a cell that no inside point reaches, such as
-// a second shell of one mesh.
-TetMesh assemble(const VolumeBoundary& boundary, const RawTets& raw, const std::vector<std::string>& names) {
-    const TriangleMesh& surface = boundary.surface;
-    const size_t nv = raw.points.size() / 3, nt = raw.tets.size() / 4, nr = boundary.regionCount();
-    if (nt == 0) throw InputError("TetGen produced no tetrahedra (is the mesh closed?)");
-    if (nv < surface.positions.size()) throw InputError("TetGen dropped input vertices");
-    if (!raw.attributes.empty() && raw.attributes.size() != nt) throw InputError("TetGen lost the region attributes");
-    TetMesh m;
-    m.vertices.resize(nv);
-    for (size_t i = 0; i < nv; ++i) m.vertices[i] = {raw.points[3 * i], raw.points[3 * i + 1], raw.points[3 * i + 2]};
+// TetGen's vertices, the surface's first and unmoved (TetGen kept them all).
+std::vector<glm::dvec3> tetVertices(const TriangleMesh& surface, const RawTets& raw) {
+    const size_t nv = raw.points.size() / 3;
+    std::vector<glm::dvec3> vertices(nv);
+    for (size_t i = 0; i < nv; ++i) vertices[i] = {raw.points[3 * i], raw.points[3 * i + 1], raw.points[3 * i + 2]};
     for (size_t i = 0; i < surface.positions.size(); ++i)
-        if (m.vertices[i] != surface.positions[i]) throw InputError("TetGen moved input vertex " + std::to_string(i));
+        if (vertices[i] != surface.positions[i]) throw InputError("TetGen moved input vertex " + std::to_string(i));
+    return vertices;
+}
 
-    std::vector<std::array<uint32_t, 4>> tets(nt);
-    std::vector<std::array<int, 4>> nbr(nt);
+// TetGen's tets in its order, each with its neighbour across each face (-1 for none) and the
+// surface triangle the face coincides with (-1 for none).
+struct TetFaces {
+    std::vector<std::array<uint32_t, 4>> tets;
+    std::vector<std::array<int, 4>> nbr;
+    std::vector<std::array<int64_t, 4>> onSurface;
+};
+
+// TetGen's tets and neighbours, every tet turned to positive orientation.
+TetFaces orientedTets(const RawTets& raw, const std::vector<glm::dvec3>& vertices) {
+    const size_t nv = vertices.size(), nt = raw.tets.size() / 4;
+    TetFaces f;
+    f.tets.resize(nt);
+    f.nbr.resize(nt);
     for (size_t t = 0; t < nt; ++t)
         for (int j = 0; j < 4; ++j) {
-            tets[t][j] = uint32_t(raw.tets[4 * t + j]);
-            nbr[t][j] = raw.neighbours[4 * t + j];
-            if (tets[t][j] >= nv || nbr[t][j] >= int(nt)) throw InputError("TetGen returned an index out of range");
+            f.tets[t][j] = uint32_t(raw.tets[4 * t + j]);
+            f.nbr[t][j] = raw.neighbours[4 * t + j];
+            if (f.tets[t][j] >= nv || f.nbr[t][j] >= int(nt)) throw InputError("TetGen returned an index out of range");
         }
     for (size_t t = 0; t < nt; ++t) {
-        const auto& v = tets[t];
-        const double o = orient3d(m.vertices[v[0]], m.vertices[v[1]], m.vertices[v[2]], m.vertices[v[3]]);
+        const auto& v = f.tets[t];
+        const double o = orient3d(vertices[v[0]], vertices[v[1]], vertices[v[2]], vertices[v[3]]);
         if (o == 0) throw InputError("TetGen produced a flat tetrahedron " + std::to_string(t));
         if (o > 0) {  // Shewchuk's orient3d is negative for our positive orientation
-            std::swap(tets[t][0], tets[t][1]);
-            std::swap(nbr[t][0], nbr[t][1]);
+            std::swap(f.tets[t][0], f.tets[t][1]);
+            std::swap(f.nbr[t][0], f.nbr[t][1]);
         }
     }
+    return f;
+}
 
+// Per tet face: the surface triangle it coincides with, or -1.
+void matchSurfaceFaces(TetFaces& f, const TriangleMesh& surface) {
     std::map<std::array<uint32_t, 3>, uint32_t> surfaceIndex;
     for (uint32_t s = 0; s < surface.triangles.size(); ++s) {
-        auto f = surface.triangles[s];
-        std::sort(f.begin(), f.end());
-        surfaceIndex.emplace(f, s);
+        auto tri = surface.triangles[s];
+        std::sort(tri.begin(), tri.end());
+        surfaceIndex.emplace(tri, s);
     }
-    // Per tet face: the surface triangle it coincides with, or -1.
-    std::vector<std::array<int64_t, 4>> onSurface(nt);
-    for (size_t t = 0; t < nt; ++t)
+    f.onSurface.resize(f.tets.size());
+    for (size_t t = 0; t < f.tets.size(); ++t)
         for (int j = 0; j < 4; ++j) {
-            auto it = surfaceIndex.find(sortedFace(tets[t], j));
-            onSurface[t][j] = it == surfaceIndex.end() ? -1 : int64_t(it->second);
+            auto it = surfaceIndex.find(sortedFace(f.tets[t], j));
+            f.onSurface[t][j] = it == surfaceIndex.end() ? -1 : int64_t(it->second);
         }
-    // Tet face (t, j) on triangle s lies behind s when the tet's other vertex does.
-    const auto behind = [&](size_t t, int j) {
-        const auto& s = surface.triangles[size_t(onSurface[t][j])];
-        return orient3d(m.vertices[s[0]], m.vertices[s[1]], m.vertices[s[2]], m.vertices[tets[t][j]]) > 0;
-    };
+}
 
-    // Flood cells across faces that are not surface triangles; each takes its region from them.
+// Tet face (t, j) on its surface triangle s lies behind s when the tet's other vertex does.
+bool behind(const TetFaces& f, const TriangleMesh& surface, const std::vector<glm::dvec3>& vertices, size_t t, int j) {
+    const auto& s = surface.triangles[size_t(f.onSurface[t][j])];
+    return orient3d(vertices[s[0]], vertices[s[1]], vertices[s[2]], vertices[f.tets[t][j]]) > 0;
+}
+
+// The region of each tet, -1 outside every region: cells are flooded across faces that are not
+// surface triangles, and each takes its region from the sides of the triangles that bound it.
+std::vector<int> tetRegions(const VolumeBoundary& boundary, const std::vector<std::string>& names, const TetFaces& f,
+                            const std::vector<glm::dvec3>& vertices) {
     constexpr int kUndecided = -2;
-    std::vector<int> cell(nt, -1), cellRegion;
+    std::vector<int> cellRegion;
     std::vector<SideOfFace> decidedBy;  // per cell: the face that gave it its region
-    std::vector<uint32_t> stack;
-    for (uint32_t start = 0; start < nt; ++start) {
-        if (cell[start] >= 0) continue;
-        const int id = int(cellRegion.size());
-        cellRegion.push_back(kUndecided);
-        decidedBy.push_back({});
-        cell[start] = id;
-        stack.push_back(start);
-        while (!stack.empty()) {
-            const uint32_t t = stack.back();
-            stack.pop_back();
+    const std::vector<uint32_t> cell = floodFill(
+        f.tets.size(),
+        [&](uint32_t) {
+            cellRegion.push_back(kUndecided);
+            decidedBy.push_back({});
+        },
+        [&](uint32_t t, uint32_t id, const auto& reach) {
             for (int j = 0; j < 4; ++j) {
-                if (onSurface[t][j] >= 0) {
-                    const auto s = uint32_t(onSurface[t][j]);
-                    const bool back = behind(t, j);
+                if (f.onSurface[t][j] >= 0) {
+                    const auto s = uint32_t(f.onSurface[t][j]);
+                    const bool back = behind(f, boundary.surface, vertices, t, j);
                     const SideOfFace side{s, back, boundary.sides[s][back ? 0 : 1]};
                     if (cellRegion[id] == kUndecided) {
                         cellRegion[id] = side.region;
                         decidedBy[id] = side;
                     } else if (cellRegion[id] != side.region)
                         throw InconsistentRegions(inconsistentRegions(boundary, names, decidedBy[id], side));
-                } else if (nbr[t][j] >= 0 && cell[nbr[t][j]] < 0) {
-                    cell[nbr[t][j]] = id;
-                    stack.push_back(uint32_t(nbr[t][j]));
+                } else if (f.nbr[t][j] >= 0) {
+                    reach(uint32_t(f.nbr[t][j]));
                 }
             }
-        }
-    }
-    const auto regionOf = [&](size_t t) { return cellRegion[cell[t]] == kUndecided ? -1 : cellRegion[cell[t]]; };
-    if (!raw.attributes.empty()) {
-        std::vector<char> reached(nr, 0);
-        for (size_t t = 0; t < nt; ++t) {
-            const int r = regionOf(t), a = int(std::lround(raw.attributes[t]));
-            if (r < 0) continue;
-            if (a >= 1 && a <= int(nr) && a != r + 1)
-                throw InputError("TetGen's region of tet " + std::to_string(t) + " disagrees with the surfaces");
-            reached[r] |= a == r + 1;
-        }
-        for (size_t r = 0; r < nr; ++r)
-            if (!reached[r])
-                throw InputError("TetGen found no tets around the inside point of region " + std::to_string(r));
-    }
+        });
+    std::vector<int> region(f.tets.size());
+    for (size_t t = 0; t < region.size(); ++t) region[t] = cellRegion[cell[t]] == kUndecided ? -1 : cellRegion[cell[t]];
+    return region;
+}
 
-    // Kept tets by region, each region's in Morton order of their centroids: a walk's next tet
-    // is then usually close in memory (TetGen's order is not spatial).
+// With -A, TetGen's attribute of each kept tet must agree: the inside point's region + 1, or a
+// number of TetGen's own (0 or above the regions') for a cell that no inside point reaches, such
+// as a second shell of one mesh.
+void checkAttributes(const std::vector<double>& attributes, const std::vector<int>& region, size_t regions) {
+    std::vector<char> reached(regions, 0);
+    for (size_t t = 0; t < region.size(); ++t) {
+        const int r = region[t], a = int(std::lround(attributes[t]));
+        if (r < 0) continue;
+        if (a >= 1 && a <= int(regions) && a != r + 1)
+            throw InputError("TetGen's region of tet " + std::to_string(t) + " disagrees with the surfaces");
+        reached[r] |= a == r + 1;
+    }
+    for (size_t r = 0; r < regions; ++r)
+        if (!reached[r])
+            throw InputError("TetGen found no tets around the inside point of region " + std::to_string(r));
+}
+
+// The tets in a region, by region, each region's in Morton order of their centroids: a walk's
+// next tet is then usually close in memory (TetGen's order is not spatial).
+std::vector<uint32_t> mortonOrder(const std::vector<glm::dvec3>& vertices,
+                                  const std::vector<std::array<uint32_t, 4>>& tets, const std::vector<int>& region) {
     Bounds3 box;
-    for (const auto& v : m.vertices) box.extend(v);
+    for (const auto& v : vertices) box.extend(v);
     const glm::dvec3 scale = 1023.0 / glm::max(box.hi - box.lo, glm::dvec3(1e-300));
     auto spread = [](uint64_t x) {  // 10 bits -> every third of 30
         x = (x | (x << 16)) & 0x030000FF;
@@ -206,49 +221,46 @@ TetMesh assemble(const VolumeBoundary& boundary, const RawTets& raw, const std::
         return (x | (x << 2)) & 0x09249249;
     };
     std::vector<std::tuple<int, uint64_t, uint32_t>> order;
-    for (uint32_t t = 0; t < nt; ++t) {
-        if (regionOf(t) < 0) continue;
+    for (uint32_t t = 0; t < tets.size(); ++t) {
+        if (region[t] < 0) continue;
         const auto& v = tets[t];
-        const glm::dvec3 c = (m.vertices[v[0]] + m.vertices[v[1]] + m.vertices[v[2]] + m.vertices[v[3]]) * 0.25;
+        const glm::dvec3 c = (vertices[v[0]] + vertices[v[1]] + vertices[v[2]] + vertices[v[3]]) * 0.25;
         const glm::dvec3 q = glm::clamp((c - box.lo) * scale, 0.0, 1023.0);
         order.push_back(
-            {regionOf(t), spread(uint64_t(q.x)) | spread(uint64_t(q.y)) << 1 | spread(uint64_t(q.z)) << 2, t});
+            {region[t], spread(uint64_t(q.x)) | spread(uint64_t(q.y)) << 1 | spread(uint64_t(q.z)) << 2, t});
     }
     std::sort(order.begin(), order.end());
-    std::vector<int64_t> newIndex(nt, -1);
-    m.regionTets.assign(nr + 1, 0);
-    for (const auto& [r, code, t] : order) {
-        newIndex[t] = int64_t(m.tets.size());
-        m.tets.push_back(tets[t]);
-        ++m.regionTets[size_t(r) + 1];
-    }
-    for (size_t r = 0; r < nr; ++r) m.regionTets[r + 1] += m.regionTets[r];
-    m.regionParent = boundary.parent;
+    std::vector<uint32_t> kept;
+    kept.reserve(order.size());
+    for (const auto& [r, code, t] : order) kept.push_back(t);
+    return kept;
+}
+
+// The kept tets' adjacency, encoded, and the tet faces on each side of every surface triangle;
+// `newIndex` maps TetGen's tets to the kept ones (-1 for one removed).
+void linkFaces(TetMesh& m, const VolumeBoundary& boundary, const TetFaces& f, const std::vector<int64_t>& newIndex) {
+    const TriangleMesh& surface = boundary.surface;
     m.adjacency.resize(m.tets.size());
-    m.surface = surface.triangles;
-    m.surfaceVertexCount = surface.positions.size();
-    m.surfaceRegions = boundary.sides;
-    m.surfaceSource = boundary.source;
     m.surfaceFace.assign(surface.triangles.size(), UINT32_MAX);
     m.surfaceFaceFront.assign(surface.triangles.size(), UINT32_MAX);
-    for (size_t t = 0; t < nt; ++t) {
+    for (size_t t = 0; t < f.tets.size(); ++t) {
         if (newIndex[t] < 0) continue;
         const auto nt_ = uint32_t(newIndex[t]);
         for (int j = 0; j < 4; ++j) {
-            if (onSurface[t][j] >= 0) {
-                const auto s = size_t(onSurface[t][j]);
-                uint32_t& face = behind(t, j) ? m.surfaceFace[s] : m.surfaceFaceFront[s];
+            if (f.onSurface[t][j] >= 0) {
+                const auto s = size_t(f.onSurface[t][j]);
+                uint32_t& face = behind(f, surface, m.vertices, t, j) ? m.surfaceFace[s] : m.surfaceFaceFront[s];
                 if (face != UINT32_MAX)
                     throw InputError("surface triangle " + std::to_string(s) + " bounds two tets on one side");
                 face = 4 * nt_ + uint32_t(j);
                 m.adjacency[nt_][j] = ~int32_t(s);
                 continue;
             }
-            const int n = nbr[t][j];
+            const int n = f.nbr[t][j];
             if (n < 0 || newIndex[n] < 0)
                 throw InputError("TetGen left an unmatched boundary face: the boundary was not preserved");
             int back = 0;
-            while (back < 4 && nbr[n][back] != int(t)) ++back;
+            while (back < 4 && f.nbr[n][back] != int(t)) ++back;
             if (back == 4) throw InputError("TetGen returned non-reciprocal neighbours");
             m.adjacency[nt_][j] = int32_t(4 * newIndex[n] + back);
         }
@@ -256,6 +268,40 @@ TetMesh assemble(const VolumeBoundary& boundary, const RawTets& raw, const std::
     for (size_t s = 0; s < m.surfaceFace.size(); ++s)
         if (m.surfaceFace[s] == UINT32_MAX || (m.surfaceFaceFront[s] == UINT32_MAX) != (boundary.sides[s][1] < 0))
             throw InputError("surface triangle " + std::to_string(s) + " is not a tet face on each side with a region");
+}
+
+// Builds the TetMesh: positive orientation, encoded adjacency, boundary faces <-> surface
+// triangles, tets grouped by region. TetGen fills every space the triangles enclose; the
+// connected pieces between triangles (cells) take their region from the side of a triangle
+// they lie on, exactly, and cells outside every region (such as the cavity of a hollow mesh)
+// are removed.
+TetMesh assemble(const VolumeBoundary& boundary, const RawTets& raw, const std::vector<std::string>& names) {
+    const TriangleMesh& surface = boundary.surface;
+    const size_t nt = raw.tets.size() / 4, nr = boundary.regionCount();
+    if (nt == 0) throw InputError("TetGen produced no tetrahedra (is the mesh closed?)");
+    if (raw.points.size() / 3 < surface.positions.size()) throw InputError("TetGen dropped input vertices");
+    if (!raw.attributes.empty() && raw.attributes.size() != nt) throw InputError("TetGen lost the region attributes");
+    TetMesh m;
+    m.vertices = tetVertices(surface, raw);
+    TetFaces faces = orientedTets(raw, m.vertices);
+    matchSurfaceFaces(faces, surface);
+    const std::vector<int> region = tetRegions(boundary, names, faces, m.vertices);
+    if (!raw.attributes.empty()) checkAttributes(raw.attributes, region, nr);
+
+    std::vector<int64_t> newIndex(nt, -1);
+    m.regionTets.assign(nr + 1, 0);
+    for (uint32_t t : mortonOrder(m.vertices, faces.tets, region)) {
+        newIndex[t] = int64_t(m.tets.size());
+        m.tets.push_back(faces.tets[t]);
+        ++m.regionTets[size_t(region[t]) + 1];
+    }
+    for (size_t r = 0; r < nr; ++r) m.regionTets[r + 1] += m.regionTets[r];
+    m.regionParent = boundary.parent;
+    m.surface = surface.triangles;
+    m.surfaceVertexCount = surface.positions.size();
+    m.surfaceRegions = boundary.sides;
+    m.surfaceSource = boundary.source;
+    linkFaces(m, boundary, faces, newIndex);
     return m;
 }
 

@@ -59,11 +59,6 @@ Bounds3 bounds(const TriangleMesh& mesh);
 // Signed volume by the divergence theorem (positive for outward winding).
 double signedVolume(const TriangleMesh& mesh);
 
-// OBJ and OFF text read from `path` (named in messages; an OBJ's mtllib is looked for beside it).
-// readMesh (scene/MeshFile.h) reads the file and picks the reader. Throws InputError naming file
-// and line. Warnings (such as a missing mtllib) go to `warnings`.
-TriangleMesh parseObj(const std::string& text, const std::string& path, std::vector<std::string>* warnings);
-TriangleMesh parseOff(const std::string& text, const std::string& path);
 // Polygon (v0 ... vn-1) of the mesh's positions as triangles (tet/PolygonTriangulation.h); fewer
 // than 3 vertices, or a self-crossing outline, is an InputError starting with `where` ("file:line: ").
 void addPolygon(TriangleMesh& mesh, const std::vector<uint32_t>& polygon, const std::string& where);
