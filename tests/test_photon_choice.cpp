@@ -24,7 +24,8 @@ IntegratorDesc photonDesc() {
 }
 
 DomainChoice chosen(const Scene& scene, const IntegratorDesc& desc) {
-    const PhotonIntegrator photon(scene, desc);
+    PhotonIntegrator photon(scene, desc);
+    photon.choose();
     EXPECT_EQ(photon.choices().size(), 1u);
     const DomainChoice c = photon.choices().at(0);
     std::printf(
@@ -100,7 +101,11 @@ TEST(PhotonChoice, TheChoiceIsTheSameAtAnyThreadCount) {
     const tbb::global_control workers(tbb::global_control::max_allowed_parallelism, 3);
     auto choices = [&](int threads) {
         std::vector<DomainChoice> c;
-        tbb::task_arena(threads).execute([&] { c = PhotonIntegrator(scene, desc).choices(); });
+        tbb::task_arena(threads).execute([&] {
+            PhotonIntegrator photon(scene, desc);
+            photon.choose();
+            c = photon.choices();
+        });
         return c;
     };
     const std::vector<DomainChoice> one = choices(1);

@@ -86,7 +86,12 @@ public:
 
     PhotonIntegrator(const Scene& scene, const IntegratorDesc& desc);
     ~PhotonIntegrator() override;
+    // The first pass runs the pilot (choose) if it has not run yet.
     void beginPass(uint64_t pass, const std::atomic<bool>* cancel = nullptr) override;
+    // Measures, for every domain that scatters, both estimates on the pilot and sets `walked`
+    // (src/photon/PhotonPilot.cpp); stops early, choosing nothing, once *cancel is set (a live render's
+    // change: the pilot of a large photon count takes as long as several passes).
+    void choose(const std::atomic<bool>* cancel = nullptr);
     RGB radiance(const Ray& ray, Rng& rng) const override;
     std::vector<std::string> warnings() const override;
     IntegratorStats stats() const override;  // the photons traced
@@ -120,8 +125,13 @@ private:
         bool walked = false;  // no photons: the eye path walks it as volpath does (see choose)
     };
 
-    // Measures, for every domain that scatters, both estimates on the pilot and sets `walked`.
-    void choose();
+    // The pilot's estimates at its probe pixels (src/photon/PhotonPilot.cpp); false where *cancel was set.
+    struct PilotSamples;
+    bool samplePilot(const std::vector<int>& measured, PilotSamples& pilot, const std::atomic<bool>* cancel);
+    // Each measured domain's errors from the pilot, its predictions and its choice.
+    void judge(const PilotSamples& pilot, const std::vector<int>& measured);
+    // Which media a pass stores photons in, and whether it traces any, from the domains' choices.
+    void storeUnwalked();
     // Traces the photons of pass `pass` (from `seed`) and builds their maps, the volume kernels at
     // `radiusFactor` times the radius of pass `radiusPass`.
     void loadPhotons(uint64_t seed, uint64_t pass, uint64_t radiusPass, double radiusFactor,
@@ -162,6 +172,7 @@ private:
     std::unique_ptr<PhotonMap> surface_;  // every surface photon not straight from its light
     std::unique_ptr<PhotonMap> caustic_;  // those from a light by specular events only (final gathering)
     float surfaceMaxRadius_ = 0;
+    bool chosen_ = false;                                            // the pilot has run
     bool tracing_ = true;                                            // see tracesPhotons()
     double volumeScale_ = 1, surfaceScale_ = 1;                      // this pass's radius factors
     std::optional<std::chrono::steady_clock::time_point> deadline_;  // of the time limit, if any

@@ -13,6 +13,7 @@
 #include <glm/geometric.hpp>
 #include <glm/vector_relational.hpp>
 
+#include "tet/HoleLattice.h"
 #include "tet/InsideLabels.h"
 #include "tet/IntersectionResolution.h"
 #include "tet/PartWinding.h"
@@ -31,40 +32,12 @@ void keep(std::vector<glm::dvec3>& list, const glm::dvec3& p) {
     if (list.size() < RepairReport::kMaxPositions) list.push_back(p);
 }
 
-uint64_t edgeKey(uint32_t a, uint32_t b) { return (uint64_t(std::min(a, b)) << 32) | std::max(a, b); }
-
-using EdgeMap = std::unordered_map<uint64_t, std::vector<uint32_t>>;
-
-EdgeMap edgeTriangles(const std::vector<std::array<uint32_t, 3>>& triangles) {
-    EdgeMap edges;
-    edges.reserve(triangles.size() * 2);
-    for (uint32_t t = 0; t < triangles.size(); ++t)
-        for (int k = 0; k < 3; ++k) edges[edgeKey(triangles[t][k], triangles[t][(k + 1) % 3])].push_back(t);
-    return edges;
-}
-
-struct UnionFind {
-    std::vector<uint32_t> root;
-    explicit UnionFind(size_t n) : root(n) { std::iota(root.begin(), root.end(), 0u); }
-    uint32_t find(uint32_t i) {
-        while (root[i] != i) i = root[i] = root[root[i]];
-        return i;
-    }
-    void unite(uint32_t a, uint32_t b) { root[find(a)] = find(b); }
-};
-
 double area(const TriangleMesh& m, uint32_t t) {
     return 0.5 * glm::length(glm::cross(m.corner(t, 1) - m.corner(t, 0), m.corner(t, 2) - m.corner(t, 0)));
 }
 
 glm::dvec3 centroid(const TriangleMesh& m, uint32_t t) {
     return (m.corner(t, 0) + m.corner(t, 1) + m.corner(t, 2)) / 3.0;
-}
-
-bool traverses(const std::array<uint32_t, 3>& f, uint32_t a, uint32_t b) {
-    for (int k = 0; k < 3; ++k)
-        if (f[k] == a && f[(k + 1) % 3] == b) return true;
-    return false;
 }
 
 // Consistent winding across every edge that two triangles share (a patch), keeping the winding
@@ -193,135 +166,6 @@ void addPaddedBox(TriangleMesh& plc) {
         plc.triangles.push_back({base + q[0], base + q[1], base + q[2]});
         plc.triangles.push_back({base + q[0], base + q[2], base + q[3]});
     }
-}
-
-double distanceToSegment(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b) {
-    const glm::dvec3 ab = b - a;
-    const double t = std::clamp(glm::dot(p - a, ab) / std::max(glm::dot(ab, ab), 1e-300), 0.0, 1.0);
-    return glm::length(p - (a + t * ab));
-}
-
-// Points TetGen inserts around each hole (rim edges connected through their corners): a lattice
-// filling a ball around the rim, so that the tets across the hole are small enough for the
-// winding number at their centroids to place the spanning surface, and none reaches from far
-// inside through the hole to the box. Refining the whole box instead (-q) costs many times the
-// clean path. The lattice is as fine as the rim's edges but at most kLatticeAcross points
-// across a ball, kLatticeBudget points in all; offset so that it misses the planes of
-// axis-aligned faces, rounded to float like every vertex of the repaired surface, and only
-// strictly inside `box` (a ball may reach past the padded box TetGen fills). A hole
-// less than kSmallHole rim edges across gets none: the tets between its rim vertices span it
-// flat, where lattice points beside the surface would let tets poke out of it. Nor does a
-// crack, rims that run both ways along the same curve, as where a CAD exporter tessellates
-// each face of a solid on its own (T-junctions): its rim's vector area is next to nothing
-// (below kCrack of its length times its edges' length, where an open hole has at least half
-// that length times its radius), and the winding number beside it is whole.
-std::vector<glm::dvec3> holeLattice(const TriangleMesh& soup, const EdgeMap& edges, const PartWinding& winding,
-                                    const Bounds3& box, const glm::dvec3& offset) {
-    static constexpr double kLatticeAcross = 16, kBallScale = 1.25, kLatticeBudget = 200000, kSmallHole = 2,
-                            kCrack = 0.25;
-    static constexpr int kBisections = 10;
-    static constexpr double kRimClearance = 0.5;
-    std::vector<uint64_t> rim;
-    for (const auto& [key, users] : edges)
-        if (users.size() == 1) rim.push_back(key);
-    std::sort(rim.begin(), rim.end());  // the same lattice whatever the hash order
-    UnionFind loops(soup.positions.size());
-    for (uint64_t e : rim) loops.unite(uint32_t(e >> 32), uint32_t(e));
-    struct Ball {
-        glm::dvec3 centre{0}, vectorArea{0};
-        double radius = 0, edgeLength = 0, spacing = 0;
-        size_t edges = 0;
-        bool open = false;
-        std::vector<uint64_t> rim;
-    };
-    std::unordered_map<uint32_t, Ball> balls;
-    for (uint64_t e : rim) {
-        Ball& b = balls[loops.find(uint32_t(e))];
-        const glm::dvec3 p = soup.positions[uint32_t(e >> 32)], q = soup.positions[uint32_t(e)];
-        b.centre += p + q;
-        b.edgeLength += glm::length(q - p);
-        b.edges += 1;
-        b.rim.push_back(e);
-    }
-    for (uint64_t e : rim) {
-        Ball& b = balls[loops.find(uint32_t(e))];
-        const glm::dvec3 c = b.centre / double(2 * b.edges);
-        const glm::dvec3 p = soup.positions[uint32_t(e >> 32)] - c, q = soup.positions[uint32_t(e)] - c;
-        b.radius = std::max(b.radius, glm::length(p));
-        // The rim runs as its one triangle does.
-        b.vectorArea +=
-            0.5 * (traverses(soup.triangles[edges.at(e)[0]], uint32_t(e >> 32), uint32_t(e)) ? glm::cross(p, q)
-                                                                                             : glm::cross(q, p));
-    }
-    double total = 0;
-    for (auto& [root, b] : balls) {
-        b.centre /= double(2 * b.edges);
-        b.radius *= kBallScale;
-        b.edgeLength /= double(b.edges);
-        b.open = b.radius >= kSmallHole * b.edgeLength &&
-                 glm::length(b.vectorArea) >= kCrack * double(b.edges) * b.edgeLength * b.edgeLength;
-        if (!b.open) continue;
-        b.spacing = std::max(b.edgeLength, 2 * b.radius / kLatticeAcross);
-        total += 4.19 * std::pow(b.radius / b.spacing, 3);  // 4 pi / 3 lattice points per unit ball
-    }
-    const double coarsen = std::max(1.0, std::cbrt(total / kLatticeBudget));
-    std::vector<uint32_t> roots;
-    for (const auto& [root, b] : balls) roots.push_back(root);
-    std::sort(roots.begin(), roots.end());
-    const auto distanceToRim = [&](const std::vector<uint64_t>& rim, const glm::dvec3& p) {
-        double d = INFINITY;
-        for (uint64_t e : rim)
-            d = std::min(d, distanceToSegment(p, soup.positions[uint32_t(e >> 32)], soup.positions[uint32_t(e)]));
-        return d;
-    };
-    std::vector<glm::dvec3> points;
-    const auto add = [&](const glm::dvec3& p) {
-        const glm::dvec3 f(roundToFloat(p.x), roundToFloat(p.y), roundToFloat(p.z));
-        if (glm::all(glm::greaterThan(f, box.lo)) && glm::all(glm::lessThan(f, box.hi))) points.push_back(f);
-    };
-    for (uint32_t root : roots) {
-        const Ball& b = balls[root];
-        if (!b.open) continue;
-        const double s = b.spacing * coarsen;
-        const int n = int(std::ceil(b.radius / s)), side = 2 * n + 1;
-        const auto at = [&](int i, int j, int k) { return b.centre + s * (glm::dvec3(i, j, k) + offset); };
-        const auto index = [&](int i, int j, int k) { return size_t((i + n) * side + j + n) * side + k + n; };
-        std::vector<double> w(size_t(side) * side * side, NAN);  // NaN: outside the ball
-        for (int i = -n; i <= n; ++i)
-            for (int j = -n; j <= n; ++j)
-                for (int k = -n; k <= n; ++k)
-                    if (glm::length(at(i, j, k) - b.centre) <= b.radius)
-                        w[index(i, j, k)] = winding.approximate(at(i, j, k));
-        // Where the winding number crosses 1/2 between neighbours, a point on that level set
-        // (by bisection) replaces both: the spanning surface then runs through these points
-        // instead of stepping between lattice points on either side of it. Not beside the rim,
-        // where the level set meets the surface: there such a point would make slivers whose
-        // centroids fall on the wrong side of an input triangle.
-        std::vector<char> nearLevel(w.size(), 0);
-        for (int i = -n; i <= n; ++i)
-            for (int j = -n; j <= n; ++j)
-                for (int k = -n; k <= n; ++k)
-                    for (const glm::ivec3 step : {glm::ivec3(1, 0, 0), glm::ivec3(0, 1, 0), glm::ivec3(0, 0, 1)}) {
-                        const glm::ivec3 q = glm::ivec3(i, j, k) + step;
-                        if (q.x > n || q.y > n || q.z > n) continue;
-                        const size_t a = index(i, j, k), c = index(q.x, q.y, q.z);
-                        if (!((w[a] - 0.5) * (w[c] - 0.5) < 0)) continue;  // also false for NaN
-                        nearLevel[a] = nearLevel[c] = 1;
-                        glm::dvec3 lo = at(i, j, k), hi = at(q.x, q.y, q.z);
-                        const bool loInside = w[a] > 0.5;
-                        for (int halving = 0; halving < kBisections; ++halving) {
-                            const glm::dvec3 mid = 0.5 * (lo + hi);
-                            ((winding.approximate(mid) > 0.5) == loInside ? lo : hi) = mid;
-                        }
-                        const glm::dvec3 level = 0.5 * (lo + hi);
-                        if (distanceToRim(b.rim, level) > kRimClearance * s) add(level);
-                    }
-        for (int i = -n; i <= n; ++i)
-            for (int j = -n; j <= n; ++j)
-                for (int k = -n; k <= n; ++k)
-                    if (!std::isnan(w[index(i, j, k)]) && !nearLevel[index(i, j, k)]) add(at(i, j, k));
-    }
-    return points;
 }
 
 struct Tets {

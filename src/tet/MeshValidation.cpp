@@ -14,6 +14,7 @@
 #include "tet/Predicates.h"
 #include "tet/SelfIntersection.h"
 #include "tet/ShellNesting.h"
+#include "tet/SoupEdges.h"
 
 namespace tetglow {
 
@@ -228,17 +229,6 @@ void checkTriangles(const TriangleMesh& mesh) {
     }
 }
 
-uint64_t edgeKey(uint32_t a, uint32_t b) { return (uint64_t(std::min(a, b)) << 32) | std::max(a, b); }
-
-// Edge -> the triangles using it; each edge must have exactly two.
-std::unordered_map<uint64_t, std::vector<uint32_t>> edgeFaces(const TriangleMesh& mesh) {
-    std::unordered_map<uint64_t, std::vector<uint32_t>> edges;
-    edges.reserve(mesh.triangles.size() * 2);
-    for (uint32_t t = 0; t < mesh.triangles.size(); ++t)
-        for (int k = 0; k < 3; ++k) edges[edgeKey(mesh.triangles[t][k], mesh.triangles[t][(k + 1) % 3])].push_back(t);
-    return edges;
-}
-
 bool pinched(size_t triangles) { return triangles >= 4 && triangles % 2 == 0; }
 
 void checkManifold(const TriangleMesh& mesh, const std::unordered_map<uint64_t, std::vector<uint32_t>>& edges,
@@ -351,7 +341,7 @@ ValidationReport validateAndRepair(TriangleMesh& mesh, bool pinchedEdges) {
     report.weldedVertices = weld.welded;
     report.unusedVertices = weld.unused;
     checkTriangles(mesh);
-    const auto edges = edgeFaces(mesh);
+    const auto edges = edgeTriangles(mesh.triangles);
     checkManifold(mesh, edges, pinchedEdges);
     // Before orientation: nesting of shells means nothing once they cross.
     if (auto hit = findSelfIntersection(mesh))

@@ -342,6 +342,47 @@ void checkSurfacesMemory(const std::vector<TriangleMesh>& surfaces, const std::v
     }
 }
 
+// The cache file of the tets keyed `key`, or none (and why not, in stats.cacheProblem).
+std::filesystem::path cacheEntry(const TetOptions& options, uint64_t key, TetStats& stats) {
+    if (!options.useCache) {
+        stats.cacheProblem = "the cache is off";
+        return {};
+    }
+    const auto dir = cacheDirectory(options.cacheDir);
+    if (dir.empty()) {
+        stats.cacheProblem = "no cache folder: none of TETGLOW_CACHE_DIR, XDG_CACHE_HOME and HOME is set";
+        return {};
+    }
+    char name[32];
+    std::snprintf(name, sizeof name, "%016llx.tet", static_cast<unsigned long long>(key));
+    return dir / name;
+}
+
+void fillCacheEntry(const TetMesh& mesh, uint64_t key, const std::filesystem::path& file, TetStats& stats) {
+    std::error_code ec;
+    std::filesystem::create_directories(file.parent_path(), ec);
+    try {
+        writeTetMesh(mesh, key, file.string(), false);
+        stats.cacheFile = file.string();
+    } catch (const std::exception& e) {
+        // An unwritable cache only costs time on the next run.
+        stats.cacheProblem = e.what();
+    }
+}
+
+// The warning for the meshes whose boundary is approximate (the winding number's grid), each named.
+std::string approximationWarning(const std::vector<ValidationReport>& validations,
+                                 const std::vector<std::string>& names) {
+    std::string warning;
+    for (size_t i = 0; i < validations.size(); ++i) {
+        const RepairReport& r = validations[i].repair;
+        if (r.approximateReason.empty()) continue;
+        const std::string text = r.summary() + (r.reason.empty() ? "" : " (the input: " + r.reason + ")");
+        warning += (warning.empty() ? "" : "; ") + (names[i].empty() ? text : names[i] + ": " + text);
+    }
+    return warning;
+}
+
 }  // namespace
 
 void checkTetCount(double volume, double maxVolume) {
@@ -366,9 +407,6 @@ TetMesh tetrahedralize(std::vector<TriangleMesh> surfaces, const std::vector<std
     const auto start = std::chrono::steady_clock::now();
     if (reports) reports->clear();
     checkSurfacesMemory(surfaces, names);
-    const auto named = [&](size_t i, const std::string& text) {
-        return names[i].empty() ? text : names[i] + ": " + text;
-    };
     // The meshes as given, for approximateSurface when TetGen fails on what validation made of them.
     const std::vector<TriangleMesh> inputs = options.strict ? std::vector<TriangleMesh>{} : surfaces;
     std::vector<ValidationReport> validations(surfaces.size());
@@ -376,21 +414,11 @@ TetMesh tetrahedralize(std::vector<TriangleMesh> surfaces, const std::vector<std
         try {
             validations[i] = prepareSurface(surfaces[i], options.strict);
         } catch (const InputError& e) {
-            throw InputError(named(i, e.what()));
+            throw InputError(names[i].empty() ? e.what() : names[i] + ": " + e.what());
         }
     }
     TetStats local;
-    const auto noteApproximations = [&] {
-        local.approximateWarning.clear();
-        for (size_t i = 0; i < surfaces.size(); ++i) {
-            const RepairReport& r = validations[i].repair;
-            if (r.approximateReason.empty()) continue;
-            local.approximateWarning +=
-                (local.approximateWarning.empty() ? "" : "; ") +
-                named(i, r.summary() + (r.reason.empty() ? "" : " (the input: " + r.reason + ")"));
-        }
-    };
-    noteApproximations();
+    local.approximateWarning = approximationWarning(validations, names);
     double largestVolume = 0;  // the regions' union holds at least this much
     for (const ValidationReport& v : validations) largestVolume = std::max(largestVolume, v.volume);
     checkTetCount(largestVolume, options.maxVolume);
@@ -398,18 +426,7 @@ TetMesh tetrahedralize(std::vector<TriangleMesh> surfaces, const std::vector<std
     placeInsidePoints(boundary, surfaces, names);
     const std::string switches = options.switches();
     const uint64_t key = cacheKey(boundary, switches);
-    std::filesystem::path file;
-    if (options.useCache) {
-        if (auto dir = cacheDirectory(options.cacheDir); !dir.empty()) {
-            char name[32];
-            std::snprintf(name, sizeof name, "%016llx.tet", static_cast<unsigned long long>(key));
-            file = dir / name;
-        } else {
-            local.cacheProblem = "no cache folder: none of TETGLOW_CACHE_DIR, XDG_CACHE_HOME and HOME is set";
-        }
-    } else {
-        local.cacheProblem = "the cache is off";
-    }
+    std::filesystem::path file = cacheEntry(options, key, local);
     TetMesh mesh;
     std::string problem;
     CacheRead cached = file.empty() ? CacheRead::Absent : readTetMesh(mesh, key, file.string(), &problem);
@@ -449,7 +466,7 @@ TetMesh tetrahedralize(std::vector<TriangleMesh> surfaces, const std::vector<std
                 changed = true;
             }
             if (!changed) throw InputError(why);
-            noteApproximations();
+            local.approximateWarning = approximationWarning(validations, names);
             boundary = buildVolumeBoundary(surfaces, names);
             placeInsidePoints(boundary, surfaces, names);
             try {
@@ -460,17 +477,7 @@ TetMesh tetrahedralize(std::vector<TriangleMesh> surfaces, const std::vector<std
             file.clear();  // the entry is keyed by the surfaces TetGen failed on
             local.cacheProblem = "not cached: the boundary is approximate";
         }
-        if (!file.empty()) {
-            std::error_code ec;
-            std::filesystem::create_directories(file.parent_path(), ec);
-            try {
-                writeTetMesh(mesh, key, file.string(), false);
-                local.cacheFile = file.string();
-            } catch (const std::exception& e) {
-                // An unwritable cache only costs time on the next run.
-                local.cacheProblem = e.what();
-            }
-        }
+        if (!file.empty()) fillCacheEntry(mesh, key, file, local);
     }
     if (reports) *reports = validations;
     if (!local.approximateWarning.empty())
