@@ -85,9 +85,8 @@ def slug(title):
 LINK = re.compile(r"!?\[[^\]]*\]\(([^)\s]+)(?:\s+\"[^\"]*\")?\)")
 
 
-def check_links(root):
-    problems = []
-    docs = ["README.md", "bench/README.md"] + [f for f in tracked(root) if f.startswith("docs/") and f.endswith(".md")]
+def unfenced_lines(root, docs):
+    """(doc, line number, line) of each line outside ``` fences of the docs that exist."""
     for doc in sorted(set(docs)):
         if not os.path.isfile(os.path.join(root, doc)):
             continue
@@ -97,20 +96,26 @@ def check_links(root):
         for n, line in enumerate(lines, 1):
             if line.startswith("```"):
                 fenced = not fenced
-            if fenced:
+            if not fenced:
+                yield doc, n, line
+
+
+def check_links(root):
+    problems = []
+    docs = ["README.md", "bench/README.md"] + [f for f in tracked(root) if f.startswith("docs/") and f.endswith(".md")]
+    for doc, n, line in unfenced_lines(root, docs):
+        for target in LINK.findall(line):
+            if re.match(r"[a-z][a-z0-9+.-]*:", target):  # http:, https:, mailto:
                 continue
-            for target in LINK.findall(line):
-                if re.match(r"[a-z][a-z0-9+.-]*:", target):  # http:, https:, mailto:
-                    continue
-                path, _, anchor = target.partition("#")
-                file = os.path.normpath(os.path.join(root, os.path.dirname(doc), path)) if path else os.path.join(root, doc)
-                if not os.path.exists(file):
-                    problems.append(f"{doc}:{n}: link to a missing file: {target}")
-                elif anchor and file.endswith(".md"):
-                    with open(file, encoding="utf-8") as g:
-                        anchors = {slug(t) for _, t in headings(g.read().splitlines())}
-                    if anchor not in anchors:
-                        problems.append(f"{doc}:{n}: link to a missing heading: {target}")
+            path, _, anchor = target.partition("#")
+            file = os.path.normpath(os.path.join(root, os.path.dirname(doc), path)) if path else os.path.join(root, doc)
+            if not os.path.exists(file):
+                problems.append(f"{doc}:{n}: link to a missing file: {target}")
+            elif anchor and file.endswith(".md"):
+                with open(file, encoding="utf-8") as g:
+                    anchors = {slug(t) for _, t in headings(g.read().splitlines())}
+                if anchor not in anchors:
+                    problems.append(f"{doc}:{n}: link to a missing heading: {target}")
     return problems
 
 
@@ -276,17 +281,8 @@ def check_code(root):
             problems.append(f"{path}:{n}: names {name}, which the code does not have")
 
     docs = [f for f in tracked(root) if re.fullmatch(r"docs/[^/]+\.md", f)] + list(CODE_DOCS)
-    for doc in sorted(set(docs)):
-        if not os.path.isfile(os.path.join(root, doc)):
-            continue
-        with open(os.path.join(root, doc), encoding="utf-8") as f:
-            lines = f.read().splitlines()
-        fenced = False
-        for n, line in enumerate(lines, 1):
-            if line.startswith("```"):
-                fenced = not fenced
-            if fenced or line.startswith("<!--"):
-                continue
+    for doc, n, line in unfenced_lines(root, docs):
+        if not line.startswith("<!--"):
             # CamelCase only in backticks: prose names TetGen, OpenEXR and GitHub too. A span that is
             # one capitalized word (`Scene`) is a type name as well.
             spans = BACKTICKS.findall(line)
