@@ -24,8 +24,7 @@ PreviewProcess::PreviewProcess(const std::string& args, const std::string& errPa
     if (pipe(out) != 0) throw std::runtime_error("pipe");
     // TETGLOW_TEST_BINARY: another build, to see a test fail on the code before its fix.
     const char* binary = std::getenv("TETGLOW_TEST_BINARY") ? std::getenv("TETGLOW_TEST_BINARY") : TETGLOW_BINARY;
-    const std::string cache =
-        std::filesystem::temp_directory_path() / ("tetglow-preview-cache-" + std::to_string(getpid()));
+    const std::string cache = processScratchDir() + "/preview-cache";
     const std::string command =
         "TETGLOW_CACHE_DIR=" + cache + " exec " + binary + " preview " + args + " 2>" + errPath + " </dev/null";
     pid_ = fork();

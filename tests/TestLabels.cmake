@@ -13,7 +13,7 @@
 set(cli_cases
   BadInput CommandLine CompareBoundaryCommand GenerateFormats InitCommand Loops Memory Messages
   OptionValues OutputFaults PbrtConvert PreviewCommand PreviewServer RegionsCommand RenderCommand
-  RenderStops RepairNotes SceneLimits GltfBlender
+  RenderStops RepairNotes SceneLimits ScratchFolders GltfBlender
   CloudGenerator.CommandWritesTheCloud
   ExternalReferences.ConvertRefusesAModelThatReadsOutside
   "Farm.(DryRunPrintsTheJobsItWouldSubmit|HelpSaysWhatEachTaskGets|TakesTheOutputFromTheScene)"

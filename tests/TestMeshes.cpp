@@ -85,18 +85,44 @@ void PrintTo(const NamedMesh& m, std::ostream* os) { *os << m.name; }
 
 std::string meshName(const testing::TestParamInfo<NamedMesh>& info) { return info.param.name; }
 
+namespace {
+std::filesystem::path testDirOf(const testing::TestInfo& info) {
+    return std::filesystem::temp_directory_path() / ("tetglow-test-" + std::to_string(::getpid()) + "-" +
+                                                     info.test_suite_name() + "." + info.name());
+}
+
+// ctest runs every test in a process of its own, so folders named by process would pile up in
+// /tmp run after run: a test's folder goes when it passes (a failure keeps it to look at), the
+// process's scratch when the program ends.
+class ScratchCleanup : public testing::EmptyTestEventListener {
+    void OnTestEnd(const testing::TestInfo& info) override {
+        if (!info.result()->Failed()) {
+            std::error_code ignored;
+            std::filesystem::remove_all(testDirOf(info), ignored);
+        }
+    }
+    void OnTestProgramEnd(const testing::UnitTest&) override {
+        std::error_code ignored;
+        std::filesystem::remove_all(processScratchDir(), ignored);
+    }
+};
+const bool kScratchCleanup = (testing::UnitTest::GetInstance()->listeners().Append(new ScratchCleanup), true);
+}  // namespace
+
 std::string tempDir() {
     // One directory per test, emptied the first time the test asks for it.
     static std::string current;
-    const auto* info = testing::UnitTest::GetInstance()->current_test_info();
-    const auto dir = std::filesystem::temp_directory_path() / ("tetglow-test-" + std::to_string(::getpid()) + "-" +
-                                                               info->test_suite_name() + "." + info->name());
+    const auto dir = testDirOf(*testing::UnitTest::GetInstance()->current_test_info());
     if (current != dir.string()) {
         std::filesystem::remove_all(dir);
         std::filesystem::create_directories(dir);
         current = dir.string();
     }
     return current;
+}
+
+std::string processScratchDir() {
+    return std::filesystem::temp_directory_path() / ("tetglow-run-" + std::to_string(::getpid()));
 }
 
 std::string writeTemp(const std::string& name, const std::string& contents) {
@@ -127,7 +153,7 @@ std::string readError(const std::string& path, const std::string& node) {
 }
 
 CommandResult runTetglow(const std::string& args, int timeoutSeconds) {
-    const std::string dir = std::filesystem::temp_directory_path() / ("tetglow-run-" + std::to_string(::getpid()));
+    const std::string dir = processScratchDir();
     std::filesystem::create_directories(dir);
     const std::string out = dir + "/out", err = dir + "/err";
     // TETGLOW_TEST_BINARY runs the command-line tests against another build, e.g. to see a

@@ -49,7 +49,10 @@ inline TetOptions noCache() {
     return o;
 }
 
+// This test's own folder, removed when the test passes.
 std::string tempDir();
+// This test process's scratch folder (runTetglow's output and tet cache), removed when it ends.
+std::string processScratchDir();
 // Writes `contents` byte for byte to `name` (which may name sub-folders) in tempDir().
 std::string writeTemp(const std::string& name, const std::string& contents);
 

@@ -276,8 +276,7 @@ TEST(Farm, PreambleAndSetupLinesRunFirstInEveryJob) {
 // reporting success and leaving every task to tetrahedralize again.
 TEST(Farm, CacheJobFailsWhenTheCacheCannotBeWritten) {
     // runTetglow's cache folder, taken by a file.
-    const std::string cache =
-        (std::filesystem::temp_directory_path() / ("tetglow-run-" + std::to_string(::getpid())) / "cache").string();
+    const std::string cache = processScratchDir() + "/cache";
     std::filesystem::remove_all(cache);
     std::filesystem::create_directories(std::filesystem::path(cache).parent_path());
     std::ofstream(cache) << "not a folder";

@@ -1,20 +1,16 @@
 #include "cli/BoundaryReport.h"
 
+#include "cli/NumberText.h"
+
 namespace tetglow::cli {
 
 namespace {
 
-std::string format(const char* pattern, double value) {
-    char text[64];
-    std::snprintf(text, sizeof text, pattern, value);
-    return text;
-}
-
-std::string region(double offset) { return offset > 0 ? format("shell %.0e diag.", offset) : "bounding box"; }
+std::string region(double offset) { return offset > 0 ? numberText("shell %.0e diag.", offset) : "bounding box"; }
 
 std::string rate(size_t errors, size_t n) {
     if (errors == 0) return "0";
-    return format("%.3g%%", 100.0 * double(errors) / double(n)) + " (" + std::to_string(errors) + ")";
+    return numberText("%.3g%%", 100.0 * double(errors) / double(n)) + " (" + std::to_string(errors) + ")";
 }
 
 // Mean over the regions of each method's time per query (every region has as many points).
@@ -46,7 +42,7 @@ void printText(std::FILE* out, const MediumReport& r) {
     std::fprintf(out, "\n");
     for (const auto& row : rows) {
         std::fprintf(out, "%-22s %-9s", region(row.offset).c_str(),
-                     format("%.1f%%", 100.0 * double(row.inside) / double(row.scored)).c_str());
+                     numberText("%.1f%%", 100.0 * double(row.inside) / double(row.scored)).c_str());
         for (const auto& m : row.methods) std::fprintf(out, " %-18s", rate(m.errors, row.scored).c_str());
         std::fprintf(out, "\n");
     }
@@ -77,7 +73,7 @@ void printText(std::FILE* out, const MediumReport& r) {
     const double tetTime = chords.methods.front().secondsPerRay;
     for (const auto& m : chords.methods)
         std::fprintf(out, "%-14s %-10s %-12.4g %-12.4g %-12.4g %-10.4g %-10.3g %.3g\n", m.method.c_str(),
-                     m.step > 0 ? format("%.4g", m.step).c_str() : "-", r.sigmaT * m.meanAbsError,
+                     m.step > 0 ? numberText("%.4g", m.step).c_str() : "-", r.sigmaT * m.meanAbsError,
                      r.sigmaT * m.maxAbsError, r.sigmaT * m.meanError, m.relativeError, 1e6 * m.secondsPerRay,
                      m.secondsPerRay / tetTime);
     std::fprintf(out, "\n");
@@ -131,7 +127,7 @@ std::string csvHeader() {
 std::string csvRows(const MediumReport& r) {
     std::string csv;
     const std::string name = csvQuoted(r.name);
-    auto number = [](double v) { return format("%.9g", v); };
+    auto number = [](double v) { return numberText("%.9g", v); };
     for (const auto& row : r.comparison.classification)
         for (const auto& m : row.methods)
             csv += name + ",classification," + number(row.offset) + ",," + m.method + "," + std::to_string(row.scored) +

@@ -5,19 +5,11 @@
 #include <cmath>
 #include <cstdio>
 
+#include "cli/NumberText.h"
 #include "render/AdaptiveSampling.h"
 #include "scene/SceneDescription.h"
 
 namespace tetglow::cli {
-namespace {
-
-std::string format(const char* pattern, double value) {
-    char text[64];
-    std::snprintf(text, sizeof text, pattern, value);
-    return text;
-}
-
-}  // namespace
 
 double passesForNoise(int passes, double noise, double target, double planned) {
     if (planned > 0) return planned;
@@ -33,8 +25,8 @@ Progress::Progress(std::string label, RenderPlan plan)
     : label_(std::move(label)), plan_(std::move(plan)), terminal_(isatty(STDERR_FILENO)) {
     if (!openEnded()) return;
     std::string stops;
-    if (plan_.noiseTarget > 0) stops += format("at noise %g (estimated relative MSE), ", plan_.noiseTarget);
-    if (plan_.timeLimit > 0) stops += format("after %g s, ", plan_.timeLimit);
+    if (plan_.noiseTarget > 0) stops += numberText("at noise %g (estimated relative MSE), ", plan_.noiseTarget);
+    if (plan_.timeLimit > 0) stops += numberText("after %g s, ", plan_.timeLimit);
     stops += "or after " + std::to_string(plan_.passes) + " passes (" + plan_.passesFrom + ")";
     std::fprintf(stderr, "%s: stops %s, whichever comes first\n", label_.c_str(), stops.c_str());
 }
@@ -58,7 +50,7 @@ void Progress::pass(const PassReport& r) {
         if (!warned_ && needed > plan_.passes) {
             warned_ = true;
             line("warning: by the estimate after pass " + std::to_string(r.passes) +
-                 format(", the noise target %g needs ", plan_.noiseTarget) + passesInWords(needed) +
+                 numberText(", the noise target %g needs ", plan_.noiseTarget) + passesInWords(needed) +
                  ", more than the cap of " + std::to_string(plan_.passes) + " (" + plan_.passesFrom +
                  "): the render stops at the cap" +
                  (needed <= kMaxSpp ? "; raise it with --spp " + std::to_string(int(needed)) : ""));
@@ -76,8 +68,8 @@ void Progress::pass(const PassReport& r) {
     const std::string of =
         plan_.passes > 0 ? (openEnded() ? " of at most " : " of ") + std::to_string(plan_.passes) : "";
     const bool bounded = plan_.passes < kMaxSpp || plan_.timeLimit > 0;
-    const std::string remaining = !pending  ? format("%.1f s left", left)
-                                  : bounded ? format("at most %.1f s left", left)
+    const std::string remaining = !pending  ? numberText("%.1f s left", left)
+                                  : bounded ? numberText("at most %.1f s left", left)
                                             : "time left: from the second pass";
     std::fprintf(stderr, "%s%s: pass %d%s, %.1f s, %s, %s%s", terminal_ ? "\r" : "", label_.c_str(), r.passes,
                  of.c_str(), r.seconds, remaining.c_str(), noise, terminal_ ? "   " : "\n");
@@ -105,13 +97,13 @@ void Progress::finish(const RenderResult& result) {
     finish();
     if (!openEnded() || result.stop == RenderStop::Cancelled) return;
     const std::string passes = std::to_string(result.passes) + " passes";
-    const std::string noise = result.noise ? format("noise %.3g", *result.noise) : "no noise estimate";
-    const std::string target = format("the noise target %g", plan_.noiseTarget);
+    const std::string noise = result.noise ? numberText("noise %.3g", *result.noise) : "no noise estimate";
+    const std::string target = numberText("the noise target %g", plan_.noiseTarget);
     std::string text;
     if (result.stop == RenderStop::Noise) {
         text = "reached " + target + " after " + passes + " (" + noise + ")";
     } else if (result.stop == RenderStop::Time) {
-        text = format("stopped by the time limit of %g s", plan_.timeLimit) + " after " + passes;
+        text = numberText("stopped by the time limit of %g s", plan_.timeLimit) + " after " + passes;
         if (plan_.noiseTarget > 0) text += ", before " + target + " (" + noise + ")";
     } else {
         text = "stopped at the cap of " + passes + " (" + plan_.passesFrom + ")";
@@ -124,7 +116,7 @@ void Progress::finish(const RenderResult& result) {
                         (needed <= kMaxSpp ? " (--spp " + std::to_string(int(needed)) + ")" : "");
             }
         } else {
-            text += format(", before the time limit of %g s", plan_.timeLimit);
+            text += numberText(", before the time limit of %g s", plan_.timeLimit);
         }
     }
     std::fprintf(stderr, "%s: %s\n", label_.c_str(), text.c_str());
