@@ -87,8 +87,8 @@ std::string meshName(const testing::TestParamInfo<NamedMesh>& info) { return inf
 
 namespace {
 std::filesystem::path testDirOf(const testing::TestInfo& info) {
-    return std::filesystem::temp_directory_path() / ("tetglow-test-" + std::to_string(::getpid()) + "-" +
-                                                     info.test_suite_name() + "." + info.name());
+    return std::filesystem::temp_directory_path() /
+           ("tetglow-test-" + std::to_string(::getpid()) + "-" + info.test_suite_name() + "." + info.name());
 }
 
 // ctest runs every test in a process of its own, so folders named by process would pile up in
