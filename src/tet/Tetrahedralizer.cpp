@@ -460,8 +460,12 @@ TetMesh tetrahedralize(std::vector<TriangleMesh> surfaces, const std::vector<std
                 if (!validations[i].repair.approximateReason.empty()) continue;
                 surfaces[i] = inputs[i];
                 const std::string validation = validations[i].repair.reason;
-                validations[i] = approximateSurface(
-                    surfaces[i], "TetGen failed on the validated surface (" + oneLine(failure.what()) + ")");
+                try {
+                    validations[i] = approximateSurface(
+                        surfaces[i], "TetGen failed on the validated surface (" + oneLine(failure.what()) + ")");
+                } catch (const InputError& e) {
+                    throw InputError(why + "; and on the winding number's grid: " + e.what());
+                }
                 validations[i].repair.reason = validation;
                 changed = true;
             }
