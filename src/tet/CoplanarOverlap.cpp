@@ -1,6 +1,7 @@
 #include "tet/CoplanarOverlap.h"
 
 #include <map>
+#include <set>
 
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
@@ -92,27 +93,39 @@ void triangulateUnion(const TriangleMesh& soup, const std::vector<uint32_t>& gro
             cdt.insert(plane.project(c[0]));
         else
             cdt.insert_constraint(plane.project(c[0]), plane.project(c[1]));
-    // Every member's edges are constraints, so each face lies wholly inside or outside each member:
-    // its centroid decides, strictly.
-    const auto inside = [](const Point2& p, const std::array<Point2, 3>& m) {
-        const auto s = CGAL::orientation(m[0], m[1], m[2]);
-        return CGAL::orientation(m[0], m[1], p) == s && CGAL::orientation(m[1], m[2], p) == s &&
-               CGAL::orientation(m[2], m[0], p) == s;
-    };
     std::map<Cdt::Vertex_handle, uint32_t> index;
     const auto vertex = [&](Cdt::Vertex_handle v) {
         auto [it, added] = index.emplace(v, uint32_t(positions.size()));
         if (added) positions.push_back(plane.lift(v->point()));
         return it->second;
     };
-    for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) {
-        const Point2 c = CGAL::centroid(f->vertex(0)->point(), f->vertex(1)->point(), f->vertex(2)->point());
-        const CGAL::Bbox_2 box = c.bbox();
-        for (const auto& m : members) {
-            const CGAL::Bbox_2 mbox = m[0].bbox() + m[1].bbox() + m[2].bbox();
-            if (CGAL::do_overlap(box, mbox) && inside(c, m)) {
+    // Every member's edges are constraints, so the faces inside a member are those reached from
+    // the one at its centroid without crossing its edges: an edge inside it with both ends on one
+    // of its edges' lines lies on that edge (the member is convex). A walk per member costs its
+    // own faces, not all faces times all members.
+    std::map<Cdt::Face_handle, size_t> visitedBy;  // the last member whose walk reached the face
+    std::set<Cdt::Face_handle> emitted;
+    for (size_t k = 0; k < members.size(); ++k) {
+        const auto& m = members[k];
+        const auto onEdge = [&](const Point2& a, const Point2& b) {
+            for (int e = 0; e < 3; ++e)
+                if (CGAL::collinear(m[e], m[(e + 1) % 3], a) && CGAL::collinear(m[e], m[(e + 1) % 3], b)) return true;
+            return false;
+        };
+        std::vector<Cdt::Face_handle> stack{cdt.locate(CGAL::centroid(m[0], m[1], m[2]))};
+        visitedBy[stack[0]] = k;
+        while (!stack.empty()) {
+            const Cdt::Face_handle f = stack.back();
+            stack.pop_back();
+            if (emitted.insert(f).second)
                 out.push_back({vertex(f->vertex(0)), vertex(f->vertex(1)), vertex(f->vertex(2))});
-                break;
+            for (int i = 0; i < 3; ++i) {
+                if (onEdge(f->vertex(Cdt::cw(i))->point(), f->vertex(Cdt::ccw(i))->point())) continue;
+                const Cdt::Face_handle g = f->neighbor(i);
+                if (auto [it, added] = visitedBy.emplace(g, k); added || it->second != k) {
+                    it->second = k;
+                    stack.push_back(g);
+                }
             }
         }
     }
