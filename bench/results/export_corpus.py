@@ -324,6 +324,9 @@ def cases():
     below = ([(x, y, -0.01) for x, y, _ in ground[0]], ground[1])
     add("letters-over-ground.glb", "the letters 0.01 above the ground quad", lambda p: write_glb(
         p, [s for _, s in letters] + [below], [{"mesh": i} for i in range(4)]), 0.04 + 0.04 + 0.016)
+    labelled, v_labelled = spheres_with_labels()
+    add("labelled-spheres.glb", "18 spheres, some overlapping or touching, 9 label quads on them, 37k triangles",
+        lambda p: write_glb(p, labelled, [{"mesh": i} for i in range(len(labelled))]), v_labelled)
     add("sheet.obj", "one quad", lambda p: write_obj(p, [("q", ground)]), REFUSE)
     add("flat-concave.obj", "a flat concave polygon", lambda p: write_obj(p, [("L", ([(x, y, 0) for x, y in ell],
                                                                                      [tuple(range(6))]))]), REFUSE)
@@ -341,6 +344,40 @@ def cases():
     add("engine.obj", "the 67-part engine (engine_mesh.py), 111k triangles",
         lambda p: engine_mesh.write_obj(p, engine_mesh.engine()), None)
     return c
+
+
+def lens_volume(r1, r2, d):
+    """The volume two balls of radii r1, r2 whose centres are d apart share (closed form)."""
+    if d >= r1 + r2:
+        return 0.0
+    return math.pi * (r1 + r2 - d) ** 2 * (d * d + 2 * d * (r1 + r2) - 3 * (r1 - r2) ** 2) / (12 * d)
+
+
+def spheres_with_labels():
+    """18 icospheres in three rows, some pairs overlapping and some touching, and 9 label quads
+    facing up on the tops of nine: 1/1000 above, through the top vertex, or 3/1000 into the cap.
+    (meshes, truth): the union of the polyhedra, each overlap the lens of the two balls scaled
+    by the polyhedra's share of their balls' volume (the caps labels cut off are under 1e-4)."""
+    gaps = [[1.6, 3, 2.0, 3, 1.7], [3, 3, 1.7, 3, 3], [2.0, 3, 3, 1.8, 3]]
+    centres = []
+    for row, g in enumerate(gaps):
+        x = 0.0
+        for k in range(6):
+            centres.append((x, 4.0 * row, 0.0))
+            x += g[k] if k < 5 else 0
+    spheres = [sphere(4 if i % 5 == 0 else 3, 1.0, c) for i, c in enumerate(centres)]
+    share = [volume(s) / (4 * math.pi / 3) for s in spheres]
+    truth = sum(volume(s) for s in spheres)
+    for i in range(len(centres) - 1):
+        if centres[i][1] == centres[i + 1][1]:
+            truth -= lens_volume(1, 1, math.dist(centres[i], centres[i + 1])) * (share[i] + share[i + 1]) / 2
+    labels = []
+    for n, i in enumerate(range(0, 18, 2)):
+        x, y, _ = centres[i]
+        z = 1.0 + (0.001, 0.0, -0.003)[n % 3]
+        labels.append(([(x - 0.3, y - 0.15, z), (x + 0.3, y - 0.15, z), (x + 0.3, y + 0.15, z),
+                        (x - 0.3, y + 0.15, z)], [(0, 1, 2, 3)]))
+    return spheres + labels, truth
 
 
 def cylinder(radius, z0, z1, sides):

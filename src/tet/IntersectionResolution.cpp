@@ -15,6 +15,7 @@
 #include <glm/mat3x3.hpp>
 #include <glm/matrix.hpp>
 
+#include "tet/CoplanarOverlap.h"
 #include "tet/MeshMessage.h"
 #include "tet/MeshValidation.h"
 #include "tet/SelfIntersection.h"
@@ -29,6 +30,9 @@ using SurfaceMesh = CGAL::Surface_mesh<Point>;
 namespace PMP = CGAL::Polygon_mesh_processing;
 
 constexpr int kMaxRounds = 4;
+// Splitting coplanar overlaps can leave a vertex on the edge of a coplanar neighbour, which the
+// next round splits in turn.
+constexpr int kMaxCoplanarRounds = 4;
 
 // Splitting costs CGAL about a millisecond of exact arithmetic per point where three triangles
 // cross (each becomes a vertex of the pieces): 40 thin boxes crossing in general position
@@ -159,7 +163,16 @@ SoupCleaning dropDegenerateAndDuplicates(TriangleMesh& soup) {
 ResolvedSurface resolveIntersections(const TriangleMesh& soup, std::vector<std::pair<uint32_t, uint32_t>> crossings) {
     ResolvedSurface r;
     r.surface = soup;
+    int coplanarRounds = 0;
     for (int round = 0; round < kMaxRounds && !crossings.empty(); ++round) {
+        // Coplanar overlaps first, by their own exact triangulation: CGAL 5.5 gives up on them.
+        while (coplanarRounds < kMaxCoplanarRounds && splitCoplanarOverlaps(r.surface, crossings)) {
+            ++coplanarRounds;
+            weldVertices(r.surface);
+            dropDegenerateAndDuplicates(r.surface);
+            crossings = findSelfIntersections(r.surface);
+        }
+        if (crossings.empty()) break;
         if (const size_t points = triplePoints(r.surface, crossings); points > kMaxTriplePoints) {
             r.unsplitReason = "splitting them would take minutes: their planes meet inside three of them at " +
                               std::to_string(points) + " points, more than " + std::to_string(kMaxTriplePoints);

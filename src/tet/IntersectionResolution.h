@@ -31,10 +31,11 @@ struct ResolvedSurface {
 // (SelfIntersection.h), which the caller has already. Splits every intersecting pair with CGAL's
 // autorefinement (exact predicates; intersection points constructed exactly, then rounded to
 // double), rounds the new vertices to float for Embree, welds and cleans, and checks again
-// with exact predicates: rounding can make new crossings, which the next round splits. Where
-// CGAL fails (it crashes on some coplanar overlaps), splitting would take minutes (too many
-// points where three triangles cross) or crossings remain after a few rounds, the triangles
-// still crossing are left out, so that the rest stays exact.
+// with exact predicates: rounding can make new crossings, which the next round splits.
+// Coplanar overlaps and contacts in a triangle's plane are split first (splitCoplanarOverlaps).
+// Where CGAL fails, splitting would take minutes (too many points where three triangles cross)
+// or crossings remain after a few rounds, the triangles still crossing are left out, so that
+// the rest stays exact.
 ResolvedSurface resolveIntersections(const TriangleMesh& soup, std::vector<std::pair<uint32_t, uint32_t>> crossings);
 
 }  // namespace tetglow

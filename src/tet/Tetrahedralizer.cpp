@@ -455,21 +455,20 @@ TetMesh tetrahedralize(std::vector<TriangleMesh> surfaces, const std::vector<std
         } catch (const InputError& failure) {
             const std::string why = namedError(names, failure.what());
             // Every mesh not yet approximate is approximated: TetGen does not say which one it failed on.
-            bool changed = false;
-            for (size_t i = 0; i < inputs.size(); ++i) {
-                if (!validations[i].repair.approximateReason.empty()) continue;
-                surfaces[i] = inputs[i];
-                const std::string validation = validations[i].repair.reason;
-                validations[i] = approximateSurface(
-                    surfaces[i], "TetGen failed on the validated surface (" + oneLine(failure.what()) + ")");
-                validations[i].repair.reason = validation;
-                changed = true;
-            }
-            if (!changed) throw InputError(why);
-            local.approximateWarning = approximationWarning(validations, names);
-            boundary = buildVolumeBoundary(surfaces, names);
-            placeInsidePoints(boundary, surfaces, names);
+            const auto exact = [](const ValidationReport& v) { return v.repair.approximateReason.empty(); };
+            if (inputs.empty() || std::none_of(validations.begin(), validations.end(), exact)) throw InputError(why);
             try {
+                for (size_t i = 0; i < inputs.size(); ++i) {
+                    if (!exact(validations[i])) continue;
+                    surfaces[i] = inputs[i];
+                    const std::string validation = validations[i].repair.reason;
+                    validations[i] = approximateSurface(
+                        surfaces[i], "TetGen failed on the validated surface (" + oneLine(failure.what()) + ")");
+                    validations[i].repair.reason = validation;
+                }
+                local.approximateWarning = approximationWarning(validations, names);
+                boundary = buildVolumeBoundary(surfaces, names);
+                placeInsidePoints(boundary, surfaces, names);
                 mesh = assemble(boundary, runIsolated(boundary, switches), names);
             } catch (const InputError& e) {
                 throw InputError(why + "; on the approximate boundary too: " + e.what());

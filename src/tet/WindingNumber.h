@@ -19,7 +19,9 @@ public:
 
     // Barill et al. 2018's tree: a cluster of triangles farther than kFarRatio times its radius
     // counts as its area-weighted dipole, nearer ones triangle by triangle. Within about 2e-2
-    // of exact for a point off the surface (see WindingNumber.ExactVersusTree).
+    // of exact for a point off the surface (see WindingNumber.ExactVersusTree). A cluster made
+    // of whole closed, consistently wound shells adds exactly 0 outside its bounding sphere, so
+    // many disjoint shells cost a point only those whose sphere holds it.
     double approximate(const glm::dvec3& p) const;
     // Every triangle's solid angle summed (Van Oosterom-Strackee), O(triangles).
     double exact(const glm::dvec3& p) const;
@@ -40,17 +42,22 @@ private:
         double radius = 0;                      // the farthest corner from centre
         double areaSum = 0;                     // sum of the triangles' areas
         uint32_t begin = 0, end = 0, left = 0;  // triangles order_[begin, end); children left, left + 1 (0: a leaf)
+        bool sealed = false;                    // whole closed shells only: 0 outside the radius
     };
     double solidAngle(uint32_t t, const glm::dvec3& p) const {
         return tetglow::solidAngle(soup_.corner(t, 0), soup_.corner(t, 1), soup_.corner(t, 2), p);
     }
+    void findShells();
     void build(uint32_t index, uint32_t begin, uint32_t end);
+    void sealClusters();
     // A value on the exact winding number's side of `level`.
     double certified(const glm::dvec3& p, double level) const;
 
     const TriangleMesh& soup_;
     std::vector<uint32_t> order_;
     std::vector<Node> nodes_;
+    std::vector<uint32_t> shell_;          // by triangle: its small closed shell, or kNoShell
+    std::vector<glm::dvec3> shellCentre_;  // by shell: its triangles' mean centroid
 };
 
 }  // namespace tetglow
