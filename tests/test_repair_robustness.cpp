@@ -99,9 +99,10 @@ TEST(RepairRobustness, PerforatedSpheresKeepTheirVolume) {
         EXPECT_NEAR(o.mesh.volume(), o.mesh.surfaceVolume(), 1e-9 * expected) << fraction;
         // Where TetGen still fails on every lattice (20% with Debian 12's TetGen 1.5), the grid
         // stands in, and the warning says so and why.
-        if (!o.report.repair.approximateReason.empty())
+        if (!o.report.repair.approximateReason.empty()) {
             EXPECT_NE(o.stats.approximateWarning.find("because TetGen crashed"), std::string::npos)
                 << o.stats.approximateWarning;
+        }
     }
 }
 
