@@ -19,6 +19,7 @@
 #include "base/ChildProcess.h"
 #include "base/ExternalReference.h"
 #include "base/InputFile.h"
+#include "scene/GltfDraco.h"
 #include "scene/MeshWeld.h"
 #include "tet/MeshMessage.h"
 #include "tet/MeshValidation.h"
@@ -300,6 +301,8 @@ struct Imported {
 };
 
 Imported import(std::string data, const std::string& path, SceneMeshFormat format, const std::string& node) {
+    if (format == SceneMeshFormat::Gltf || format == SceneMeshFormat::Glb)
+        if (std::optional<std::string> plain = withDracoDecoded(path, data)) data = std::move(*plain);
     // Named beside the real file, so that the names inside it resolve against its folder.
     const std::string name =
         (std::filesystem::path(path).parent_path() / ".tetglow-mesh.").string() + extension(format);

@@ -27,7 +27,8 @@ uint32_t readU32(const std::string& data, size_t at) {
     return v;
 }
 
-// The JSON chunk of a GLB, and its BIN chunk (the first buffer when that has no URI).
+}  // namespace
+
 std::pair<std::string, std::string> splitGlb(const std::string& data, const std::string& path) {
     const auto fail = [&](const std::string& what) { throw InputError(path + ": GLB container: " + what); };
     if (data.size() < 20) fail("shorter than its 12-byte header and one chunk header");
@@ -50,6 +51,8 @@ std::pair<std::string, std::string> splitGlb(const std::string& data, const std:
     }
     return {std::move(json), std::move(bin)};
 }
+
+namespace {
 
 std::string decodeBase64(const std::string& text, const JsonValue& where) {
     std::string out;

@@ -13,6 +13,7 @@
 #include <initializer_list>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include <glm/mat4x4.hpp>
@@ -37,6 +38,10 @@ struct GltfDocument {
 // named by a relative URI are read from the file's folder (never outside it), `data:` URIs
 // decoded. Throws InputError "<path>: <JSON pointer>: <problem>".
 GltfDocument readGltfDocument(const std::string& path, std::string data);
+
+// The JSON chunk of the GLB container `data` read from `path`, and its BIN chunk (the first
+// buffer when that has no URI). Throws InputError "<path>: GLB container: <problem>".
+std::pair<std::string, std::string> splitGlb(const std::string& data, const std::string& path);
 
 // True when `data` is a GLB container (its first four bytes are "glTF").
 bool isGlb(const std::string& data);

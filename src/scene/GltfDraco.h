@@ -5,6 +5,8 @@
 // is checked against the accessors' count, min and max.
 #pragma once
 #include <cstdint>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -19,5 +21,12 @@ namespace tetglow {
 // does not match the accessors.
 void decodeDracoPrimitive(const GltfDocument& doc, const JsonValue& primitive, const JsonValue& draco,
                           std::vector<glm::dvec3>& positions, std::vector<uint32_t>& indices);
+
+// The glTF or GLB file `data` read from `path` with every Draco-compressed primitive decoded
+// into plain accessors (POSITION as floats, indices as 32-bit integers, in one new buffer held as
+// a data: URI) and the extension dropped, in the container it came in; nullopt when nothing is
+// compressed. For Assimp 5.2, whose own decoding loses 32-bit indices (assimp issue 4789: "Invalid
+// accessor without data"), so that a mesh file read through it has its nodes read as before.
+std::optional<std::string> withDracoDecoded(const std::string& path, const std::string& data);
 
 }  // namespace tetglow
