@@ -85,15 +85,14 @@ int GltfBuilder::addDracoMesh(const TriangleMesh& mesh, int material, int quanti
     if (const draco::Status s = encoder.EncodeMeshToBuffer(d, &out); !s.ok())
         throw std::runtime_error("Draco encoding failed: " + s.error_msg_string());
     // Edgebreaker may reorder and split vertices: the accessors count what the decoder gives.
-    const int p = push("accessors", {{"componentType", 5126},
-                                     {"count", encoder.num_encoded_points()},
-                                     {"type", "VEC3"},
-                                     {"min", lo},
-                                     {"max", hi}});
+    const int p = push(
+        "accessors",
+        {{"componentType", 5126}, {"count", encoder.num_encoded_points()}, {"type", "VEC3"}, {"min", lo}, {"max", hi}});
     // 16-bit indices where they reach every vertex, as Blender's exporter and gltf-pipeline write them.
     const int componentType = encoder.num_encoded_points() <= 65536 ? 5123 : 5125;
     const int i =
-        push("accessors", {{"componentType", componentType}, {"count", encoder.num_encoded_faces() * 3}, {"type", "SCALAR"}});
+        push("accessors",
+             {{"componentType", componentType}, {"count", encoder.num_encoded_faces() * 3}, {"type", "SCALAR"}});
     const int view = addView(std::string(out.data(), out.size()));
     nlohmann::json primitive = {
         {"attributes", {{"POSITION", p}}},

@@ -301,8 +301,6 @@ struct Imported {
 };
 
 Imported import(std::string data, const std::string& path, SceneMeshFormat format, const std::string& node) {
-    if (format == SceneMeshFormat::Gltf || format == SceneMeshFormat::Glb)
-        if (std::optional<std::string> plain = withDracoDecoded(path, data)) data = std::move(*plain);
     // Named beside the real file, so that the names inside it resolve against its folder.
     const std::string name =
         (std::filesystem::path(path).parent_path() / ".tetglow-mesh.").string() + extension(format);
@@ -454,6 +452,9 @@ TriangleMesh parseSceneMeshes(std::string data, const std::string& path, SceneMe
     try {
         answer = runInChild(
             [&] {
+                // Draco data decoded here, in the child too: its decoder runs on the file's bytes.
+                if (format == SceneMeshFormat::Gltf || format == SceneMeshFormat::Glb)
+                    if (std::optional<std::string> plain = withDracoDecoded(path, data)) data = std::move(*plain);
                 Imported r = import(std::move(data), path, format, node);
                 ByteWriter m;
                 m.addStrings(r.warnings);

@@ -56,7 +56,7 @@ std::string readDracoCounts(std::string_view bytes, DracoCounts& counts) {
         const uint16_t v2 = DRACO_BITSTREAM_VERSION(2, 0);
         if (!buffer.Decode(&traversal)) return cut;
         if (version < DRACO_BITSTREAM_VERSION(2, 2) && !count(v2, skipped)) return cut;  // new vertices
-        if (!count(v2, skipped) || !count(v2, counts.faces)) return cut;                   // encoded vertices, faces
+        if (!count(v2, skipped) || !count(v2, counts.faces)) return cut;                 // encoded vertices, faces
     } else {
         return "unknown connectivity coding " + std::to_string(header.encoder_method);
     }

@@ -25,8 +25,8 @@ void decodeDracoPrimitive(const GltfDocument& doc, const JsonValue& primitive, c
 // The glTF or GLB file `data` read from `path` with every Draco-compressed primitive decoded
 // into plain accessors (POSITION as floats, indices as 32-bit integers, in one new buffer held as
 // a data: URI) and the extension dropped, in the container it came in; nullopt when nothing is
-// compressed. For Assimp 5.2, whose own decoding loses 32-bit indices (assimp issue 4789: "Invalid
-// accessor without data"), so that a mesh file read through it has its nodes read as before.
+// compressed. For Assimp 5.2, whose own decoding loses 32-bit indices ("Invalid accessor without
+// data"), so that a mesh file read through it has its nodes read as before.
 std::optional<std::string> withDracoDecoded(const std::string& path, const std::string& data);
 
 }  // namespace tetglow

@@ -65,8 +65,8 @@ std::string nameOf(const GltfDocument& doc, JsonObject& o) {
 // The extensions tetglow reads or may ignore without changing the image's meaning.
 void checkRequiredExtensions(JsonObject& root) {
     static const char* const known[] = {
-        "KHR_lights_punctual",   "KHR_materials_transmission",      "KHR_materials_ior",
-        "KHR_materials_volume",  "KHR_materials_emissive_strength", "KHR_texture_transform",
+        "KHR_lights_punctual",    "KHR_materials_transmission",      "KHR_materials_ior",
+        "KHR_materials_volume",   "KHR_materials_emissive_strength", "KHR_texture_transform",
         "KHR_materials_specular", "KHR_draco_mesh_compression"};
     for (const JsonValue& v : arrayOf(root, "extensionsRequired")) {
         const std::string name = v.string();
