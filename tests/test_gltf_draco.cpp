@@ -143,17 +143,17 @@ TEST(GltfDraco, BrokenDataIsAOneLineErrorNamingTheFile) {
         const size_t offset = dracoView(b).value("byteOffset", 0), length = dracoView(b)["byteLength"];
         for (size_t i = offset + from; i < offset + length; ++i) b.bin[i] = byte;
     };
-    // A Draco mesh that states 100 million triangles in a dozen bytes, its accessors agreeing.
-    const auto claim = [&](GltfBuilder& b) {
+    // A Draco mesh that states `triangles` in a dozen bytes, its accessors agreeing.
+    const auto claim = [&](GltfBuilder& b, uint32_t triangles) {
         const std::string header = {'D', 'R', 'A', 'C', 'O', 2, 2, 1, 1, 0, 0, 0};  // mesh, Edgebreaker
         std::string varints;
-        for (uint32_t v : {3u, 100000000u}) {  // encoded vertices, triangles
+        for (uint32_t v : {3u, triangles}) {  // encoded vertices, triangles
             for (; v >= 0x80; v >>= 7) varints.push_back(char(v | 0x80));
             varints.push_back(char(v));
         }
         const size_t offset = dracoView(b).value("byteOffset", 0);
         b.bin.replace(offset, header.size() + varints.size(), header + varints);
-        b.json["accessors"][1]["count"] = 300000000;
+        b.json["accessors"][1]["count"] = 3 * triangles;
     };
     const struct {
         const char* name;
@@ -183,7 +183,10 @@ TEST(GltfDraco, BrokenDataIsAOneLineErrorNamingTheFile) {
          "/attributes/POSITION: the Draco data has no attribute with this id"},
         {"strip", [](GltfBuilder& b) { b.json["meshes"][0]["primitives"][0]["mode"] = 5; },
          "/meshes/0/primitives/0/mode: a Draco-compressed primitive holds triangles (mode 4)"},
-        {"claim", claim, "the Draco data holds 100000000 triangles and 8 vertices, more than the 1024 MiB limit"},
+        {"claim", [&](GltfBuilder& b) { claim(b, 100000000); },
+         "the Draco data holds 100000000 triangles and 8 vertices, more than the 1024 MiB limit"},
+        {"dense", [&](GltfBuilder& b) { claim(b, 1000000); },
+         "the Draco data states 1000000 triangles and 8 vertices in "},
     };
     for (const auto& c : cases) {
         SCOPED_TRACE(c.name);

@@ -16,6 +16,8 @@
 namespace tetglow {
 namespace {
 
+constexpr uint64_t kMaxDracoElementsPerByte = 256;
+
 // The sizes a Draco mesh states ahead of its data: the triangles, and the vertices where the
 // sequential coding states them (Edgebreaker's follow from its connectivity, at most three a
 // triangle). libdraco reserves memory for them before it reads the data they describe.
@@ -134,6 +136,15 @@ void decodeDracoPrimitive(const GltfDocument& doc, const JsonValue& primitive, c
     if (12 * (uint64_t(counts.faces) + position.count) > kMaxMeshFileBytes)
         draco.error("the Draco data holds " + std::to_string(counts.faces) + " triangles and " +
                     std::to_string(position.count) + " vertices, more than the 1024 MiB limit for a mesh's buffers");
+    // libdraco sizes its tables by the stated counts before it reads the data they describe.
+    // Even a regular grid takes a third of a byte a triangle (a quarter of a byte a vertex), so a
+    // count far past the data is a corrupt header, not a mesh.
+    const uint64_t most = kMaxDracoElementsPerByte * view.bytes.size();
+    if (counts.faces > most || position.count > most)
+        draco.error("the Draco data states " + std::to_string(counts.faces) + " triangles and " +
+                    std::to_string(position.count) + " vertices in " + std::to_string(view.bytes.size()) +
+                    " bytes, more than " + std::to_string(kMaxDracoElementsPerByte) +
+                    " a byte: it is cut off or corrupt");
 
     draco::DecoderBuffer buffer;
     buffer.Init(view.bytes.data(), view.bytes.size());
