@@ -11,7 +11,7 @@ job=${1:-build}
 case "$job" in demo|test|build|sanitizers) ;; *) echo "usage: $0 demo|test|build|sanitizers" >&2; exit 2 ;; esac
 
 packages=(g++ cmake make pkg-config libtet1.5-dev libcgal-dev libboost-dev libembree-dev libopenexr-dev libglm-dev libtbb-dev nlohmann-json3-dev
-          libcli11-dev libnanoflann-dev libpng-dev libassimp-dev libcpp-httplib-dev libgtest-dev libbenchmark-dev gnuplot-nox pngquant python3)
+          libcli11-dev libnanoflann-dev libpng-dev libassimp-dev libdraco-dev libcpp-httplib-dev libgtest-dev libbenchmark-dev gnuplot-nox pngquant python3)
 # Only the tests need these: tetglow preview's page is tested in headless Chromium, tetglow farm
 # through a real Slurm on localhost (tests/slurm); the sanitized suite and the fuzzers need clang,
 # and ccache keeps the sanitized build that CI compiles from each clean clone. Blender is tested

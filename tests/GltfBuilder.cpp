@@ -1,9 +1,14 @@
 #include "GltfBuilder.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <stdexcept>
+
+#include <draco/compression/encode.h>
+#include <draco/mesh/mesh.h>
 
 namespace tetglow::test {
 namespace {
@@ -51,6 +56,57 @@ int GltfBuilder::addMesh(const TriangleMesh& mesh, int material) {
                                      {"type", "SCALAR"}});
     nlohmann::json primitive = {{"attributes", {{"POSITION", p}}}, {"indices", i}};
     if (material >= 0) primitive["material"] = material;
+    return push("meshes", {{"primitives", {primitive}}});
+}
+
+int GltfBuilder::addDracoMesh(const TriangleMesh& mesh, int material, int quantizationBits, bool sequential) {
+    draco::Mesh d;
+    d.set_num_points(uint32_t(mesh.positions.size()));
+    draco::GeometryAttribute position;
+    position.Init(draco::GeometryAttribute::POSITION, nullptr, 3, draco::DT_FLOAT32, false, 3 * sizeof(float), 0);
+    const int attribute = d.AddAttribute(position, true, uint32_t(mesh.positions.size()));
+    nlohmann::json lo = {1e30, 1e30, 1e30}, hi = {-1e30, -1e30, -1e30};
+    for (size_t i = 0; i < mesh.positions.size(); ++i) {
+        float xyz[3];
+        for (int k = 0; k < 3; ++k) {
+            xyz[k] = float(mesh.positions[i][k]);
+            lo[k] = std::min(lo[k].get<double>(), double(xyz[k]));
+            hi[k] = std::max(hi[k].get<double>(), double(xyz[k]));
+        }
+        d.attribute(attribute)->SetAttributeValue(draco::AttributeValueIndex(uint32_t(i)), xyz);
+    }
+    for (const auto& t : mesh.triangles)
+        d.AddFace({draco::PointIndex(t[0]), draco::PointIndex(t[1]), draco::PointIndex(t[2])});
+    draco::Encoder encoder;
+    encoder.SetTrackEncodedProperties(true);  // for num_encoded_points and _faces
+    if (quantizationBits > 0) encoder.SetAttributeQuantization(draco::GeometryAttribute::POSITION, quantizationBits);
+    encoder.SetEncodingMethod(sequential ? draco::MESH_SEQUENTIAL_ENCODING : draco::MESH_EDGEBREAKER_ENCODING);
+    draco::EncoderBuffer out;
+    if (const draco::Status s = encoder.EncodeMeshToBuffer(d, &out); !s.ok())
+        throw std::runtime_error("Draco encoding failed: " + s.error_msg_string());
+    // Edgebreaker may reorder and split vertices: the accessors count what the decoder gives.
+    const int p = push(
+        "accessors",
+        {{"componentType", 5126}, {"count", encoder.num_encoded_points()}, {"type", "VEC3"}, {"min", lo}, {"max", hi}});
+    // 16-bit indices where they reach every vertex, as Blender's exporter and gltf-pipeline write them.
+    const int componentType = encoder.num_encoded_points() <= 65536 ? 5123 : 5125;
+    const int i =
+        push("accessors",
+             {{"componentType", componentType}, {"count", encoder.num_encoded_faces() * 3}, {"type", "SCALAR"}});
+    const int view = addView(std::string(out.data(), out.size()));
+    nlohmann::json primitive = {
+        {"attributes", {{"POSITION", p}}},
+        {"indices", i},
+        {"extensions",
+         {{"KHR_draco_mesh_compression",
+           {{"bufferView", view}, {"attributes", {{"POSITION", d.attribute(attribute)->unique_id()}}}}}}}};
+    if (material >= 0) primitive["material"] = material;
+    for (const char* list : {"extensionsUsed", "extensionsRequired"}) {
+        nlohmann::json& names = json[list];
+        if (names.is_null()) names = nlohmann::json::array();
+        if (std::find(names.begin(), names.end(), "KHR_draco_mesh_compression") == names.end())
+            names.push_back("KHR_draco_mesh_compression");
+    }
     return push("meshes", {{"primitives", {primitive}}});
 }
 

@@ -1,6 +1,6 @@
-// glTF 2.0 files the tests build: meshes (float positions, 32-bit indices) in one buffer, nodes,
-// materials, cameras and KHR_lights_punctual lights, written as .gltf with a .bin beside it or as
-// one .glb.
+// glTF 2.0 files the tests build: meshes (float positions, 32-bit indices, or compressed by
+// KHR_draco_mesh_compression) in one buffer, nodes, materials, cameras and KHR_lights_punctual
+// lights, written as .gltf with a .bin beside it or as one .glb.
 #pragma once
 #include <string>
 
@@ -16,6 +16,11 @@ public:
 
     // A mesh of one primitive (material -1: none); returns its index.
     int addMesh(const TriangleMesh& mesh, int material = -1);
+    // A mesh of one primitive compressed with libdraco's encoder (KHR_draco_mesh_compression): its
+    // accessors give count, min and max but no bufferView, and the extension is required.
+    // `quantizationBits` 0 keeps the positions exact; `sequential` picks Draco's sequential
+    // connectivity coding over Edgebreaker. Returns the mesh's index.
+    int addDracoMesh(const TriangleMesh& mesh, int material = -1, int quantizationBits = 0, bool sequential = false);
     // A node; a root of the scene unless `root` is false (then make it some node's child). Returns its index.
     int addNode(nlohmann::json node, bool root = true);
     int addMaterial(nlohmann::json material);

@@ -24,6 +24,8 @@ set(cli_cases
   Farm.WarnsAboutFoldersLocalToEachNode
   "GltfScene.(CameraFramingMatchesTheJsonCamera|LightsMatchJsonLightsAt683LumensPerWatt)"
   "GltfScene.(ConvertedToJsonRendersTheSameImage|PreviewSavesTheSceneAsJsonBesideIt|MalformedFilesAreOneLineErrors)"
+  "GltfDraco.(BoxTetrahedralizesToItsVolumeAsAMeshFile|BoxSceneRendersAndTetrahedralizesToItsVolume)"
+  "GltfDraco.(BrokenDataIsAOneLineErrorNamingTheFile|BrokenMeshFileIsAOneLineErrorNamingTheFile)"
   "Image.DiffCommand.*"
   "Init.(SceneRendersFromAnyFolder|CameraFramesTheMeshOnTheFloor)"
   InputFiles.DeeplyNestedJsonIsAnErrorNotACrash

@@ -440,10 +440,10 @@ TEST(GltfScene, MalformedFilesAreOneLineErrors) {
              json& j = b.json;
              j["nodes"][0]["children"] = {0};
          }},
-        {"draco", "/extensionsRequired/0: the extension KHR_draco_mesh_compression is required but not read",
+        {"meshopt", "/extensionsRequired/0: the extension EXT_meshopt_compression is required but not read",
          [](GltfBuilder& b) {
              json& j = b.json;
-             j["extensionsRequired"] = {"KHR_draco_mesh_compression"};
+             j["extensionsRequired"] = {"EXT_meshopt_compression"};
          }},
         {"nocamera", "/scenes/0: the scene has no camera node",
          [](GltfBuilder& b) {

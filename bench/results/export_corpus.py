@@ -2,7 +2,7 @@
 """Which exported files render, and which are refused? Builds about 30 files of the kinds modelling
 tools export (multi-part models, open parts, duplicated and flipped faces, labels and quads on
 solids, camera- and light-only scenes, point clouds, lines, sheets, the 67-part engine of
-engine_mesh.py) in OBJ, PLY, STL, OFF, GLB and Collada, runs `tetglow tetrahedralize --no-cache`
+engine_mesh.py) in OBJ, PLY, STL, OFF, GLB (plain and Draco-compressed) and Collada, runs `tetglow tetrahedralize --no-cache`
 on each with a time limit, and tabulates each against its truth: a closed-form volume (the
 polyhedra's own, so exact), or a refusal where the file has no inside. A file is right when its
 volume is within 3% of the truth or when it should be refused and is, in one line naming it;
@@ -343,6 +343,11 @@ def cases():
     add("empty.obj", "an empty OBJ", lambda p: open(p, "w").close(), REFUSE)
     add("engine.obj", "the 67-part engine (engine_mesh.py), 111k triangles",
         lambda p: engine_mesh.write_obj(p, engine_mesh.engine()), None)
+    if DRACO_TOOL and os.path.exists(DRACO_TOOL):  # built with the tests
+        add("box-draco.glb", "a box, Draco-compressed (KHR_draco_mesh_compression)",
+            lambda p: write_draco_glb(p, lambda q: write_obj(q, [("box", box())])), 1.0)
+        add("engine-draco.glb", "the engine as a Draco GLB, a mesh a part, positions exact",
+            lambda p: write_draco_glb(p, lambda q: engine_mesh.write_obj(q, engine_mesh.engine())), None)
     return c
 
 
@@ -378,6 +383,15 @@ def spheres_with_labels():
         labels.append(([(x - 0.3, y - 0.15, z), (x + 0.3, y - 0.15, z), (x + 0.3, y + 0.15, z),
                         (x - 0.3, y + 0.15, z)], [(0, 1, 2, 3)]))
     return spheres + labels, truth
+
+
+DRACO_TOOL = None  # tetglow_draco_glb of the build (tests/tools/draco_glb.cpp)
+
+
+def write_draco_glb(path, write_parts):
+    """What `write_parts` writes as OBJ, as a Draco-compressed GLB with a mesh and a node a part."""
+    write_parts(path + ".obj")
+    subprocess.run([DRACO_TOOL, path + ".obj", path], check=True, capture_output=True)
 
 
 def cylinder(radius, z0, z1, sides):
@@ -434,6 +448,8 @@ def main():
     ap.add_argument("--only", nargs="*")
     a = ap.parse_args()
     binary = os.path.join(a.build, "tetglow")
+    global DRACO_TOOL
+    DRACO_TOOL = os.path.join(a.build, "tetglow_draco_glb")
     rows = []
     with tempfile.TemporaryDirectory() as work:
         for name, what, write, truth in cases():

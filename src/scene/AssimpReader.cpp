@@ -19,6 +19,7 @@
 #include "base/ChildProcess.h"
 #include "base/ExternalReference.h"
 #include "base/InputFile.h"
+#include "scene/GltfDraco.h"
 #include "scene/MeshWeld.h"
 #include "tet/MeshMessage.h"
 #include "tet/MeshValidation.h"
@@ -451,6 +452,9 @@ TriangleMesh parseSceneMeshes(std::string data, const std::string& path, SceneMe
     try {
         answer = runInChild(
             [&] {
+                // Draco data decoded here, in the child too: its decoder runs on the file's bytes.
+                if (format == SceneMeshFormat::Gltf || format == SceneMeshFormat::Glb)
+                    if (std::optional<std::string> plain = withDracoDecoded(path, data)) data = std::move(*plain);
                 Imported r = import(std::move(data), path, format, node);
                 ByteWriter m;
                 m.addStrings(r.warnings);

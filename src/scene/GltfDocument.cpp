@@ -12,6 +12,7 @@
 #include "base/ExternalReference.h"
 #include "base/InputFile.h"
 #include "scene/AssimpReader.h"
+#include "scene/GltfDraco.h"
 
 namespace tetglow {
 namespace {
@@ -26,7 +27,8 @@ uint32_t readU32(const std::string& data, size_t at) {
     return v;
 }
 
-// The JSON chunk of a GLB, and its BIN chunk (the first buffer when that has no URI).
+}  // namespace
+
 std::pair<std::string, std::string> splitGlb(const std::string& data, const std::string& path) {
     const auto fail = [&](const std::string& what) { throw InputError(path + ": GLB container: " + what); };
     if (data.size() < 20) fail("shorter than its 12-byte header and one chunk header");
@@ -49,6 +51,8 @@ std::pair<std::string, std::string> splitGlb(const std::string& data, const std:
     }
     return {std::move(json), std::move(bin)};
 }
+
+namespace {
 
 std::string decodeBase64(const std::string& text, const JsonValue& where) {
     std::string out;
@@ -136,43 +140,25 @@ struct AccessorView {
 
 AccessorView accessorView(const GltfDocument& doc, const JsonValue& indexValue, const char* type,
                           std::initializer_list<int64_t> componentTypes) {
-    const std::vector<JsonValue>& accessors = doc.accessors;
-    if (accessors.empty()) indexValue.error("the file has no accessors");
-    const JsonValue v = accessors[size_t(indexValue.integer(0, int64_t(accessors.size()) - 1))];
-    JsonObject o(v);
-    if (o["sparse"]) o["sparse"].error("sparse accessors are not read");
-    if (o["type"].string() != type) o["type"].fail(std::string("\"") + type + "\"");
-    AccessorView a;
-    a.componentType = o["componentType"].integer(0);
-    bool allowed = false;
-    for (const int64_t t : componentTypes) allowed |= a.componentType == t;
-    if (!allowed) o["componentType"].error("this component type is not allowed here");
+    const GltfAccessor accessor = gltfAccessor(doc, indexValue, type, componentTypes);
+    JsonObject o(accessor.value);
+    AccessorView a{nullptr, accessor.count, 0, accessor.componentType};
     const uint64_t components = std::strcmp(type, "VEC3") == 0 ? 3 : 1;
     const uint64_t element = components * uint64_t(componentBytes(a.componentType));
-    // No primitive may hold more than the triangles a whole scene may (a strip: count - 2).
-    a.count = uint64_t(o["count"].integer(1, 3 * int64_t(kMaxSceneMeshTriangles)));
-    const JsonValue viewIndex = o["bufferView"];
-    const std::vector<JsonValue>& views = doc.bufferViews;
-    if (views.empty()) viewIndex.error("the file has no bufferViews");
-    JsonObject view(views[size_t(viewIndex.integer(0, int64_t(views.size()) - 1))]);
-    const JsonValue bufferIndex = view["buffer"];
-    if (doc.buffers.empty()) bufferIndex.error("the file has no buffers");
-    const std::string& buffer = doc.buffers.at(size_t(bufferIndex.integer(0, int64_t(doc.buffers.size()) - 1)));
-    const uint64_t viewOffset = view["byteOffset"] ? uint64_t(view["byteOffset"].integer(0)) : 0;
-    const uint64_t viewLength = uint64_t(view["byteLength"].integer(1));
-    if (viewOffset > buffer.size() || viewLength > buffer.size() - viewOffset)
-        view.self().error("the buffer view runs past the end of its buffer (" + std::to_string(buffer.size()) +
-                          " bytes)");
-    a.stride = view["byteStride"] ? uint64_t(view["byteStride"].integer(4, 252)) : element;
+    const GltfBufferView view = gltfBufferView(doc, o["bufferView"]);
+    JsonObject viewObject(view.value);
+    const uint64_t viewLength = view.bytes.size();
+    a.stride = viewObject["byteStride"] ? uint64_t(viewObject["byteStride"].integer(4, 252)) : element;
     if (a.stride < element)
-        view["byteStride"].error("smaller than one element (" + std::to_string(element) + " bytes)");
+        viewObject["byteStride"].error("smaller than one element (" + std::to_string(element) + " bytes)");
     const uint64_t offset = o["byteOffset"] ? uint64_t(o["byteOffset"].integer(0)) : 0;
     // offset + stride * (count - 1) + element <= viewLength, without overflow.
     if (offset > viewLength || element > viewLength - offset ||
         (a.count - 1) > (viewLength - offset - element) / a.stride)
-        v.error("the accessor's " + std::to_string(a.count) + " elements run past the end of its buffer view (" +
-                std::to_string(viewLength) + " bytes)");
-    a.data = buffer.data() + viewOffset + offset;
+        accessor.value.error("the accessor's " + std::to_string(a.count) +
+                             " elements run past the end of its buffer view (" + std::to_string(viewLength) +
+                             " bytes)");
+    a.data = view.bytes.data() + offset;
     return a;
 }
 
@@ -214,6 +200,43 @@ glm::dmat4 localTransform(JsonObject& o) {
 
 bool isGlb(const std::string& data) { return data.size() >= 4 && readU32(data, 0) == kGlbMagic; }
 
+JsonValue gltfExtension(JsonObject& o, const char* name) {
+    const JsonValue e = o["extensions"];
+    return e ? JsonObject(e)[name] : JsonValue(nullptr, nlohmann::json::json_pointer(), "");
+}
+
+GltfAccessor gltfAccessor(const GltfDocument& doc, const JsonValue& index, const char* type,
+                          std::initializer_list<int64_t> componentTypes) {
+    const std::vector<JsonValue>& accessors = doc.accessors;
+    if (accessors.empty()) index.error("the file has no accessors");
+    const JsonValue v = accessors[size_t(index.integer(0, int64_t(accessors.size()) - 1))];
+    JsonObject o(v);
+    if (o["sparse"]) o["sparse"].error("sparse accessors are not read");
+    if (o["type"].string() != type) o["type"].fail(std::string("\"") + type + "\"");
+    const int64_t componentType = o["componentType"].integer(0);
+    bool allowed = false;
+    for (const int64_t t : componentTypes) allowed |= componentType == t;
+    if (!allowed) o["componentType"].error("this component type is not allowed here");
+    // No primitive may hold more than the triangles a whole scene may (a strip: count - 2).
+    const auto count = uint64_t(o["count"].integer(1, 3 * int64_t(kMaxSceneMeshTriangles)));
+    return {v, count, componentType};
+}
+
+GltfBufferView gltfBufferView(const GltfDocument& doc, const JsonValue& index) {
+    const std::vector<JsonValue>& views = doc.bufferViews;
+    if (views.empty()) index.error("the file has no bufferViews");
+    const JsonValue v = views[size_t(index.integer(0, int64_t(views.size()) - 1))];
+    JsonObject view(v);
+    const JsonValue bufferIndex = view["buffer"];
+    if (doc.buffers.empty()) bufferIndex.error("the file has no buffers");
+    const std::string& buffer = doc.buffers.at(size_t(bufferIndex.integer(0, int64_t(doc.buffers.size()) - 1)));
+    const uint64_t offset = view["byteOffset"] ? uint64_t(view["byteOffset"].integer(0)) : 0;
+    const uint64_t length = uint64_t(view["byteLength"].integer(1));
+    if (offset > buffer.size() || length > buffer.size() - offset)
+        v.error("the buffer view runs past the end of its buffer (" + std::to_string(buffer.size()) + " bytes)");
+    return {std::string_view(buffer).substr(offset, length), v};
+}
+
 GltfDocument readGltfDocument(const std::string& path, std::string data) {
     GltfDocument doc;
     doc.path = path;
@@ -248,23 +271,28 @@ TriangleMesh primitiveTriangles(const GltfDocument& doc, const JsonValue& primit
                                 ")");
         return {};
     }
-    const JsonValue position = JsonObject(o["attributes"])["POSITION"];
-    const AccessorView p = accessorView(doc, position, "VEC3", {5126});
     TriangleMesh mesh;
-    mesh.positions.resize(p.count);
-    for (uint64_t i = 0; i < p.count; ++i) {
-        float xyz[3];
-        std::memcpy(xyz, p.data + i * p.stride, sizeof xyz);
-        for (int k = 0; k < 3; ++k)
-            if (!std::isfinite(xyz[k])) position.error("vertex " + std::to_string(i) + " is not finite");
-        mesh.positions[i] = {xyz[0], xyz[1], xyz[2]};
-    }
     std::vector<uint32_t> index;
-    if (auto f = o["indices"]) {
-        index = readIndices(doc, f, p.count);
+    if (const JsonValue draco = gltfExtension(o, "KHR_draco_mesh_compression")) {
+        if (mode != 4) o["mode"].error("a Draco-compressed primitive holds triangles (mode 4)");
+        decodeDracoPrimitive(doc, primitive, draco, mesh.positions, index);
     } else {
-        index.resize(p.count);
-        for (uint64_t i = 0; i < p.count; ++i) index[i] = uint32_t(i);
+        const JsonValue position = JsonObject(o["attributes"])["POSITION"];
+        const AccessorView p = accessorView(doc, position, "VEC3", {5126});
+        mesh.positions.resize(p.count);
+        for (uint64_t i = 0; i < p.count; ++i) {
+            float xyz[3];
+            std::memcpy(xyz, p.data + i * p.stride, sizeof xyz);
+            for (int k = 0; k < 3; ++k)
+                if (!std::isfinite(xyz[k])) position.error("vertex " + std::to_string(i) + " is not finite");
+            mesh.positions[i] = {xyz[0], xyz[1], xyz[2]};
+        }
+        if (auto f = o["indices"]) {
+            index = readIndices(doc, f, p.count);
+        } else {
+            index.resize(p.count);
+            for (uint64_t i = 0; i < p.count; ++i) index[i] = uint32_t(i);
+        }
     }
     const auto add = [&](uint32_t a, uint32_t b, uint32_t c) {
         if (a != b && b != c && a != c) mesh.triangles.push_back({a, b, c});

@@ -9,7 +9,11 @@
 // kMaxMeshFileBytes, every accessor inside its buffer view and buffer, every index inside its
 // accessor, the placed triangles within kMaxSceneMeshTriangles.
 #pragma once
+#include <cstdint>
+#include <initializer_list>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 #include <glm/mat4x4.hpp>
@@ -35,12 +39,38 @@ struct GltfDocument {
 // decoded. Throws InputError "<path>: <JSON pointer>: <problem>".
 GltfDocument readGltfDocument(const std::string& path, std::string data);
 
+// The JSON chunk of the GLB container `data` read from `path`, and its BIN chunk (the first
+// buffer when that has no URI). Throws InputError "<path>: GLB container: <problem>".
+std::pair<std::string, std::string> splitGlb(const std::string& data, const std::string& path);
+
 // True when `data` is a GLB container (its first four bytes are "glTF").
 bool isGlb(const std::string& data);
 
+// Accessor `index` (a JSON integer into the document's "accessors"), checked to be of `type` with
+// one of `componentTypes`, not sparse, and to count within what a scene may hold.
+struct GltfAccessor {
+    JsonValue value;  // the accessor's object
+    uint64_t count = 0;
+    int64_t componentType = 0;
+};
+GltfAccessor gltfAccessor(const GltfDocument& doc, const JsonValue& index, const char* type,
+                          std::initializer_list<int64_t> componentTypes);
+
+// The bytes of buffer view `index` (a JSON integer into the document's "bufferViews"), checked to
+// lie inside its buffer.
+struct GltfBufferView {
+    std::string_view bytes;
+    JsonValue value;  // the buffer view's object
+};
+GltfBufferView gltfBufferView(const GltfDocument& doc, const JsonValue& index);
+
+// An object's extension `name` (its "extensions" object's key `name`), or a false value.
+JsonValue gltfExtension(JsonObject& o, const char* name);
+
 // The triangles of mesh primitive `primitive` (an object of a mesh's "primitives") in the mesh's
 // own frame: POSITION, with its indices where it has them; modes 4 (triangles), 5 (strip) and 6
-// (fan). Other modes (points, lines) give an empty mesh and a warning.
+// (fan). Other modes (points, lines) give an empty mesh and a warning. A primitive compressed by
+// KHR_draco_mesh_compression is decoded (scene/GltfDraco.h).
 TriangleMesh primitiveTriangles(const GltfDocument& doc, const JsonValue& primitive,
                                 std::vector<std::string>* warnings);
 

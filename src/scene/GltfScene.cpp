@@ -42,12 +42,6 @@ std::vector<JsonValue> arrayOf(JsonObject& o, const std::string& key) {
 
 JsonValue absent() { return {nullptr, nlohmann::json::json_pointer(), ""}; }
 
-// An object's extension `name`, or a false value.
-JsonValue extension(JsonObject& o, const char* name) {
-    const JsonValue e = o["extensions"];
-    return e ? JsonObject(e)[name] : absent();
-}
-
 std::string warning(const JsonValue& v, const std::string& message) { return v.where() + ": warning: " + message; }
 
 // The JSON of a value, for what glTF leaves open: "extras" of any type, names of any string.
@@ -71,15 +65,15 @@ std::string nameOf(const GltfDocument& doc, JsonObject& o) {
 // The extensions tetglow reads or may ignore without changing the image's meaning.
 void checkRequiredExtensions(JsonObject& root) {
     static const char* const known[] = {
-        "KHR_lights_punctual",   "KHR_materials_transmission",      "KHR_materials_ior",
-        "KHR_materials_volume",  "KHR_materials_emissive_strength", "KHR_texture_transform",
-        "KHR_materials_specular"};
+        "KHR_lights_punctual",    "KHR_materials_transmission",      "KHR_materials_ior",
+        "KHR_materials_volume",   "KHR_materials_emissive_strength", "KHR_texture_transform",
+        "KHR_materials_specular", "KHR_draco_mesh_compression"};
     for (const JsonValue& v : arrayOf(root, "extensionsRequired")) {
         const std::string name = v.string();
         if (std::find(std::begin(known), std::end(known), name) == std::end(known))
             v.error("the extension " + shorten(name) +
                     " is required but not read (read: KHR_lights_punctual, KHR_materials_transmission, _ior, "
-                    "_volume, _emissive_strength)");
+                    "_volume, _emissive_strength, KHR_draco_mesh_compression)");
     }
 }
 
@@ -128,17 +122,17 @@ MaterialRole readMaterial(const GltfDocument& doc, const JsonValue& v, std::vect
     MaterialRole r;
     RGB emissive(0);
     if (auto f = o["emissiveFactor"]) emissive = f.vec3(kUnit);
-    if (auto e = extension(o, "KHR_materials_emissive_strength"))
+    if (auto e = gltfExtension(o, "KHR_materials_emissive_strength"))
         if (auto f = JsonObject(e)["emissiveStrength"]) emissive *= f.number(kColour);
     if (auto f = o["emissiveTexture"])
         addWarning(warnings, warning(f, "textures are not read; the emissiveFactor is used"));
     double transmission = 0;
-    if (auto e = extension(o, "KHR_materials_transmission")) {
+    if (auto e = gltfExtension(o, "KHR_materials_transmission")) {
         JsonObject t(e);
         if (auto f = t["transmissionFactor"]) transmission = f.number(kUnit);
         if (auto f = t["transmissionTexture"]) addWarning(warnings, warning(f, "textures are not read"));
     }
-    const JsonValue volume = extension(o, "KHR_materials_volume");
+    const JsonValue volume = gltfExtension(o, "KHR_materials_volume");
     const JsonValue tetglow = tetglowExtras(doc, o);
     if (emissive != RGB(0)) {
         // An emitting surface is an area light; tetglow's lights absorb what reaches them.
@@ -160,7 +154,7 @@ MaterialRole readMaterial(const GltfDocument& doc, const JsonValue& v, std::vect
     m.sigmaS = RGB(0);
     if (transmission > 0) {
         m.boundaryMaterial = MaterialDesc{MaterialType::Dielectric};
-        if (auto e = extension(o, "KHR_materials_ior"))
+        if (auto e = gltfExtension(o, "KHR_materials_ior"))
             if (auto f = JsonObject(e)["ior"]) m.boundaryMaterial.ior = f.number(kPositive);
         if (transmission < 1)
             addWarning(warnings, warning(o.self(), "a transmissionFactor below 1 is rendered as 1 (all light enters)"));
@@ -374,7 +368,7 @@ SceneDesc loadGltfScene(const std::string& path, std::string data, const std::st
     const std::vector<JsonValue> nodes = arrayOf(root, "nodes"), meshes = arrayOf(root, "meshes"),
                                  cameras = arrayOf(root, "cameras"), materialValues = arrayOf(root, "materials");
     std::vector<JsonValue> lights;
-    if (auto e = extension(root, "KHR_lights_punctual")) {
+    if (auto e = gltfExtension(root, "KHR_lights_punctual")) {
         JsonObject lo(e);
         lights = arrayOf(lo, "lights");
     }
@@ -405,7 +399,7 @@ SceneDesc loadGltfScene(const std::string& path, std::string data, const std::st
                 haveCamera = true;
             }
         }
-        if (auto e = extension(o, "KHR_lights_punctual")) {
+        if (auto e = gltfExtension(o, "KHR_lights_punctual")) {
             const JsonValue light = JsonObject(e)["light"];
             s.lights.push_back(
                 readLight(lights[index(light, lights.size(), "KHR_lights_punctual lights")], n.world, warnings));
