@@ -261,13 +261,17 @@ RGB PhotonIntegrator::radiance(const Ray& cameraRay, Rng& rng) const {
 }
 
 RGB PhotonIntegrator::eyePath(const Ray& cameraRay, Rng& rng, int walkedToo, char* met) const {
-    RGB L(0), beta(1);
-    Ray ray = cameraRay;
-    VolumeState state = cameraMedium_;
-    int depth = 0;
-    // After the final-gather bounce: emitters it reaches were counted by next-event estimation
-    // or as caustics, and its next diffuse surface ends the path.
-    bool gathering = false;
+    EyeBranch camera;
+    camera.ray = cameraRay;
+    camera.state = cameraMedium_;
+    return eyePath(camera, rng, walkedToo, met);
+}
+
+RGB PhotonIntegrator::eyePath(EyeBranch b, Rng& rng, int walkedToo, char* met) const {
+    RGB L(0);
+    Ray& ray = b.ray;
+    VolumeState& state = b.state;
+    RGB& beta = b.beta;
     for (int crossings = 0; crossings < kMaxCrossings; ++crossings) {
         auto hit = scene_.intersect(ray, state);
         WalkExit exit;
@@ -283,7 +287,7 @@ RGB PhotonIntegrator::eyePath(const Ray& cameraRay, Rng& rng, int walkedToo, cha
                     const int d = domainOf(state.volume, p.tet);
                     return media_[size_t(d)].walked || d == walkedToo;
                 })) {
-                L += beta * volpath_.continuePath(ray, state, depth, !gathering, rng);
+                L += beta * volpath_.continuePath(ray, state, b.depth, !b.gathering, rng);
                 break;
             }
             if (met)
@@ -296,7 +300,7 @@ RGB PhotonIntegrator::eyePath(const Ray& cameraRay, Rng& rng, int walkedToo, cha
         const StretchEnd end = endStretch(scene_, hit, exit, ray, state);
         if (end == StretchEnd::Crossed) continue;
         if (end != StretchEnd::Surface) {
-            if (!gathering) L += beta * scene_.emitted(ray, hit ? &*hit : nullptr);
+            if (!b.gathering) L += beta * scene_.emitted(ray, hit ? &*hit : nullptr);
             break;
         }
         const MaterialDesc& material = scene_.material(*hit);
@@ -308,19 +312,36 @@ RGB PhotonIntegrator::eyePath(const Ray& cameraRay, Rng& rng, int walkedToo, cha
                                 return Scattering{evaluateMaterial(material, ray.d, hit->n, wi), 0};
                             },
                             shadowRays(scene_, here, rng));
-            if (gathering || !desc_.finalGather) {
+            if (b.gathering || !desc_.finalGather) {
                 L += beta * caustics(surface_.get(), *hit, ray.d, material);
                 break;
             }
             L += beta * caustics(caustic_.get(), *hit, ray.d, material);
-            gathering = true;
+            b.gathering = true;
         }
-        if (++depth >= desc_.maxDepth) break;
+        if (++b.depth >= desc_.maxDepth) break;
+        if (material.type == MaterialType::Dielectric && b.splits > 0) {
+            // Both branches, weighted by the Fresnel reflectance, in place of a choice between
+            // them: a small bright light seen in the glass or through it is otherwise a sample
+            // of its full radiance in a few percent of the samples (the variance of the pixels
+            // that see it dominated the image's error).
+            const DielectricBranches branches = dielectricBranches(material.ior, ray.d, hit->n);
+            if (branches.reflectance < 1) {  // else totally reflected: nothing to choose
+                --b.splits;
+                EyeBranch reflected = b;
+                reflected.beta *= branches.reflectance;
+                leaveSurface(scene_, *hit, branches.reflected, reflected.ray, reflected.state);
+                if (branches.reflectance > 0) L += eyePath(reflected, rng, walkedToo, met);
+                beta *= (1 - branches.reflectance) * branches.radianceScale;
+                leaveSurface(scene_, *hit, branches.transmitted, ray, state);
+                continue;
+            }
+        }
         const double u0 = rng.uniform(), u1 = rng.uniform();
         const BsdfSample bs = sampleMaterial(material, ray.d, hit->n, {u0, u1});
         beta *= bs.weight;
         leaveSurface(scene_, *hit, bs.direction, ray, state);
-        const double keep = eyePathSurvival(beta, depth, rng);  // on long specular chains
+        const double keep = eyePathSurvival(beta, b.depth, rng);  // on long specular chains
         if (keep == 0) break;
         beta /= keep;
     }
