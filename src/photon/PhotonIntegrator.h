@@ -2,7 +2,8 @@
 // Each pass traces a fresh photon set (PhotonTracer) and takes one eye sample per pixel; the
 // image is the mean of the passes while the radii shrink, so the error keeps falling with time.
 //
-// Eye rays follow specular chains and never scatter in a medium. Along each stretch of a volume
+// Eye rays follow specular chains (both branches of their first dielectric events, weighted by
+// the Fresnel reflectance: eyePath) and never scatter in a medium. Along each stretch of a volume
 // (through its regions, up to where it leaves or meets a dielectric interface) the integrator
 // adds, against the exact transmittance of the tet walk:
 //   - emission, integrated in closed form;
