@@ -82,7 +82,7 @@ def fish_variant(work, name, edit):
 
 def glass_quad(s):
     """fish.json's body alone, a blue scattering medium of moderate density (optical thickness
-    about 1 across the body) in a glass skin of index 1.5, lit by a 0.2 x 0.2 quad light above
+    1 to 1.5 across the body) in a glass skin of index 1.5, lit by a 0.2 x 0.2 quad light above
     it, whose caustic falls on the floor and whose reflection and refraction a few pixels see."""
     s["media"] = [dict(s["media"][0], sigma_a=[1.2, 0.45, 0.06], sigma_s=[0.8, 1.1, 1.4], g=0.3,
                        boundary={"type": "dielectric", "ior": 1.5})]
