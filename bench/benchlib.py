@@ -72,8 +72,24 @@ def scene_variant(scene, work, name, edit):
 
 
 def fish_variant(work, name, edit):
-    """scene_variant() of scenes/fish.json."""
-    return scene_variant(os.path.join(ROOT, "scenes", "fish.json"), work, name, edit)
+    """scene_variant() of scenes/fish.json, its media unnamed (Cycles' peer script takes no names)."""
+    def unnamed(s):
+        edit(s)
+        for m in s["media"]:
+            m.pop("name", None)
+    return scene_variant(os.path.join(ROOT, "scenes", "fish.json"), work, name, unnamed)
+
+
+def glass_quad(s):
+    """fish.json's body alone, a blue scattering medium of moderate density (optical thickness
+    1 to 1.5 across the body) in a glass skin of index 1.5, lit by a 0.2 x 0.2 quad light above
+    it, whose caustic falls on the floor and whose reflection and refraction a few pixels see."""
+    s["media"] = [dict(s["media"][0], sigma_a=[1.2, 0.45, 0.06], sigma_s=[0.8, 1.1, 1.4], g=0.3,
+                       boundary={"type": "dielectric", "ior": 1.5})]
+    s["media"][0].pop("emission")
+    s["integrator"].pop("spp")  # --time alone ends a render
+    s["lights"] = [{"type": "quad", "corner": [0.1, 2.5, 0.3], "edge0": [0.2, 0, 0], "edge1": [0, 0, 0.2],
+                    "radiance": [500, 480, 450]}, s["lights"][1]]
 
 
 def scene_file(name, work):
@@ -81,7 +97,8 @@ def scene_file(name, work):
     Cycles' peer script renders no nested media; the body keeps its glass skin), fish-clear (the
     body alone, its medium cleared: the glass skin's caustics and reflections alone),
     fish-matched (the skin index-matched: no caustics) or fish-wide-light (the spot's disk 4
-    times as wide, so that paths through the skin reach it 16 times as often)."""
+    times as wide, so that paths through the skin reach it 16 times as often) or glass-quad
+    (glass_quad())."""
     if name == "fish-body":
         return fish_variant(work, name, lambda s: s.update(media=s["media"][:1]))
     if name == "fish-clear":
@@ -90,6 +107,8 @@ def scene_file(name, work):
         return fish_variant(work, name, lambda s: s["media"][0].update(boundary={"type": "interface"}))
     if name == "fish-wide-light":
         return fish_variant(work, name, lambda s: [l.update(radius=4 * l["radius"]) for l in s["lights"] if l["type"] == "spot"])
+    if name == "glass-quad":
+        return fish_variant(work, name, glass_quad)
     return os.path.join(ROOT, "scenes", name + ".json")
 
 

@@ -41,8 +41,9 @@ def tetglow(a, scene, out, method, seconds, seed):
     if method == "photon":  # the photon paths per pass, from the image's pixels (docs/RESULTS.md, "How should a photon pass split ...")
         w, h = map(int, a.res.split("x"))
         extra = ["--photons", str(max(1, round(a.photons_per_pixel * w * h)))]
+    # The most passes there are: a scene's own spp would otherwise end the render before --time.
     return timed([os.path.join(a.build, "tetglow"), "render", scene, "-o", out, *METHODS[method], *extra, "--time", f"{seconds:.3f}",
-                  "--resolution", a.res, "--threads", str(a.threads), "--seed", str(seed)], out)
+                  "--spp", "1048576", "--resolution", a.res, "--threads", str(a.threads), "--seed", str(seed)], out)
 
 
 def mse(a, test, reference, own=0.0):

@@ -11,8 +11,6 @@
 
 #include "base/Memory.h"
 #include "integrators/DirectLighting.h"
-#include "integrators/PathStep.h"
-#include "media/Roulette.h"
 #include "photon/OctahedralDirection.h"
 #include "scene/Material.h"
 #include "scene/UnsampledLight.h"
@@ -258,73 +256,6 @@ void PhotonIntegrator::loadPhotons(uint64_t seed, uint64_t pass, uint64_t radius
 RGB PhotonIntegrator::radiance(const Ray& cameraRay, Rng& rng) const {
     if (!tracing_) return volpath_.radiance(cameraRay, rng);
     return eyePath(cameraRay, rng, -1, nullptr);
-}
-
-RGB PhotonIntegrator::eyePath(const Ray& cameraRay, Rng& rng, int walkedToo, char* met) const {
-    RGB L(0), beta(1);
-    Ray ray = cameraRay;
-    VolumeState state = cameraMedium_;
-    int depth = 0;
-    // After the final-gather bounce: emitters it reaches were counted by next-event estimation
-    // or as caustics, and its next diffuse surface ends the path.
-    bool gathering = false;
-    for (int crossings = 0; crossings < kMaxCrossings; ++crossings) {
-        auto hit = scene_.intersect(ray, state);
-        WalkExit exit;
-        if (state.inside()) {
-            const double tMax = hit ? hit->t : INFINITY;
-            const Volume& volume = *scene_.volumes()[state.volume].volume;
-            const ColumnProfile column(volume, ray, state.start, tMax);
-            // A walked domain on the stretch: walk the stretch (and all after) as volpath does, from
-            // its start. Restarted where the domain begins, on a tet's face, the walk would follow
-            // the rounded line from there, which can miss a tet the stretch only touches.
-            const auto& pieces = column.pieces();
-            if (std::any_of(pieces.begin(), pieces.end(), [&](const auto& p) {
-                    const int d = domainOf(state.volume, p.tet);
-                    return media_[size_t(d)].walked || d == walkedToo;
-                })) {
-                L += beta * volpath_.continuePath(ray, state, depth, !gathering, rng);
-                break;
-            }
-            if (met)
-                for (const auto& p : pieces) met[domainOf(state.volume, p.tet)] = 1;
-            L += beta * inMedium(state.volume, ray, column, rng);
-            beta *= exp(-column.depth());
-            if (isBlack(beta)) break;
-            exit = column.exit();
-        }
-        const StretchEnd end = endStretch(scene_, hit, exit, ray, state);
-        if (end == StretchEnd::Crossed) continue;
-        if (end != StretchEnd::Surface) {
-            if (!gathering) L += beta * scene_.emitted(ray, hit ? &*hit : nullptr);
-            break;
-        }
-        const MaterialDesc& material = scene_.material(*hit);
-        if (!isSpecular(material)) {
-            const VolumeState here = scene_.afterHit(*hit, ray.d, state);
-            L += beta * sampleDirect(
-                            scene_, hit->p, rng, false,
-                            [&](const glm::dvec3& wi) {
-                                return Scattering{evaluateMaterial(material, ray.d, hit->n, wi), 0};
-                            },
-                            shadowRays(scene_, here, rng));
-            if (gathering || !desc_.finalGather) {
-                L += beta * caustics(surface_.get(), *hit, ray.d, material);
-                break;
-            }
-            L += beta * caustics(caustic_.get(), *hit, ray.d, material);
-            gathering = true;
-        }
-        if (++depth >= desc_.maxDepth) break;
-        const double u0 = rng.uniform(), u1 = rng.uniform();
-        const BsdfSample bs = sampleMaterial(material, ray.d, hit->n, {u0, u1});
-        beta *= bs.weight;
-        leaveSurface(scene_, *hit, bs.direction, ray, state);
-        const double keep = eyePathSurvival(beta, depth, rng);  // on long specular chains
-        if (keep == 0) break;
-        beta /= keep;
-    }
-    return L;
 }
 
 int PhotonIntegrator::domainOf(int v, uint32_t tet) const {

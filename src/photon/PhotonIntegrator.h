@@ -2,7 +2,8 @@
 // Each pass traces a fresh photon set (PhotonTracer) and takes one eye sample per pixel; the
 // image is the mean of the passes while the radii shrink, so the error keeps falling with time.
 //
-// Eye rays follow specular chains and never scatter in a medium. Along each stretch of a volume
+// Eye rays follow specular chains (both branches of their first dielectric events, weighted by
+// the Fresnel reflectance: eyePath) and never scatter in a medium. Along each stretch of a volume
 // (through its regions, up to where it leaves or meets a dielectric interface) the integrator
 // adds, against the exact transmittance of the tet walk:
 //   - emission, integrated in closed form;
@@ -139,6 +140,21 @@ private:
     // One eye path. The domain `walkedToo` is walked as well (-1: none); `met`, if given, gets a 1
     // for each domain a stretch of the path reads photons from.
     RGB eyePath(const Ray& ray, Rng& rng, int walkedToo, char* met) const;
+    // An eye path from where `b` stands. At its first kSplitDielectricEvents dielectric events
+    // it follows both the reflected and the refracted branch, each weighted by its Fresnel
+    // probability; later ones choose one by that probability.
+    static constexpr int kSplitDielectricEvents = 2;
+    struct EyeBranch {
+        Ray ray;
+        VolumeState state;
+        RGB beta{1};
+        int depth = 0;
+        // After the final-gather bounce: emitters it reaches were counted by next-event estimation
+        // or as caustics, and its next diffuse surface ends the path.
+        bool gathering = false;
+        int splits = kSplitDielectricEvents;
+    };
+    RGB eyePath(EyeBranch b, Rng& rng, int walkedToo, char* met) const;
 
     // Light scattered and emitted towards ray.o along the stretch `column` of volume v.
     RGB inMedium(int v, const Ray& ray, const ColumnProfile& column, Rng& rng) const;

@@ -17,25 +17,34 @@ double fresnelDielectric(double cosI, double etaI, double etaT) {
     return 0.5 * (rs * rs + rp * rp);
 }
 
-namespace {
-
-BsdfSample sampleDielectric(double ior, const glm::dvec3& d, const glm::dvec3& n, double u, TransportMode mode) {
+DielectricBranches dielectricBranches(double ior, const glm::dvec3& d, const glm::dvec3& n) {
     const bool entering = glm::dot(d, n) < 0;
     const glm::dvec3 facing = entering ? n : -n;  // towards the side the ray comes from
     const double etaI = entering ? 1 : ior, etaT = entering ? ior : 1;
     const double cosI = std::min(1.0, -glm::dot(d, facing));
-    const double reflectance = fresnelDielectric(cosI, etaI, etaT);
+    DielectricBranches b;
+    b.reflectance = fresnelDielectric(cosI, etaI, etaT);
+    b.reflected = glm::normalize(d + 2 * cosI * facing);
+    const double eta = etaI / etaT, cosT = std::sqrt(std::max(0.0, 1 - eta * eta * (1 - cosI * cosI)));
+    b.transmitted = glm::normalize(eta * d + (eta * cosI - cosT) * facing);
+    b.radianceScale = eta * eta;
+    return b;
+}
+
+namespace {
+
+BsdfSample sampleDielectric(double ior, const glm::dvec3& d, const glm::dvec3& n, double u, TransportMode mode) {
+    const DielectricBranches b = dielectricBranches(ior, d, n);
     BsdfSample s;
     s.specular = true;
     s.weight = RGB(1);
-    if (u < reflectance) {
-        s.direction = glm::normalize(d + 2 * cosI * facing);
+    if (u < b.reflectance) {
+        s.direction = b.reflected;
         return s;
     }
-    const double eta = etaI / etaT, cosT = std::sqrt(std::max(0.0, 1 - eta * eta * (1 - cosI * cosI)));
-    s.direction = glm::normalize(eta * d + (eta * cosI - cosT) * facing);
+    s.direction = b.transmitted;
     s.transmitted = true;
-    if (mode == TransportMode::Radiance) s.weight = RGB(eta * eta);
+    if (mode == TransportMode::Radiance) s.weight = RGB(b.radianceScale);
     return s;
 }
 

@@ -28,6 +28,16 @@ RGB evaluateMaterial(const MaterialDesc& m, const glm::dvec3& d, const glm::dvec
 double materialPdf(const MaterialDesc& m, const glm::dvec3& d, const glm::dvec3& n, const glm::dvec3& wi);
 inline bool isSpecular(const MaterialDesc& m) { return m.type != MaterialType::Diffuse; }
 
+// Both ways a smooth dielectric sends a ray arriving along unit d at unit normal n (either
+// side): reflected with probability `reflectance` (1 under total internal reflection, where
+// `transmitted` is meaningless), else refracted, the radiance scaled by (n_from / n_to)^2.
+struct DielectricBranches {
+    double reflectance = 1;
+    glm::dvec3 reflected{0}, transmitted{0};
+    double radianceScale = 1;
+};
+DielectricBranches dielectricBranches(double ior, const glm::dvec3& d, const glm::dvec3& n);
+
 // Unpolarized Fresnel reflectance for light arriving at cosine cosI (> 0) from the side with
 // index etaI into the side with etaT.
 double fresnelDielectric(double cosI, double etaI, double etaT);
