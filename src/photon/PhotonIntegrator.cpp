@@ -187,6 +187,7 @@ double PhotonIntegrator::radiusScale(uint64_t pass, double alpha, int dim) {
 void PhotonIntegrator::beginPass(uint64_t pass, const std::atomic<bool>* cancel) {
     if (!chosen_) choose(cancel);
     if (!chosen_ || !tracing_) return;
+    markChainPixels();
     const auto start = std::chrono::steady_clock::now();
     loadPhotons(desc_.seed, pass, pass, 1, deadline_, cancel);
     stats_.tracingSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -257,10 +258,13 @@ void PhotonIntegrator::loadPhotons(uint64_t seed, uint64_t pass, uint64_t radius
 
 RGB PhotonIntegrator::radiance(const Ray& cameraRay, Rng& rng) const {
     if (!tracing_) return volpath_.radiance(cameraRay, rng);
-    return eyePath(cameraRay, rng, -1, nullptr);
+    // The eye path first: the numbers it draws first are the ones stratified over the passes.
+    const int pixel = chainPixel(cameraRay);
+    const RGB L = eyePath(cameraRay, rng, -1, nullptr, pixel >= 0 ? EyeLight::AllButChains : EyeLight::All);
+    return pixel >= 0 ? L + splitChainLight(pixel, rng) : L;
 }
 
-RGB PhotonIntegrator::eyePath(const Ray& cameraRay, Rng& rng, int walkedToo, char* met) const {
+RGB PhotonIntegrator::eyePath(const Ray& cameraRay, Rng& rng, int walkedToo, char* met, EyeLight light) const {
     RGB L(0), beta(1);
     Ray ray = cameraRay;
     VolumeState state = cameraMedium_;
@@ -283,12 +287,13 @@ RGB PhotonIntegrator::eyePath(const Ray& cameraRay, Rng& rng, int walkedToo, cha
                     const int d = domainOf(state.volume, p.tet);
                     return media_[size_t(d)].walked || d == walkedToo;
                 })) {
-                L += beta * volpath_.continuePath(ray, state, depth, !gathering, rng);
+                if (light != EyeLight::ChainLight)
+                    L += beta * volpath_.continuePath(ray, state, depth, !gathering, rng);
                 break;
             }
             if (met)
                 for (const auto& p : pieces) met[domainOf(state.volume, p.tet)] = 1;
-            L += beta * inMedium(state.volume, ray, column, rng);
+            if (light != EyeLight::ChainLight) L += beta * inMedium(state.volume, ray, column, rng);
             beta *= exp(-column.depth());
             if (isBlack(beta)) break;
             exit = column.exit();
@@ -296,11 +301,15 @@ RGB PhotonIntegrator::eyePath(const Ray& cameraRay, Rng& rng, int walkedToo, cha
         const StretchEnd end = endStretch(scene_, hit, exit, ray, state);
         if (end == StretchEnd::Crossed) continue;
         if (end != StretchEnd::Surface) {
-            if (!gathering) L += beta * scene_.emitted(ray, hit ? &*hit : nullptr);
+            // Before a non-specular event every event was specular: depth counts the chain's.
+            const bool chain = depth > 0;
+            if (!gathering && (light == EyeLight::All || (light == EyeLight::ChainLight) == chain))
+                L += beta * scene_.emitted(ray, hit ? &*hit : nullptr);
             break;
         }
         const MaterialDesc& material = scene_.material(*hit);
         if (!isSpecular(material)) {
+            if (light == EyeLight::ChainLight) break;
             const VolumeState here = scene_.afterHit(*hit, ray.d, state);
             L += beta * sampleDirect(
                             scene_, hit->p, rng, false,
