@@ -42,7 +42,7 @@ SceneDesc lightBehindGlass() {
     return desc;
 }
 
-Image renderWith(const Scene& scene, IntegratorType type, uint64_t seed, int spp) {
+Image renderWith(const Scene& scene, IntegratorType type, uint64_t seed, int spp, int threads = 0) {
     IntegratorDesc integ;
     integ.type = type;
     integ.photons = 2000;
@@ -51,6 +51,7 @@ Image renderWith(const Scene& scene, IntegratorType type, uint64_t seed, int spp
     RenderOptions options;
     options.spp = spp;
     options.seed = seed;
+    options.threads = threads;
     return render(scene, *integrator, options).image;
 }
 
@@ -89,6 +90,15 @@ TEST(SpecularChains, SplittingKeepsTheMeanAndCutsTheNoise) {
     EXPECT_NEAR(photonMean, reference, 4 * sigma);
     // Eight rays a pixel for the chain light: about an eighth of the variance.
     EXPECT_LT(photonSpread, volpathSpread / 4);
+}
+
+// The pixels that split the chain light and their rays depend on the pixel and the pass only.
+TEST(SpecularChains, SameImageAtAnyThreadCount) {
+    const Scene scene(lightBehindGlass());
+    const Image one = renderWith(scene, IntegratorType::Photon, 6, 4, 1),
+                two = renderWith(scene, IntegratorType::Photon, 6, 4, 2);
+    ASSERT_GT(mean(one), 0);
+    for (size_t i = 0; i < one.pixels.size(); ++i) ASSERT_EQ(one.pixels[i], two.pixels[i]) << "pixel " << i;
 }
 
 }  // namespace
