@@ -10,10 +10,11 @@
 
 namespace tetglow {
 
-RGB PhotonIntegrator::eyePath(const Ray& cameraRay, Rng& rng, int walkedToo, char* met) const {
+RGB PhotonIntegrator::eyePath(const Ray& cameraRay, Rng& rng, int walkedToo, char* met, EyeLight light) const {
     EyeBranch camera;
     camera.ray = cameraRay;
     camera.state = cameraMedium_;
+    camera.light = light;
     return eyePath(camera, rng, walkedToo, met);
 }
 
@@ -37,12 +38,13 @@ RGB PhotonIntegrator::eyePath(EyeBranch b, Rng& rng, int walkedToo, char* met) c
                     const int d = domainOf(state.volume, p.tet);
                     return media_[size_t(d)].walked || d == walkedToo;
                 })) {
-                L += beta * volpath_.continuePath(ray, state, b.depth, !b.gathering, rng);
+                if (b.light != EyeLight::ChainLight)
+                    L += beta * volpath_.continuePath(ray, state, b.depth, !b.gathering, rng);
                 break;
             }
             if (met)
                 for (const auto& p : pieces) met[domainOf(state.volume, p.tet)] = 1;
-            L += beta * inMedium(state.volume, ray, column, rng);
+            if (b.light != EyeLight::ChainLight) L += beta * inMedium(state.volume, ray, column, rng);
             beta *= exp(-column.depth());
             if (isBlack(beta)) break;
             exit = column.exit();
@@ -50,11 +52,15 @@ RGB PhotonIntegrator::eyePath(EyeBranch b, Rng& rng, int walkedToo, char* met) c
         const StretchEnd end = endStretch(scene_, hit, exit, ray, state);
         if (end == StretchEnd::Crossed) continue;
         if (end != StretchEnd::Surface) {
-            if (!b.gathering) L += beta * scene_.emitted(ray, hit ? &*hit : nullptr);
+            // Before a non-specular event every event was specular: depth counts the chain's.
+            const bool chain = b.depth > 0;
+            if (!b.gathering && (b.light == EyeLight::All || (b.light == EyeLight::ChainLight) == chain))
+                L += beta * scene_.emitted(ray, hit ? &*hit : nullptr);
             break;
         }
         const MaterialDesc& material = scene_.material(*hit);
         if (!isSpecular(material)) {
+            if (b.light == EyeLight::ChainLight) break;
             const VolumeState here = scene_.afterHit(*hit, ray.d, state);
             L += beta * sampleDirect(
                             scene_, hit->p, rng, false,

@@ -185,6 +185,7 @@ double PhotonIntegrator::radiusScale(uint64_t pass, double alpha, int dim) {
 void PhotonIntegrator::beginPass(uint64_t pass, const std::atomic<bool>* cancel) {
     if (!chosen_) choose(cancel);
     if (!chosen_ || !tracing_) return;
+    markChainPixels();
     const auto start = std::chrono::steady_clock::now();
     loadPhotons(desc_.seed, pass, pass, 1, deadline_, cancel);
     stats_.tracingSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -255,7 +256,10 @@ void PhotonIntegrator::loadPhotons(uint64_t seed, uint64_t pass, uint64_t radius
 
 RGB PhotonIntegrator::radiance(const Ray& cameraRay, Rng& rng) const {
     if (!tracing_) return volpath_.radiance(cameraRay, rng);
-    return eyePath(cameraRay, rng, -1, nullptr);
+    // The eye path first: the numbers it draws first are the ones stratified over the passes.
+    const int pixel = chainPixel(cameraRay);
+    const RGB L = eyePath(cameraRay, rng, -1, nullptr, pixel >= 0 ? EyeLight::AllButChains : EyeLight::All);
+    return pixel >= 0 ? L + splitChainLight(pixel, rng) : L;
 }
 
 int PhotonIntegrator::domainOf(int v, uint32_t tet) const {

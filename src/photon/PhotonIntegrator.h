@@ -3,7 +3,10 @@
 // image is the mean of the passes while the radii shrink, so the error keeps falling with time.
 //
 // Eye rays follow specular chains (both branches of their first dielectric events, weighted by
-// the Fresnel reflectance: eyePath) and never scatter in a medium. Along each stretch of a volume
+// the Fresnel reflectance: eyePath) and never scatter in a medium. A light seen at the end of a
+// specular chain (through glass) is estimated, in every pixel that can see a specular surface,
+// by more rays spread over the pixel that follow the chain only (src/photon/SpecularChains.cpp):
+// a small light there covers a sliver of a pixel, one sample in hundreds. Along each stretch of a volume
 // (through its regions, up to where it leaves or meets a dielectric interface) the integrator
 // adds, against the exact transmittance of the tet walk:
 //   - emission, integrated in closed form;
@@ -137,9 +140,14 @@ private:
     // `radiusFactor` times the radius of pass `radiusPass`.
     void loadPhotons(uint64_t seed, uint64_t pass, uint64_t radiusPass, double radiusFactor,
                      std::optional<std::chrono::steady_clock::time_point> deadline, const std::atomic<bool>* cancel);
+    // Which light an eye path gathers. Light from a light or the environment at the end of a
+    // specular chain (seen through glass) is its own term, `ChainLight`: from a small light it is
+    // rare and bright, as the light covers a sliver of the pixels that see it through the glass.
+    enum class EyeLight { All, AllButChains, ChainLight };
     // One eye path. The domain `walkedToo` is walked as well (-1: none); `met`, if given, gets a 1
-    // for each domain a stretch of the path reads photons from.
-    RGB eyePath(const Ray& ray, Rng& rng, int walkedToo, char* met) const;
+    // for each domain a stretch of the path reads photons from. ChainLight ends the path at its
+    // first non-specular event and where it meets a walked domain.
+    RGB eyePath(const Ray& ray, Rng& rng, int walkedToo, char* met, EyeLight light = EyeLight::All) const;
     // An eye path from where `b` stands. At its first kSplitDielectricEvents dielectric events
     // it follows both the reflected and the refracted branch, each weighted by its Fresnel
     // probability; later ones choose one by that probability.
@@ -153,8 +161,19 @@ private:
         // or as caustics, and its next diffuse surface ends the path.
         bool gathering = false;
         int splits = kSplitDielectricEvents;
+        EyeLight light = EyeLight::All;
     };
     RGB eyePath(EyeBranch b, Rng& rng, int walkedToo, char* met) const;
+    // Pixels whose footprint (its corners and centre) meets a specular surface first split the
+    // chain light: kChainSplits rays of their own, spread over the pixel, estimate it
+    // (src/photon/SpecularChains.cpp). Any fixed choice of pixels keeps the image's expectation.
+    static constexpr int kChainSplits = 8;
+    // chainPixels_ for the scene's camera, when it changed since the last call.
+    void markChainPixels();
+    // The pixel (row-major) that cameraRay passes through, when it splits the chain light; else -1.
+    int chainPixel(const Ray& cameraRay) const;
+    // The chain light of that pixel, from kChainSplits rays spread over it.
+    RGB splitChainLight(int pixel, Rng& rng) const;
 
     // Light scattered and emitted towards ray.o along the stretch `column` of volume v.
     RGB inMedium(int v, const Ray& ray, const ColumnProfile& column, Rng& rng) const;
@@ -193,7 +212,9 @@ private:
     double volumeScale_ = 1, surfaceScale_ = 1;                      // this pass's radius factors
     std::optional<std::chrono::steady_clock::time_point> deadline_;  // of the time limit, if any
     PhotonStats stats_;
-    std::vector<DomainChoice> choices_;  // per photon domain
+    std::vector<DomainChoice> choices_;    // per photon domain
+    std::vector<char> chainPixels_;        // per pixel of the camera, row-major: it splits the chain light
+    std::vector<glm::dvec3> chainCamera_;  // the camera chainPixels_ was marked for: position, corner rays
 };
 
 }  // namespace tetglow

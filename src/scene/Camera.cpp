@@ -20,4 +20,10 @@ Ray Camera::generateRay(double x, double y) const {
     return {position_, glm::normalize(forward_ + sx * right_ + sy * up_)};
 }
 
+glm::dvec2 Camera::filmPosition(const glm::dvec3& d) const {
+    const double depth = glm::dot(d, forward_);
+    const double sx = glm::dot(d, right_) / depth, sy = glm::dot(d, up_) / depth;
+    return {(sx / halfWidth_ + 1) * width_ / 2, (1 - sy / halfHeight_) * height_ / 2};
+}
+
 }  // namespace tetglow
