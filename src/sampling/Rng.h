@@ -66,9 +66,10 @@ private:
     [[gnu::noinline]] double sobolUniform() {
         if (dimension_++ % 2) return pairSecond_;
         const uint64_t hash = mixBits(sobolKey_ + dimension_);
-        // The shuffled index, and each dimension's point Owen-scrambled (Sobol.h): every
-        // scramble reverses its input's bits, which the reversed index and table, and
-        // the first dimension being reverseBits(index), leave nothing to do.
+        // An Owen scramble, or the index's shuffle, is reverseBits(laineKarrasPermutation(
+        // reverseBits(v), seed)) (Sobol.h). Its inner reversal is done already: the index is kept
+        // reversed, the second dimension's table is, and the first dimension, reverseBits(index),
+        // reversed again is the index itself.
         const uint32_t index = reverseBits(laineKarrasPermutation(reversedIndex_, uint32_t(hash)));
         pairSecond_ =
             reverseBits(laineKarrasPermutation(reversedSobolDimension1(index), uint32_t(mixBits(hash)))) * 0x1.0p-32;
