@@ -15,6 +15,7 @@
 #include "render/IntegratorFactory.h"
 #include "render/Renderer.h"
 #include "sampling/Sampling.h"
+#include "sampling/Sobol.h"
 
 namespace tetglow::test {
 namespace {
@@ -57,6 +58,22 @@ TEST(Sampler, EveryPairOfEveryPixelIsANetForEveryPowerOfTwo) {
                 // Passes rendered apart (a farm's ranges) start at multiples of 2^k: nets too.
                 expectNet(pairOf(3, pixel, 5u << k, k, j), k);
             }
+}
+
+// The table of the second dimension, kept with its bits reversed for the scrambles, is Sobol's:
+// the product of the index with Pascal's triangle mod 2, column by column, for every bit.
+TEST(Sampler, SecondDimensionIsTheProductWithPascalsTriangle) {
+    auto direct = [](uint32_t index) {
+        uint32_t value = 0, column = 1u << 31;
+        for (int i = 0; i < 32; ++i, column ^= column >> 1)
+            if ((index >> i) & 1) value ^= column;
+        return value;
+    };
+    uint64_t state = 12345;
+    for (uint32_t i = 0; i < 4096; ++i) {
+        const uint32_t index = i < 2048 ? i : uint32_t(mixBits(++state));
+        ASSERT_EQ(reverseBits(reversedSobolDimension1(index)), direct(index)) << "index " << index;
+    }
 }
 
 // Samples of one pixel and dimension, over many pixels: each number is uniform (a single

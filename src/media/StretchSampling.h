@@ -17,7 +17,10 @@ inline double interactionWithin(double sigma, double length) {
     return depth > 1e-12 ? sigma / -std::expm1(-depth) : 1 / length;
 }
 inline RGB interactionWithin(const RGB& sigma, double length) {
-    return {interactionWithin(sigma.x, length), interactionWithin(sigma.y, length), interactionWithin(sigma.z, length)};
+    // As exp(RGB): a channel equal to an earlier one takes its value.
+    const double x = interactionWithin(sigma.x, length),
+                 y = sigma.y == sigma.x ? x : interactionWithin(sigma.y, length);
+    return {x, y, sigma.z == sigma.x ? x : sigma.z == sigma.y ? y : interactionWithin(sigma.z, length)};
 }
 
 // The distance in [0, length) with that pdf for extinction sigma.

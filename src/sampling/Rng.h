@@ -41,7 +41,7 @@ public:
     static Rng pixelSample(uint64_t seed, uint64_t pixel, uint32_t index) {
         Rng rng(seed, pixel, index);
         rng.sobolKey_ = mixBits(mixBits(seed ^ 0x5851f42d4c957f2dull) + pixel);
-        rng.sobolIndex_ = index;
+        rng.reversedIndex_ = reverseBits(index);
         rng.sobolDimensions_ = kSobolDimensions;
         return rng;
     }
@@ -66,14 +66,20 @@ private:
     [[gnu::noinline]] double sobolUniform() {
         if (dimension_++ % 2) return pairSecond_;
         const uint64_t hash = mixBits(sobolKey_ + dimension_);
-        const uint32_t index = nestedUniformScramble(sobolIndex_, uint32_t(hash));
-        pairSecond_ = nestedUniformScramble(sobolDimension1(index), uint32_t(mixBits(hash))) * 0x1.0p-32;
-        return nestedUniformScramble(sobolDimension0(index), uint32_t(hash >> 32)) * 0x1.0p-32;
+        // An Owen scramble, or the index's shuffle, is reverseBits(laineKarrasPermutation(
+        // reverseBits(v), seed)) (Sobol.h). Its inner reversal is done already: the index is kept
+        // reversed, the second dimension's table is, and the first dimension, reverseBits(index),
+        // reversed again is the index itself.
+        const uint32_t index = reverseBits(laineKarrasPermutation(reversedIndex_, uint32_t(hash)));
+        pairSecond_ =
+            reverseBits(laineKarrasPermutation(reversedSobolDimension1(index), uint32_t(mixBits(hash)))) * 0x1.0p-32;
+        return reverseBits(laineKarrasPermutation(index, uint32_t(hash >> 32))) * 0x1.0p-32;
     }
 
     uint64_t state_, inc_;
     uint64_t sobolKey_ = 0;
-    uint32_t sobolIndex_ = 0, dimension_ = 0, sobolDimensions_ = 0;
+    uint32_t reversedIndex_ = 0;  // the sample's index, its bits reversed
+    uint32_t dimension_ = 0, sobolDimensions_ = 0;
     double pairSecond_ = 0;  // the pair's second coordinate, drawn with its first
 };
 

@@ -17,19 +17,20 @@ inline uint32_t reverseBits(uint32_t v) {
     return (v >> 16) | (v << 16);
 }
 
-// Sobol's first dimension: the van der Corput sequence.
-inline uint32_t sobolDimension0(uint32_t index) { return reverseBits(index); }
-
-// Sobol's second dimension: its generator matrix is Pascal's triangle mod 2, whose columns
-// follow from the first by c ^= c >> 1. Shuffled indices use all 32 bits, so the product with
-// the matrix is taken a byte at a time from tables of the columns' sums.
+// Sobol's first dimension is the van der Corput sequence, reverseBits(index). Its second's
+// generator matrix is Pascal's triangle mod 2, whose columns follow from the first by c ^= c >> 1.
+// Owen scrambling works on reversed bits, so these tables hold the columns' sums reversed
+// (reversal distributes over xor): reverseBits of the second dimension, with no reversal to undo.
+// Shuffled indices use all 32 bits, so the product with the matrix is taken a byte at a time.
 struct SobolDimension1Table {
     uint32_t byte[4][256];
 };
-constexpr SobolDimension1Table makeSobolDimension1Table() {
+constexpr SobolDimension1Table makeReversedSobolDimension1Table() {
     uint32_t columns[32] = {};
     uint32_t c = 1u << 31;
-    for (int i = 0; i < 32; ++i, c ^= c >> 1) columns[i] = c;
+    for (int i = 0; i < 32; ++i, c ^= c >> 1)
+        for (int bit = 0; bit < 32; ++bit)
+            if ((c >> bit) & 1) columns[i] |= 1u << (31 - bit);
     SobolDimension1Table table{};
     for (int b = 0; b < 4; ++b)
         for (int value = 0; value < 256; ++value)
@@ -37,15 +38,19 @@ constexpr SobolDimension1Table makeSobolDimension1Table() {
                 if ((value >> i) & 1) table.byte[b][value] ^= columns[8 * b + i];
     return table;
 }
-inline constexpr SobolDimension1Table kSobolDimension1 = makeSobolDimension1Table();
+inline constexpr SobolDimension1Table kReversedSobolDimension1 = makeReversedSobolDimension1Table();
 
-inline uint32_t sobolDimension1(uint32_t index) {
-    const auto& t = kSobolDimension1.byte;
+// reverseBits of Sobol's second dimension at `index`.
+inline uint32_t reversedSobolDimension1(uint32_t index) {
+    const auto& t = kReversedSobolDimension1.byte;
     return t[0][index & 255] ^ t[1][(index >> 8) & 255] ^ t[2][(index >> 16) & 255] ^ t[3][index >> 24];
 }
 
 // Laine and Karras's hash-based permutation, with Burley's constants: each output bit depends
 // only on the same and the lower input bits, so it is a nested permutation of binary intervals.
+// On reversed bits, reverseBits(laineKarrasPermutation(reverseBits(v), seed)), it is an Owen
+// scramble of a point's 32 bits (the higher bits decide how the lower ones flip), or a shuffle of
+// sample indices that maps every aligned block of 2^k indices onto another one.
 inline uint32_t laineKarrasPermutation(uint32_t v, uint32_t seed) {
     v += seed;
     v ^= v * 0x6c50b47cu;
@@ -53,12 +58,6 @@ inline uint32_t laineKarrasPermutation(uint32_t v, uint32_t seed) {
     v ^= v * 0xc7afe638u;
     v ^= v * 0x8d22f6e6u;
     return v;
-}
-
-// An Owen scramble of a point's 32 bits (the higher bits decide how the lower ones flip), or a
-// shuffle of sample indices that maps every aligned block of 2^k indices onto another one.
-inline uint32_t nestedUniformScramble(uint32_t v, uint32_t seed) {
-    return reverseBits(laineKarrasPermutation(reverseBits(v), seed));
 }
 
 }  // namespace tetglow

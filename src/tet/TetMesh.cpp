@@ -25,7 +25,7 @@ double TetMesh::volume() const {
     return sum;
 }
 
-int32_t TetMesh::region(uint32_t t) const {
+int32_t TetMesh::regionOf(uint32_t t) const {
     return int32_t(std::upper_bound(regionTets.begin() + 1, regionTets.end() - 1, t) - regionTets.begin()) - 1;
 }
 

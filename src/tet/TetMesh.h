@@ -54,7 +54,8 @@ struct TetMesh {
     uint32_t across(uint32_t s, uint32_t face) const {
         return surfaceFace[s] == face ? surfaceFaceFront[s] : surfaceFace[s];
     }
-    int32_t region(uint32_t t) const;  // the region owning tet t
+    // The region owning tet t. Inline for the walk's every segment: one region needs no search.
+    int32_t region(uint32_t t) const { return regionTets.size() <= 2 ? 0 : regionOf(t); }
     double tetVolume(uint32_t t) const;
     double regionVolume(int32_t r) const;         // sum of its tet volumes
     double regionSurfaceVolume(int32_t r) const;  // enclosed by its surface triangles (divergence theorem)
@@ -66,6 +67,9 @@ struct TetMesh {
     // The surface triangle on the other side of edge (a, b) of surface triangle s, found by
     // turning around the edge through the tets (no extra storage).
     uint32_t surfaceAcross(uint32_t s, uint32_t a, uint32_t b) const;
+
+private:
+    int32_t regionOf(uint32_t t) const;  // region() by binary search over regionTets
 };
 
 // Binary cache file: a header (version, key, checksum of the rest) and the arrays. Writing goes

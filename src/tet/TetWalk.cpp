@@ -101,13 +101,21 @@ TetWalk TetWalk::start(const TetMesh& mesh, const Ray& ray, uint32_t tet, double
     const auto& tv = mesh.tets[tet];
     Vertex p[4];
     for (int j = 0; j < 4; ++j) p[j] = w.project(tv[j]);
+    // The four faces share six edges, and side() is exactly antisymmetric: each edge is decided
+    // once, edge[i][k] = orient(p[i], p[k]) for i < k, and read with its sign flipped the other way.
+    double edge[4][4];
+    for (int i = 0; i < 4; ++i)
+        for (int k = i + 1; k < 4; ++k) {
+            edge[i][k] = orient(p[i], p[k]);
+            edge[k][i] = -edge[i][k];
+        }
     // The exit face is the one whose outward winding is counter-clockwise around the origin;
     // if rounding puts the origin on no face, take the face it is least outside of.
     int best = 0;
     double bestMin = -INFINITY, bestSides[3] = {};
     for (int j = 0; j < 4; ++j) {
-        const Vertex &a = p[kInwardFace[j][0]], &b = p[kInwardFace[j][2]], &c = p[kInwardFace[j][1]];
-        const double s[3] = {orient(a, b), orient(b, c), orient(c, a)};
+        const int ia = kInwardFace[j][0], ib = kInwardFace[j][2], ic = kInwardFace[j][1];
+        const double s[3] = {edge[ia][ib], edge[ib][ic], edge[ic][ia]};
         const double m = std::min({s[0], s[1], s[2]});
         if (m > bestMin) {
             best = j;
