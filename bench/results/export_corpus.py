@@ -340,7 +340,7 @@ def cases():
         p, [("w", (box()[0], []))], lines=[(0, 1), (1, 3), (3, 2), (2, 0)]), REFUSE)
     add("empty.obj", "an empty OBJ", lambda p: open(p, "w").close(), REFUSE)
     # The engine's truth: engine_mesh.py --truth, a jittered-grid estimate of its union's volume
-    # (standard error about 0.3%), kept in engine_mesh.TRUTH.
+    # (standard error about 0.25%), kept in engine_mesh.TRUTH.
     add("engine.obj", "the 67-part engine (engine_mesh.py), 111k triangles",
         lambda p: engine_mesh.write_obj(p, engine_mesh.engine()), engine_mesh.TRUTH)
     return c
