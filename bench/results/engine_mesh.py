@@ -6,9 +6,25 @@ T-junctions: closed to the eye, open by their edges); some are open (the cylinde
 the block's top plate and the crank pins through the rods, as assembled parts do; the head sits
 on the block face to face. Written as OBJ, one `o` per part.
 
-    bench/results/engine_mesh.py OUT.obj [--scale S]   (S multiplies every part's resolution)"""
+    bench/results/engine_mesh.py OUT.obj [--scale S]   (S multiplies every part's resolution)
+    /usr/bin/python3 bench/results/engine_mesh.py --truth [--samples N] [--seed K]
+
+--truth estimates the volume of the engine as a user means it, independently of tetglow: a point
+is inside where a closed part's own generalized winding number (Jacobson et al. 2013) exceeds 1/2
+in size (every closed part solid, whatever the others do and however it is wound), or where the open parts' summed winding number
+does (liners, shroud, cover, pipes, springs: what their winding number gives). The estimate is a
+jittered grid (one uniform point in each cell) over the engine's bounds, in independent
+replicates whose spread gives its standard error. It takes minutes (numpy), so its figure is kept
+in TRUTH below; rerun the second command after changing the engine and paste its last line."""
 import argparse
 import math
+import time
+
+# The --truth estimate for engine() at scale 1 and its standard error: two runs of 40,000 points
+# in 8 replicates, --seed 1 and 2, gave 62.789 +- 0.247 and 63.026 +- 0.179 (3 min of wall time
+# each at load 20, about 40 s of CPU); their mean weighted by the inverse variances.
+TRUTH = 62.95
+TRUTH_ERROR = 0.15
 
 
 class Parts:
@@ -193,11 +209,110 @@ def write_obj(path, parts):
             base += len(vs)
 
 
+# The open parts (cylinders without caps); every other part is a solid, the cad-capped ones too,
+# which are closed to the eye though their caps meet their sides in T-junctions.
+OPEN = ("liner", "spring", "shroud", "cover", "exhaust", "intake")
+
+
+def closed(name):
+    return not name.startswith(OPEN)
+
+
+def winding(np, tris, points):
+    """The generalized winding number of triangles tris (T x 3 x 3) at points (P x 3): the signed
+    solid angle of each triangle (Van Oosterom and Strackee 1983) summed, over 4 pi."""
+    total = np.zeros(len(points))
+    for lo in range(0, len(tris), 2048):
+        t = tris[lo:lo + 2048]
+        a, b, c = (t[None, :, k, :] - points[:, None, :] for k in range(3))
+        la, lb, lc = (np.sqrt((v * v).sum(-1)) for v in (a, b, c))
+        det = (a * np.cross(b, c)).sum(-1)
+        den = la * lb * lc + (a * b).sum(-1) * lc + (b * c).sum(-1) * la + (c * a).sum(-1) * lb
+        total += 2 * np.arctan2(det, den).sum(1)
+    return total / (4 * math.pi)
+
+
+def caps(vs, fs):
+    """Fans closing every boundary loop of an open part, each wound against the part's rim: the
+    part with them is closed, so its winding number is whole, and the part's own is that whole
+    number minus the fans' winding number (which costs the fans' few triangles, not the part's)."""
+    edges = {(t[k], t[(k + 1) % 3]) for t in fs for k in range(3)}
+    following = {a: b for a, b in edges if (b, a) not in edges}
+    fans = []
+    while following:
+        loop = [next(iter(following))]
+        while following.get(loop[-1]) in following and following[loop[-1]] != loop[0]:
+            loop.append(following.pop(loop[-1]))
+        following.pop(loop[-1])
+        c = [sum(vs[i][k] for i in loop) / len(loop) for k in range(3)]
+        fans += [(c, vs[b], vs[a]) for a, b in zip(loop, loop[1:] + loop[:1])]
+    return fans
+
+
+def union_volume(parts, samples, seed, replicates=8):
+    """The inside's volume (see --truth) and its standard error over the replicates."""
+    import numpy as np
+    rng = np.random.default_rng(seed)
+    solids, sheets, fans = [], [], []
+    for name, vs, fs in parts:
+        tris = np.array(vs, dtype=float)[np.array(fs)]
+        if closed(name):
+            solids.append(tris)
+        else:
+            fans.append(np.array(caps(vs, fs), dtype=float))
+            sheets.append(np.concatenate([tris, fans[-1]]))
+    fans = np.concatenate(fans)
+    corners = np.concatenate([t.reshape(-1, 3) for t in solids + sheets])
+    lo, hi = corners.min(0) - 0.05, corners.max(0) + 0.05
+    cells = np.maximum(1, np.round((hi - lo) / ((hi - lo).prod() / (samples / replicates)) ** (1 / 3))).astype(int)
+    size = (hi - lo) / cells
+    grid = np.stack(np.meshgrid(*(np.arange(n) for n in cells), indexing="ij"), -1).reshape(-1, 3)
+
+    def whole(tris, points, skip):
+        """The winding number of closed triangles tris, 0 outside their bounds and where skip."""
+        w = np.zeros(len(points))
+        where = np.flatnonzero(~skip & np.all((points >= tris.reshape(-1, 3).min(0)) &
+                                              (points <= tris.reshape(-1, 3).max(0)), 1))
+        for k in range(0, len(where), 512):
+            w[where[k:k + 512]] = winding(np, tris, points[where[k:k + 512]])
+        return w
+
+    volumes = []
+    for _ in range(replicates):
+        points = lo + (grid + rng.random(grid.shape)) * size
+        inside = np.zeros(len(points), bool)
+        for tris in solids:
+            inside |= np.abs(whole(tris, points, inside)) > 0.5  # the gears are wound inward
+        rest = np.flatnonzero(~inside)
+        open_winding = np.zeros(len(rest))
+        for k in range(0, len(rest), 512):
+            open_winding[k:k + 512] = -winding(np, fans, points[rest[k:k + 512]])
+        for tris in sheets:
+            open_winding += np.round(whole(tris, points[rest], np.zeros(len(rest), bool)))
+        inside[rest] = open_winding > 0.5
+        volumes.append(inside.mean() * (hi - lo).prod())
+    v = np.array(volumes)
+    return v.mean(), v.std(ddof=1) / math.sqrt(len(v))
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("out")
+    ap.add_argument("out", nargs="?")
     ap.add_argument("--scale", type=float, default=1.0)
+    ap.add_argument("--truth", action="store_true", help="estimate the engine's volume (minutes)")
+    ap.add_argument("--samples", type=int, default=40000)
+    ap.add_argument("--seed", type=int, default=1)
     a = ap.parse_args()
+    if a.truth:
+        start = time.time()
+        parts = engine(a.scale)
+        print(f"{sum(closed(n) for n, _, _ in parts)} solid parts, open: {[n for n, _, _ in parts if not closed(n)]}")
+        v, e = union_volume(parts, a.samples, a.seed)
+        print(f"{time.time() - start:.0f} s")
+        print(f"TRUTH = {v:.4f}\nTRUTH_ERROR = {e:.4f}")
+        return
+    if not a.out:
+        ap.error("the output file is required")
     parts = engine(a.scale)
     write_obj(a.out, parts)
     print(f"{a.out}: {len(parts)} parts, {sum(len(fs) for _, _, fs in parts)} triangles")

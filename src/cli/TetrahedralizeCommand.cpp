@@ -229,6 +229,10 @@ void addTetrahedralizeCommand(CLI::App& app) {
     cmd->add_flag("--strict", o->tet.strict,
                   "Refuse a mesh that is not closed, manifold and free of self-intersections "
                   "instead of repairing it; the error counts and locates every problem");
+    cmd->add_option("--repair-time-limit", o->tet.repairTimeLimit,
+                    "Seconds the repair of a broken mesh may take before the mesh is approximated by its winding "
+                    "number on a grid instead, with a warning naming the stage reached (0: approximate at once)")
+        ->check(inRange({.lo = 0, .hi = 1e6}));
     cmd->callback([o] { run(*o); });
 }
 

@@ -1,7 +1,7 @@
 #include "tet/InteriorRepair.h"
 
 #include <algorithm>
-#include <chrono>
+#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <numeric>
@@ -18,6 +18,7 @@
 #include "tet/IntersectionResolution.h"
 #include "tet/PartWinding.h"
 #include "tet/Predicates.h"
+#include "tet/RepairClock.h"
 #include "tet/SelfIntersection.h"
 #include "tet/ShellNesting.h"
 #include "tet/TetGenProcess.h"
@@ -278,20 +279,6 @@ OrientedSoup cleanAndOrient(TriangleMesh& soup, RepairReport& report) {
     return {std::move(edges), std::move(closed)};
 }
 
-// A line on stderr as each stage of a long repair ends (once it has taken kQuiet seconds), so
-// that a large input shows where its time goes instead of nothing until the end.
-class StageProgress {
-public:
-    void stage(const std::string& what) const {
-        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-        if (seconds >= kQuiet) std::fprintf(stderr, "tetglow: repair: %s (%.1f s)\n", what.c_str(), seconds);
-    }
-
-private:
-    static constexpr double kQuiet = 2;
-    const std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
-};
-
 }  // namespace
 
 std::string RepairReport::summary() const {
@@ -313,13 +300,13 @@ std::string RepairReport::summary() const {
     return s + " (inside: winding number above 1/2, smoothed by a minimum cut where within 1/4 of it)";
 }
 
-RepairReport repairInterior(TriangleMesh& mesh) {
-    const StageProgress progress;
+RepairReport repairInterior(TriangleMesh& mesh, const RepairClock& clock) {
     RepairReport report;
     TriangleMesh soup = mesh;
     const auto [edges, closed] = cleanAndOrient(soup, report);
+    clock.stage("cleaning: " + grouped(soup.triangles.size()) + " triangles welded and oriented");
     const auto pairs = findSelfIntersections(soup);
-    progress.stage("found " + plural(pairs.size(), "crossing pair", "crossing pairs"));
+    clock.stage("crossings: " + grouped(pairs.size()) + " pairs found, none split yet");
     report.crossingPairs = pairs.size();
     for (const auto& [i, j] : pairs) keep(report.crossingAt, centroid(soup, i));
     report.partsUnioned = crossingParts(soup, edges, pairs);
@@ -329,7 +316,8 @@ RepairReport repairInterior(TriangleMesh& mesh) {
     // lattice's, then Steiner points.
     VolumeBoundary plc;
     ResolvedSurface resolved = resolveIntersections(soup, pairs);
-    progress.stage("split the crossings into " + plural(resolved.surface.triangles.size(), "triangle", "triangles"));
+    clock.stage("crossings: " + grouped(pairs.size()) + " pairs split into " +
+                grouped(resolved.surface.triangles.size()) + " triangles");
     plc.surface = std::move(resolved.surface);
     report.unsplitTriangles = resolved.unsplit;
     report.unsplitReason = resolved.unsplitReason;
@@ -358,27 +346,36 @@ RepairReport repairInterior(TriangleMesh& mesh) {
         const std::vector<glm::dvec3> lattice = holeLattice(soup, edges, winding, box, offset);
         plc.surface.positions.resize(constrained);
         plc.surface.positions.insert(plc.surface.positions.end(), lattice.begin(), lattice.end());
+        const std::string box = "box: TetGen on " + grouped(plc.surface.triangles.size()) + " triangles and " +
+                                grouped(lattice.size()) + " lattice points";
         try {
-            tets = unpack(runIsolated(plc, "pYnQz"));
+            tets = unpack(runIsolated(plc, "pYnQz", clock.left()));
             report.latticePoints = lattice.size();
-            progress.stage("tetrahedralized the box with " + plural(lattice.size(), "lattice point", "lattice points") +
-                           ": " + plural(tets.tets.size(), "tet", "tets"));
+            clock.stage(box + ": " + grouped(tets.tets.size()) + " tets");
             break;
         } catch (const TetGenCrash&) {
             if (&offset == &kLatticeOffsets[std::size(kLatticeOffsets) - 1]) throw;
+        } catch (const InputError&) {
+            if (clock.expired()) clock.stop(box + ", not finished");
+            throw;
         }
     }
     if (tets.tets.empty()) throw InputError("TetGen produced no tetrahedra");
 
     std::vector<double> w(tets.tets.size());
+    std::atomic<size_t> done{0};
     tbb::parallel_for(tbb::blocked_range<size_t>(0, w.size()), [&](const auto& range) {
+        if (clock.expired()) return;
+        done += range.size();
         for (size_t i = range.begin(); i != range.end(); ++i) {
             const auto& v = tets.tets[i];
             w[i] = winding.classify((tets.points[v[0]] + tets.points[v[1]] + tets.points[v[2]] + tets.points[v[3]]) *
                                     0.25);
         }
     });
-    progress.stage("took the winding number at every tet");
+    const std::string windings = "winding number: " + grouped(done) + " of " + grouped(w.size()) + " tets";
+    if (done < w.size()) clock.stop(windings);
+    clock.stage(windings);
     report.minWinding = *std::min_element(w.begin(), w.end());
     report.maxWinding = *std::max_element(w.begin(), w.end());
     const std::vector<char> inside = report.maxWinding > 0.5 ? insideLabels(tets.points, tets.tets, tets.neighbours, w,
@@ -432,7 +429,7 @@ std::string surveyProblems(const TriangleMesh& input) {
     return s;
 }
 
-ValidationReport prepareSurface(TriangleMesh& mesh, bool strict) {
+ValidationReport prepareSurface(TriangleMesh& mesh, bool strict, double timeLimit) {
     if (mesh.triangles.empty()) throw InputError("mesh has no triangles");
     checkFinite(mesh);
     const size_t oppositePairs = cancelOppositeFaces(mesh);
@@ -456,7 +453,7 @@ ValidationReport prepareSurface(TriangleMesh& mesh, bool strict) {
         mesh = std::move(original);
         ValidationReport report;
         try {
-            RepairReport repair = repairInterior(mesh);
+            RepairReport repair = repairInterior(mesh, RepairClock(timeLimit));
             repair.reason = refusal.what();
             try {
                 report = validateAndRepair(mesh, true);

@@ -8,6 +8,7 @@
 // pieces) wherever the input has a surface, and tet faces across its holes.
 #pragma once
 #include "tet/MeshValidation.h"
+#include "tet/RepairClock.h"
 
 namespace tetglow {
 
@@ -16,13 +17,15 @@ namespace tetglow {
 // pinchedEdges). Throws InputError when the mesh encloses no volume: no tet is inside, as for a
 // flat sheet, whose winding number stays below 1/2 on both sides. A curved open shell (a dome)
 // encloses the lens between it and the surface spanning its rim, where its winding number exceeds 1/2.
-RepairReport repairInterior(TriangleMesh& mesh);
+// Each stage reports to `clock` as it ends, and RepairTimeout stops the repair when its bound is
+// reached (also inside the stages that take long: TetGen on the box, the winding numbers).
+RepairReport repairInterior(TriangleMesh& mesh, const RepairClock& clock = RepairClock());
 
 // validateAndRepair; where that refuses the mesh (other than for non-finite coordinates or no
 // triangles), repairInterior and then validateAndRepair, unless `strict`: then the refusal,
 // with every problem found counted and located. Where the repair fails other than for a mesh
-// that encloses no volume, approximateSurface.
-ValidationReport prepareSurface(TriangleMesh& mesh, bool strict);
+// that encloses no volume (or when it takes longer than `timeLimit` seconds), approximateSurface.
+ValidationReport prepareSurface(TriangleMesh& mesh, bool strict, double timeLimit = kRepairTimeLimit);
 
 // Replaces `mesh` by the boundary of the grid cells its winding number puts inside
 // (windingGridBoundary), validated, with `reason` (why the exact path failed) and every problem

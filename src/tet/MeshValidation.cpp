@@ -347,7 +347,9 @@ ValidationReport validateAndRepair(TriangleMesh& mesh, bool pinchedEdges) {
     if (auto hit = findSelfIntersection(mesh))
         throw InputError("mesh intersects itself: " + face(hit->first) + " crosses " + face(hit->second));
     const auto shell = orientShells(mesh, edges, report);
-    orientOutward(mesh, shell, report);
+    // A surface with pinched edges bounds a set of cells and is wound outward from them: a shell
+    // through a pinched edge need not close on its own, so it says nothing of nesting by itself.
+    if (!pinchedEdges) orientOutward(mesh, shell, report);
     report.volume = signedVolume(mesh);
     if (!(report.volume > 0))
         throw InputError("mesh encloses no volume (signed volume " + std::to_string(report.volume) + ")");

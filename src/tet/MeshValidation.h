@@ -29,7 +29,9 @@ struct ValidationReport {
 // exceeds 1/2 (fixed, not rejected; a shell with inside on both sides is dropped); positive
 // volume. With `pinchedEdges`, an edge may also have an even number of triangles, at least
 // four: closed parts that touch along it, as a repaired surface has them (a clean mesh with such
-// an edge is refused, and repaired).
+// an edge is refused, and repaired); such a surface is the boundary of a set of cells (tets,
+// grid cells), each face wound outward from its cell, and keeps its winding and every shell: a
+// shell through a pinched edge need not close on its own, so nesting cannot be judged by shells.
 ValidationReport validateAndRepair(TriangleMesh& mesh, bool pinchedEdges = false);
 
 // "(x, y, z)", as messages give positions.

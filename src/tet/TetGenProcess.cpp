@@ -2,11 +2,15 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <unordered_map>
 
 #include <fcntl.h>
 #include <tetgen.h>
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
 
 #include "base/ByteMessage.h"
 
@@ -78,15 +82,42 @@ std::string runTetGen(const VolumeBoundary& boundary, const std::string& switche
 
 }  // namespace
 
-RawTets runIsolated(const VolumeBoundary& boundary, const std::string& switches) {
+bool hasCloseVertices(const std::vector<glm::dvec3>& points) {
+    Bounds3 box;
+    for (const glm::dvec3& p : points) box.extend(p);
+    const double tolerance = 2e-8 * box.diagonal();
+    if (!(tolerance > 0)) return false;
+    // Cells of the tolerance's size: a close pair lies in one cell or two neighbouring ones.
+    const auto cell = [&](const glm::dvec3& p) { return glm::i64vec3(glm::floor((p - box.lo) / tolerance)); };
+    const auto key = [](const glm::i64vec3& c) {
+        return uint64_t(c.x) * 0x9E3779B97F4A7C15ull ^ uint64_t(c.y) * 0xC2B2AE3D27D4EB4Full ^ uint64_t(c.z);
+    };
+    std::unordered_multimap<uint64_t, uint32_t> cells;
+    for (uint32_t i = 0; i < points.size(); ++i) {
+        const glm::i64vec3 c = cell(points[i]);
+        for (int dx = -1; dx <= 1; ++dx)
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dz = -1; dz <= 1; ++dz) {
+                    const auto [first, last] = cells.equal_range(key(c + glm::i64vec3(dx, dy, dz)));
+                    for (auto it = first; it != last; ++it)
+                        if (glm::distance(points[it->second], points[i]) < tolerance) return true;
+                }
+        cells.emplace(key(c), i);
+    }
+    return false;
+}
+
+RawTets runIsolated(const VolumeBoundary& boundary, const std::string& switches, double seconds) {
     // TetGen 1.5's Hilbert sort loops without end on an infinite or NaN point.
     for (const glm::dvec3& p : boundary.surface.positions)
         if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
             throw std::logic_error("a point of TetGen's input is not finite");
+    ChildLimits limits = meshingLimits(boundary.surface.triangles.size());
+    if (seconds > 0) limits.seconds = std::min(limits.seconds, seconds);
     std::string answer;
     try {
-        answer =
-            runInChild([&] { return runTetGen(boundary, switches); }, meshingLimits(boundary.surface.triangles.size()));
+        const std::string kept = hasCloseVertices(boundary.surface.positions) ? switches + "M0/1" : switches;
+        answer = runInChild([&] { return runTetGen(boundary, kept); }, limits);
     } catch (const ChildFailure& e) {
         if (e.kind == ChildFailure::Kind::Signal)
             throw TetGenCrash("TetGen crashed (" + e.detail +

@@ -412,7 +412,7 @@ TetMesh tetrahedralize(std::vector<TriangleMesh> surfaces, const std::vector<std
     std::vector<ValidationReport> validations(surfaces.size());
     for (size_t i = 0; i < surfaces.size(); ++i) {
         try {
-            validations[i] = prepareSurface(surfaces[i], options.strict);
+            validations[i] = prepareSurface(surfaces[i], options.strict, options.repairTimeLimit);
         } catch (const InputError& e) {
             throw InputError(names[i].empty() ? e.what() : names[i] + ": " + e.what());
         }

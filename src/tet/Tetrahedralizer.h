@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "tet/MeshValidation.h"
+#include "tet/RepairClock.h"
 #include "tet/TetMesh.h"
 
 namespace tetglow {
@@ -16,6 +17,10 @@ struct TetOptions {
     bool useCache = true;
     // Refuse a mesh that fails validation (today's checks) instead of repairing it (InteriorRepair.h).
     bool strict = false;
+    // Seconds the repair of each mesh may take before it stops and the mesh is approximated by
+    // the winding number on a grid instead, with a warning naming the stage and its figures
+    // (RepairClock.h); 0 approximates every mesh that needs repair.
+    double repairTimeLimit = kRepairTimeLimit;
 
     std::string switches() const;  // the TetGen command line these options give
 };
