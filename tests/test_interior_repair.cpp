@@ -263,6 +263,41 @@ TEST(InteriorRepair, CubesSharingOnlyAnEdgeKeepTheirVolume) {
     EXPECT_EQ(mesh.surface.size(), 24u);
 }
 
+// Two hollow pyramids over one square, one above it and one below it, each the space between two
+// pyramids of heights 1/4 and 1/2: they touch only along the square's edges (four triangles on
+// each). Split at those pinched edges, each cell's surface is two open shells of four triangles,
+// and the winding number of a cell's outer shell is above 1/2 on its inner one. When nesting was
+// judged shell by shell, both inner shells were dropped as "inside on both sides" (three triangles
+// left on the square's edges) and both outer ones flipped: the repaired surface enclosed no volume,
+// the winding number's grid, judged the same way, put one space in two regions, and the mesh was
+// refused.
+TEST(InteriorRepair, HollowPyramidsPinchedAlongASquareKeepEveryShell) {
+    TriangleMesh pyramids;
+    pyramids.positions = {{0, 0, 0},       {1, 0, 0},        {1, 1, 0},        {0, 1, 0},
+                          {0.5, 0.5, 0.5}, {0.5, 0.5, 0.25}, {0.5, 0.5, -0.5}, {0.5, 0.5, -0.25}};
+    for (uint32_t i = 0; i < 4; ++i) {
+        const uint32_t j = (i + 1) % 4;
+        pyramids.triangles.push_back({i, j, 4});  // the upper cell: its outer shell
+        pyramids.triangles.push_back({j, i, 5});  // and its inner one
+        pyramids.triangles.push_back({j, i, 6});  // the lower cell: its outer shell
+        pyramids.triangles.push_back({i, j, 7});  // and its inner one
+    }
+    ASSERT_DOUBLE_EQ(signedVolume(pyramids), 1.0 / 6);
+    ValidationReport report;
+    TetMesh mesh;
+    ASSERT_EQ(test::errorOf([&] { mesh = tets(pyramids, &report); }), "no error");
+    ASSERT_TRUE(report.repair.applied);
+    EXPECT_EQ(report.repair.nonManifoldEdges, 4u);
+    EXPECT_EQ(report.droppedShells, 0u);
+    EXPECT_EQ(report.flippedTriangles, 0u);
+    EXPECT_DOUBLE_EQ(mesh.volume(), 1.0 / 6);
+    EXPECT_DOUBLE_EQ(mesh.surfaceVolume(), 1.0 / 6);
+    EXPECT_EQ(inputTrianglesOnBoundary(pyramids, mesh), 16u);
+    EXPECT_EQ(mesh.surface.size(), 16u);
+    for (const glm::dvec3& p : pyramids.positions)
+        EXPECT_NE(std::find(mesh.vertices.begin(), mesh.vertices.end(), p), mesh.vertices.end()) << formatPosition(p);
+}
+
 // fuzz_repair: CGAL 5.5's autorefinement crashes on these four triangles, two of which overlap
 // in one plane (SIGSEGV; with CGAL's assertions on, an assertion fails), and the whole mesh was
 // refused ("cannot split the crossing triangles: CGAL's autorefinement was killed by SIGSEGV").
