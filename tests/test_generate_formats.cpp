@@ -20,7 +20,9 @@ TEST(GenerateFormats, WritesTheFormatTheExtensionNames) {
         const TriangleMesh read = readMesh(dir + "/" + name);
         EXPECT_EQ(read.triangles.size(), expected.triangles.size());
         EXPECT_NEAR(signedVolume(read), signedVolume(expected), 1e-5);
-        if (name != "ball.obj") EXPECT_NE(readFile(dir + "/" + name).rfind("# generated", 0), 0u) << "not OBJ text";
+        if (name != "ball.obj") {
+            EXPECT_NE(readFile(dir + "/" + name).rfind("# generated", 0), 0u) << "not OBJ text";
+        }
     }
     // The user's way: the cloud as STL, then init on it.
     ASSERT_EQ(runTetglow("generate cloud --subdivisions 1 -o " + dir + "/x.stl").exitCode, 0);
