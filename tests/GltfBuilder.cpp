@@ -10,6 +10,8 @@
 #include <draco/compression/encode.h>
 #include <draco/mesh/mesh.h>
 
+#include "scene/GltfDocument.h"
+
 namespace tetglow::test {
 namespace {
 
@@ -146,21 +148,7 @@ nlohmann::json GltfBuilder::glbJson() const {
 }
 
 std::string GltfBuilder::writeGlb(const std::string& path) const {
-    std::string text = glbJson().dump(), data = bin;
-    while (text.size() % 4) text.push_back(' ');
-    while (data.size() % 4) data.push_back('\0');
-    std::string out;
-    appendU32(out, 0x46546C67);
-    appendU32(out, 2);
-    appendU32(out, uint32_t(12 + 8 + text.size() + (data.empty() ? 0 : 8 + data.size())));
-    appendU32(out, uint32_t(text.size()));
-    appendU32(out, 0x4E4F534A);
-    out += text;
-    if (!data.empty()) {
-        appendU32(out, uint32_t(data.size()));
-        appendU32(out, 0x004E4942);
-        out += data;
-    }
+    const std::string out = joinGlb(glbJson().dump(), bin);
     writeBytes(path, out);
     return path;
 }

@@ -29,6 +29,25 @@ uint32_t readU32(const std::string& data, size_t at) {
 
 }  // namespace
 
+std::string joinGlb(std::string json, std::string bin) {
+    while (json.size() % 4) json.push_back(' ');
+    while (bin.size() % 4) bin.push_back('\0');
+    std::string out;
+    const auto u32 = [&out](uint32_t v) { out.append(reinterpret_cast<const char*>(&v), 4); };
+    u32(kGlbMagic);
+    u32(2);
+    u32(uint32_t(12 + 8 + json.size() + (bin.empty() ? 0 : 8 + bin.size())));
+    u32(uint32_t(json.size()));
+    u32(kJsonChunk);
+    out += json;
+    if (!bin.empty()) {
+        u32(uint32_t(bin.size()));
+        u32(kBinChunk);
+        out += bin;
+    }
+    return out;
+}
+
 std::pair<std::string, std::string> splitGlb(const std::string& data, const std::string& path) {
     const auto fail = [&](const std::string& what) { throw InputError(path + ": GLB container: " + what); };
     if (data.size() < 20) fail("shorter than its 12-byte header and one chunk header");

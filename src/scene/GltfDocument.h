@@ -42,6 +42,8 @@ GltfDocument readGltfDocument(const std::string& path, std::string data);
 // The JSON chunk of the GLB container `data` read from `path`, and its BIN chunk (the first
 // buffer when that has no URI). Throws InputError "<path>: GLB container: <problem>".
 std::pair<std::string, std::string> splitGlb(const std::string& data, const std::string& path);
+// The GLB container of `json` and the BIN chunk `bin` (none when empty): splitGlb's inverse.
+std::string joinGlb(std::string json, std::string bin);
 
 // True when `data` is a GLB container (its first four bytes are "glTF").
 bool isGlb(const std::string& data);

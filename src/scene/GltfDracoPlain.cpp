@@ -21,27 +21,6 @@ std::string base64(const std::string& bytes) {
     return out;
 }
 
-void appendU32(std::string& out, uint32_t v) { out.append(reinterpret_cast<const char*>(&v), 4); }
-
-// A GLB container of `json` and the BIN chunk `bin` (none when empty).
-std::string glb(std::string json, std::string bin) {
-    while (json.size() % 4) json.push_back(' ');
-    while (bin.size() % 4) bin.push_back('\0');
-    std::string out;
-    appendU32(out, 0x46546C67);  // "glTF"
-    appendU32(out, 2);
-    appendU32(out, uint32_t(12 + 8 + json.size() + (bin.empty() ? 0 : 8 + bin.size())));
-    appendU32(out, uint32_t(json.size()));
-    appendU32(out, 0x4E4F534A);  // JSON
-    out += json;
-    if (!bin.empty()) {
-        appendU32(out, uint32_t(bin.size()));
-        appendU32(out, 0x004E4942);  // BIN
-        out += bin;
-    }
-    return out;
-}
-
 // One decoded primitive: where it lies in the document, and its bytes in the new buffer.
 struct Decoded {
     std::string primitive;  // JSON pointer
@@ -126,7 +105,7 @@ std::optional<std::string> withDracoDecoded(const std::string& path, const std::
             names.erase(std::remove(names.begin(), names.end(), "KHR_draco_mesh_compression"), names.end());
         }
     if (!isGlb(data)) return j.dump();
-    return glb(j.dump(), splitGlb(data, path).second);
+    return joinGlb(j.dump(), splitGlb(data, path).second);
 }
 
 }  // namespace tetglow
