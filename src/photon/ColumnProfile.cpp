@@ -78,4 +78,10 @@ std::optional<ColumnProfile::Event> ColumnProfile::atDepth(int c, double depth) 
     return Event{p.tIn + volume_.columnDistance(p.tet, ray_, p.tIn, p.tOut, column), p.tet};
 }
 
+std::optional<ColumnProfile::Event> ColumnProfile::at(double t) const {
+    const Piece* p = pieceAt(t);
+    if (!p || t > end()) return std::nullopt;
+    return Event{t, p->tet};
+}
+
 }  // namespace tetglow

@@ -44,6 +44,8 @@ public:
         uint32_t tet;
     };
     std::optional<Event> atDepth(int c, double depth) const;
+    // The point at t (begin <= t <= end) and its tet.
+    std::optional<Event> at(double t) const;
 
 private:
     // The piece holding t (the last one starting at or before it), or null before the first.

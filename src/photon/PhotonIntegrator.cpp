@@ -12,6 +12,7 @@
 #include "base/Memory.h"
 #include "integrators/DirectLighting.h"
 #include "photon/OctahedralDirection.h"
+#include "sampling/Equiangular.h"
 #include "scene/Material.h"
 #include "scene/UnsampledLight.h"
 
@@ -109,6 +110,8 @@ PhotonIntegrator::PhotonIntegrator(const Scene& scene, const IntegratorDesc& des
     }
     for (const auto& s : scene.desc().surfaces) all.extend(bounds(s.mesh));
     surfaceMaxRadius_ = float(kMaxRadiusFraction * (all.empty() ? 1.0 : all.diagonal()));
+    for (const auto& light : scene.lights())
+        if (auto focus = light->focus()) foci_.push_back(*focus);
     storeUnwalked();
 }
 
@@ -267,12 +270,12 @@ int PhotonIntegrator::domainOf(int v, uint32_t tet) const {
     return domains_.ofMedium[size_t(volume.regionMedium[size_t(volume.volume->mesh().region(tet))])];
 }
 
-RGB PhotonIntegrator::inMedium(int v, const Ray& ray, const ColumnProfile& column, Rng& rng) const {
+RGB PhotonIntegrator::emittedAlong(int v, const ColumnProfile& column) const {
     const Volume& volume = *scene_.volumes()[v].volume;
     const auto& pieces = column.pieces();
     RGB L(0);
-    // Emission, piece by piece: the integral of emission * density * transmittance over a piece
-    // is emission * tr(piece start) * (1 - tr(piece)) / sigma_t.
+    // Piece by piece: the integral of emission * density * transmittance over a piece is
+    // emission * tr(piece start) * (1 - tr(piece)) / sigma_t.
     for (size_t i = 0; i < pieces.size(); ++i) {
         const Medium& medium = volume.at(pieces[i].tet);
         if (!(maxComponent(medium.params.emission) > 0)) continue;
@@ -283,9 +286,13 @@ RGB PhotonIntegrator::inMedium(int v, const Ray& ray, const ColumnProfile& colum
             L[c] += medium.params.emission[c] * trIn[c] * (sigma > 0 ? -std::expm1(-sigma * piece) / sigma : piece);
         }
     }
-    if (!volume.scatters() || pieces.empty()) return L;
-    if (desc_.estimate == PhotonEstimate::KnnMarch) return L + marchKnn(v, ray, column, rng);
-    return L + directAlong(v, ray, column, rng) + beamEstimate(v, ray, column);
+    return L;
+}
+
+RGB PhotonIntegrator::scatteredAlong(int v, const Ray& ray, const ColumnProfile& column, Rng& rng) const {
+    if (!scene_.volumes()[v].volume->scatters() || column.pieces().empty()) return RGB(0);
+    if (desc_.estimate == PhotonEstimate::KnnMarch) return marchKnn(v, ray, column, rng);
+    return directAlong(v, ray, column, rng) + beamEstimate(v, ray, column);
 }
 
 RGB PhotonIntegrator::marchKnn(int v, const Ray& ray, const ColumnProfile& column, Rng& rng) const {
@@ -384,20 +391,44 @@ RGB PhotonIntegrator::directAlong(int v, const Ray& ray, const ColumnProfile& co
     for (int c = 0; c < 3; ++c)
         if (depth[c] > 0) channels[count++] = c;
     if (count == 0) return RGB(0);
+    // The focused lights whose cones the stretch passes through.
+    constexpr int kMaxFoci = 8;
+    std::optional<Equiangular> towards[kMaxFoci];
+    int foci = 0;
+    for (const LightFocus& focus : foci_) {
+        if (foci == kMaxFoci) break;
+        auto span = std::make_optional(std::make_pair(column.begin(), column.end()));
+        if (focus.cone) span = focus.cone->clip(ray, span->first, span->second);
+        if (span) towards[foci++].emplace(ray.o, ray.d, focus.centre, span->first, span->second);
+    }
     const RGB trEnd = exp(-depth);
-    const int hero = channels[std::min(count - 1, int(rng.uniform() * count))];
-    // Read off the column profile the eye stretch already walked.
-    const auto event = column.atDepth(hero, -std::log1p(-rng.uniform() * (1 - trEnd[hero])));
+    const double u = rng.uniform(), share = foci ? 0.5 : 1;
+    std::optional<ColumnProfile::Event> event;
+    if (u < share) {
+        const int hero = channels[std::min(count - 1, int(u / share * count))];
+        event = column.atDepth(hero, -std::log1p(-rng.uniform() * (1 - trEnd[hero])));
+    } else {
+        event = column.at(towards[std::min(foci - 1, int((u - share) / (1 - share) * foci))]->sample(rng.uniform()));
+    }
     if (!event) return RGB(0);
     const Medium& medium = volume.at(event->tet);
     const RGB tr = column.transmittance(event->t);
-    double pdf = 0;  // mean over the channels of sigma_t tr / (1 - tr(end)), per unit column
+    double pdf = 0;  // per unit column: the mean over the channels of sigma_t tr / (1 - tr(end))
     for (int i = 0; i < count; ++i) {
         const int c = channels[i];
         pdf += medium.sigmaT[c] * tr[c] / (1 - trEnd[c]) / count;
     }
+    const glm::dvec3 p = ray.at(event->t);
+    if (foci) {
+        // The equiangular pdf is per unit length: per unit column it is that over the density.
+        const double density = volume.density(event->tet, p);
+        if (!(density > 0)) return RGB(0);
+        double focused = 0;
+        for (int i = 0; i < foci; ++i) focused += towards[i]->pdf(event->t) / foci;
+        pdf = share * pdf + (1 - share) * focused / density;
+    }
     const RGB weight = tr * medium.params.sigmaS / pdf;
-    return weight * directInMedium(scene_, v, ray.at(event->t), ray.d, event->tet, rng);
+    return weight * directInMedium(scene_, v, p, ray.d, event->tet, rng);
 }
 
 RGB PhotonIntegrator::caustics(const PhotonMap* map, const Intersection& hit, const glm::dvec3& d,

@@ -4,13 +4,15 @@
 //
 // Eye rays follow specular chains (both branches of their first dielectric events, weighted by
 // the Fresnel reflectance: eyePath) and never scatter in a medium. A light seen at the end of a
-// specular chain (through glass) is estimated, in every pixel that can see a specular surface,
-// by more rays spread over the pixel that follow the chain only (src/photon/SpecularChains.cpp):
-// a small light there covers a sliver of a pixel, one sample in hundreds. Along each stretch of a volume
-// (through its regions, up to where it leaves or meets a dielectric interface) the integrator
-// adds, against the exact transmittance of the tet walk:
+// specular chain (through glass), or a glowing medium seen along one, is estimated, in every
+// pixel that can see a specular surface, by more rays spread over the pixel that follow the
+// chain only (src/photon/SpecularChains.cpp): a small light there covers a sliver of a pixel,
+// one sample in hundreds. Along each stretch of a volume (through its regions, up to where it
+// leaves or meets a dielectric interface) the integrator adds, against the exact transmittance
+// of the tet walk:
 //   - emission, integrated in closed form;
-//   - single scattering by next-event estimation;
+//   - single scattering by next-event estimation, at a distance drawn by transmittance or, in a
+//     spot light's cone, equiangularly towards the light (directAlong);
 //   - multiple scattering (and light that reached the medium through glass) from the volume
 //     photons, by the parity baseline's ray march with a k-NN lookup per step (`knn-march`, optionally
 //     dividing by the part of the ball inside the medium) or by the beam radiance estimate
@@ -141,8 +143,9 @@ private:
     void loadPhotons(uint64_t seed, uint64_t pass, uint64_t radiusPass, double radiusFactor,
                      std::optional<std::chrono::steady_clock::time_point> deadline, const std::atomic<bool>* cancel);
     // Which light an eye path gathers. Light from a light or the environment at the end of a
-    // specular chain (seen through glass) is its own term, `ChainLight`: from a small light it is
-    // rare and bright, as the light covers a sliver of the pixels that see it through the glass.
+    // specular chain (seen through glass), and light a medium emits along such a chain, is its own
+    // term, `ChainLight`: from a small light or a small glowing medium it is rare and bright, as
+    // it covers a sliver of the pixels that see it through the glass.
     enum class EyeLight { All, AllButChains, ChainLight };
     // One eye path. The domain `walkedToo` is walked as well (-1: none); `met`, if given, gets a 1
     // for each domain a stretch of the path reads photons from. ChainLight ends the path at its
@@ -175,12 +178,16 @@ private:
     // The chain light of that pixel, from kChainSplits rays spread over it.
     RGB splitChainLight(int pixel, Rng& rng) const;
 
-    // Light scattered and emitted towards ray.o along the stretch `column` of volume v.
-    RGB inMedium(int v, const Ray& ray, const ColumnProfile& column, Rng& rng) const;
+    // Light emitted towards ray.o along the stretch `column` of volume v, in closed form.
+    RGB emittedAlong(int v, const ColumnProfile& column) const;
+    // Light scattered towards ray.o along it: single scattering and the photons.
+    RGB scatteredAlong(int v, const Ray& ray, const ColumnProfile& column, Rng& rng) const;
     RGB marchKnn(int v, const Ray& ray, const ColumnProfile& column, Rng& rng) const;
     RGB beamEstimate(int v, const Ray& ray, const ColumnProfile& column) const;
-    // Single scattering at a distance drawn along the stretch (one-sample spectral MIS), read off
-    // its column profile.
+    // Single scattering at a distance drawn along the stretch, read off its column profile: by one
+    // channel's transmittance (one-sample spectral MIS) or, where the stretch passes through the
+    // cone a small light lights, equiangularly towards that light (one-sample MIS of the two,
+    // half the samples each): a narrow spot light's beam is a sliver of a long stretch.
     RGB directAlong(int v, const Ray& ray, const ColumnProfile& column, Rng& rng) const;
     // The photons of `map` around p, nearest first: those within the fixed radius times `scale`,
     // or the k nearest within maxRadius. Returns the gather radius: the fixed one, or `scale`
@@ -212,6 +219,7 @@ private:
     double volumeScale_ = 1, surfaceScale_ = 1;                      // this pass's radius factors
     std::optional<std::chrono::steady_clock::time_point> deadline_;  // of the time limit, if any
     PhotonStats stats_;
+    std::vector<LightFocus> foci_;         // of the scene's point and spot lights
     std::vector<DomainChoice> choices_;    // per photon domain
     std::vector<char> chainPixels_;        // per pixel of the camera, row-major: it splits the chain light
     std::vector<glm::dvec3> chainCamera_;  // the camera chainPixels_ was marked for: position, corner rays

@@ -58,6 +58,9 @@ public:
     }
     double importance(const glm::dvec3& p) const override { return average(sample(p, {}).L); }
     RGB power() const override { return intensity_ * (spot_ ? spot_->solidAngle() : 4 * kPi); }
+    std::optional<LightFocus> focus() const override {
+        return LightFocus{position_, spot_ ? spot_->litCone(position_, 0) : std::nullopt};
+    }
     bool isDelta() const override { return true; }
 
 private:
@@ -176,6 +179,13 @@ public:
         return radiance_ * (kPi * area_ * (twoSided_ ? 2 : 1));
     }
     const TriangleMesh* shape() const override { return &mesh_; }
+    // A spot light's disk is small and lights a cone; other emitters are focused on nothing.
+    std::optional<LightFocus> focus() const override {
+        if (!spot_) return std::nullopt;
+        double radius = 0;
+        for (const auto& p : mesh_.positions) radius = std::max(radius, glm::length(p - centroid_));
+        return LightFocus{centroid_, spot_->litCone(centroid_, radius)};
+    }
 
 private:
     struct Rectangle {
@@ -257,6 +267,13 @@ double SpotProfile::conePdf() const { return 1 / (2 * kPi * (1 - cosTotal)); }
 
 // Full strength out to cosStart, then the integral of delta^4 over the band: (cosStart - cosTotal) / 5.
 double SpotProfile::solidAngle() const { return 2 * kPi * ((1 - cosStart) + (cosStart - cosTotal) / 5); }
+
+std::optional<LightCone> SpotProfile::litCone(const glm::dvec3& centre, double radius) const {
+    if (!(cosTotal > 0.01)) return std::nullopt;
+    // Moved back along the axis until the cone's side passes the disk's rim.
+    const double tanAngle = std::sqrt(1 - cosTotal * cosTotal) / cosTotal;
+    return LightCone{centre - axis * (radius / tanAngle), axis, cosTotal};
+}
 
 double SpotProfile::falloff(const glm::dvec3& w) const {
     const double c = glm::dot(w, axis);

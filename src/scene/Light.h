@@ -8,6 +8,7 @@
 
 #include "base/Ray.h"
 #include "base/Spectrum.h"
+#include "scene/LightFocus.h"
 #include "scene/SceneDescription.h"
 
 namespace tetglow {
@@ -45,6 +46,9 @@ public:
     virtual double importance(const glm::dvec3& p) const = 0;
     // Total emitted power, per channel.
     virtual RGB power() const = 0;
+    // Where a small light's emission comes from (point and spot lights), for sampling points
+    // along rays near it; null for the others.
+    virtual std::optional<LightFocus> focus() const { return std::nullopt; }
     virtual bool isDelta() const { return false; }
     virtual bool isEnvironment() const { return false; }
     // Emitting triangles, placed in the scene so that rays can hit them (empty for the others).
@@ -63,6 +67,9 @@ struct SpotProfile {
     glm::dvec3 sampleCone(const glm::dvec2& u) const;
     double conePdf() const;
     double solidAngle() const;
+    // The cone that holds every point lit from a disk of `radius` at `centre` facing the axis
+    // (the point light's own cone for 0); null where the cone is too wide to be convex.
+    std::optional<LightCone> litCone(const glm::dvec3& centre, double radius) const;
 };
 
 // Lights at infinity (distant, environment) emit photons over a disk that covers the sphere
