@@ -92,6 +92,34 @@ TEST(SpecularChains, SplittingKeepsTheMeanAndCutsTheNoise) {
     EXPECT_LT(photonSpread, volpathSpread / 4);
 }
 
+// A small glowing medium behind the glass ball, brighter than anything else: the camera sees its
+// emission only along specular chains, which is chain light too.
+TEST(SpecularChains, AGlowingMediumBehindGlassIsSplitToo) {
+    MediumDesc glass = sphereMedium(RGB(0), RGB(0));
+    glass.boundaryMaterial = {MaterialType::Dielectric, RGB(0), 1.5};
+    SceneDesc desc = sceneWith(glass, 24);
+    MediumDesc glow = sphereMedium(RGB(1), RGB(0), 0, 1);
+    glow.name = "glow";
+    for (auto& p : glow.boundary.positions) p = glm::dvec3(glm::vec3(p * 0.06 + glm::dvec3(0, 0, -3)));
+    glow.emission = RGB(3000);
+    desc.media.push_back(glow);
+    const Scene scene(std::move(desc));
+    const double reference = mean(renderWith(scene, IntegratorType::VolPath, 1, 4096));
+    ASSERT_GT(reference, 0.05);
+    const Image photonA = renderWith(scene, IntegratorType::Photon, 2, 64),
+                photonB = renderWith(scene, IntegratorType::Photon, 3, 64);
+    const Image volpathA = renderWith(scene, IntegratorType::VolPath, 4, 64),
+                volpathB = renderWith(scene, IntegratorType::VolPath, 5, 64);
+    const double photonMean = 0.5 * (mean(photonA) + mean(photonB));
+    const double photonSpread = spread(photonA, photonB), volpathSpread = spread(volpathA, volpathB);
+    std::printf("image mean: volpath %.4f, photon %.4f; spread of two renders: volpath %.4g, photon %.4g\n", reference,
+                photonMean, volpathSpread, photonSpread);
+    const double pixels = double(photonA.pixels.size());
+    const double sigma = std::sqrt(photonSpread / 4 / pixels + volpathSpread / 2 * 64 / 4096 / pixels);
+    EXPECT_NEAR(photonMean, reference, 4 * sigma);
+    EXPECT_LT(photonSpread, volpathSpread / 4);
+}
+
 // The pixels that split the chain light and their rays depend on the pixel and the pass only.
 TEST(SpecularChains, SameImageAtAnyThreadCount) {
     const Scene scene(lightBehindGlass());

@@ -44,7 +44,12 @@ RGB PhotonIntegrator::eyePath(EyeBranch b, Rng& rng, int walkedToo, char* met) c
             }
             if (met)
                 for (const auto& p : pieces) met[domainOf(state.volume, p.tet)] = 1;
-            if (b.light != EyeLight::ChainLight) L += beta * inMedium(state.volume, ray, column, rng);
+            // A glowing medium seen along a specular chain is chain light too: the lure, seen by
+            // total internal reflection in the fish's skin, is a rare and bright sample.
+            const bool chain = b.depth > 0 && !b.gathering;
+            if (b.light == EyeLight::All || (b.light == EyeLight::ChainLight) == chain)
+                L += beta * emittedAlong(state.volume, column);
+            if (b.light != EyeLight::ChainLight) L += beta * scatteredAlong(state.volume, ray, column, rng);
             beta *= exp(-column.depth());
             if (isBlack(beta)) break;
             exit = column.exit();

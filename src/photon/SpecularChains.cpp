@@ -2,9 +2,10 @@
 // seen through glass shows, in the pixels at the glass's edge, as a sliver of each pixel whose
 // rays the chain bends onto the light: one sample in a few hundred lands on it, hundreds of
 // times brighter than the pixel's mean (on the demo fish, two such pixels held half of the
-// image's error at 24 passes). Every pixel that can see glass traces kChainSplits more rays, over
-// the whole pixel, that follow the specular chain only: a walk of the tets for the transmittance,
-// no photons, no light sampling.
+// image's error at 24 passes). So is a small glowing medium seen along a chain (the lure, seen by
+// total internal reflection in the skin). Every pixel that can see glass traces kChainSplits more
+// rays, over the whole pixel, that follow the specular chain only: a walk of the tets for the
+// transmittance and the emission, no photons, no light sampling.
 #include <cmath>
 
 #include <tbb/blocked_range.h>
