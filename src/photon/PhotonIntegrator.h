@@ -170,7 +170,7 @@ private:
     // Pixels whose footprint (its corners and centre) meets a specular surface first split the
     // chain light: kChainSplits rays of their own, spread over the pixel, estimate it
     // (src/photon/SpecularChains.cpp). Any fixed choice of pixels keeps the image's expectation.
-    static constexpr int kChainSplits = 8;
+    static constexpr int kChainSplits = 5, kChainLatticeGenerator = 3;  // a Fibonacci lattice (5, 3)
     // chainPixels_ for the scene's camera, when it changed since the last call.
     void markChainPixels();
     // The pixel (row-major) that cameraRay passes through, when it splits the chain light; else -1.
