@@ -26,7 +26,14 @@ RGB PhotonIntegrator::eyePath(EyeBranch b, Rng& rng, int walkedToo, char* met) c
     for (int crossings = 0; crossings < kMaxCrossings; ++crossings) {
         auto hit = scene_.intersect(ray, state);
         WalkExit exit;
-        if (state.inside()) {
+        if (state.inside() && b.light == EyeLight::ChainLight && !walksAny_) {
+            const ChainStretch s =
+                chainStretch(state.volume, ray, state.start, hit ? hit->t : INFINITY, b.depth > 0 && !b.gathering);
+            L += beta * s.emitted;
+            beta *= s.transmittance;
+            if (isBlack(beta)) break;
+            exit = s.exit;
+        } else if (state.inside()) {
             const double tMax = hit ? hit->t : INFINITY;
             const Volume& volume = *scene_.volumes()[state.volume].volume;
             const ColumnProfile column(volume, ray, state.start, tMax);

@@ -122,6 +122,7 @@ void PhotonIntegrator::storeUnwalked() {
             for (int m : domains_.media[d]) storedMedia_[size_t(m)] = 0;
     tracing_ =
         hasDielectric(scene_) || std::any_of(media_.begin(), media_.end(), [](const auto& m) { return !m.walked; });
+    walksAny_ = std::any_of(media_.begin(), media_.end(), [](const auto& m) { return m.walked; });
 }
 
 PhotonIntegrator::~PhotonIntegrator() = default;
@@ -274,17 +275,23 @@ RGB PhotonIntegrator::emittedAlong(int v, const ColumnProfile& column) const {
     const Volume& volume = *scene_.volumes()[v].volume;
     const auto& pieces = column.pieces();
     RGB L(0);
-    // Piece by piece: the integral of emission * density * transmittance over a piece is
-    // emission * tr(piece start) * (1 - tr(piece)) / sigma_t.
     for (size_t i = 0; i < pieces.size(); ++i) {
         const Medium& medium = volume.at(pieces[i].tet);
         if (!(maxComponent(medium.params.emission) > 0)) continue;
         const double piece = (i + 1 < pieces.size() ? pieces[i + 1].columnIn : column.total()) - pieces[i].columnIn;
-        const RGB trIn = exp(-pieces[i].depthIn);
-        for (int c = 0; c < 3; ++c) {
-            const double sigma = medium.sigmaT[c];
-            L[c] += medium.params.emission[c] * trIn[c] * (sigma > 0 ? -std::expm1(-sigma * piece) / sigma : piece);
-        }
+        L += emittedOver(medium, pieces[i].depthIn, piece);
+    }
+    return L;
+}
+
+RGB PhotonIntegrator::emittedOver(const Medium& medium, const RGB& depthIn, double column) {
+    // The integral of emission * density * transmittance over the piece is
+    // emission * tr(piece start) * (1 - tr(piece)) / sigma_t.
+    const RGB trIn = exp(-depthIn);
+    RGB L;
+    for (int c = 0; c < 3; ++c) {
+        const double sigma = medium.sigmaT[c];
+        L[c] = medium.params.emission[c] * trIn[c] * (sigma > 0 ? -std::expm1(-sigma * column) / sigma : column);
     }
     return L;
 }

@@ -177,6 +177,17 @@ private:
     int chainPixel(const Ray& cameraRay) const;
     // The chain light of that pixel, from kChainSplits rays spread over it.
     RGB splitChainLight(int pixel, Rng& rng) const;
+    // A chain light ray's stretch through volume v: its transmittance and, with `emission`, the
+    // light media emit along it. Nothing on it scatters towards the eye in this term, so it needs
+    // no column profile, and a region of constant density is crossed by one exit query.
+    struct ChainStretch {
+        RGB transmittance{1}, emitted{0};
+        WalkExit exit;
+    };
+    ChainStretch chainStretch(int v, const Ray& ray, WalkStart start, double tMax, bool emission) const;
+    // The light a medium emits along a piece of `column` (density integrated) whose start lies
+    // at optical depth depthIn, in closed form.
+    static RGB emittedOver(const Medium& medium, const RGB& depthIn, double column);
 
     // Light emitted towards ray.o along the stretch `column` of volume v, in closed form.
     RGB emittedAlong(int v, const ColumnProfile& column) const;
@@ -216,6 +227,7 @@ private:
     float surfaceMaxRadius_ = 0;
     bool chosen_ = false;                                            // the pilot has run
     bool tracing_ = true;                                            // see tracesPhotons()
+    bool walksAny_ = false;                                          // the eye path walks some domain
     double volumeScale_ = 1, surfaceScale_ = 1;                      // this pass's radius factors
     std::optional<std::chrono::steady_clock::time_point> deadline_;  // of the time limit, if any
     PhotonStats stats_;

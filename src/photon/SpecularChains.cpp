@@ -6,6 +6,7 @@
 // total internal reflection in the skin). Every pixel that can see glass traces kChainSplits more
 // rays, over the whole pixel, that follow the specular chain only: a walk of the tets for the
 // transmittance and the emission, no photons, no light sampling.
+#include <algorithm>
 #include <cmath>
 
 #include <tbb/blocked_range.h>
@@ -70,6 +71,28 @@ RGB PhotonIntegrator::splitChainLight(int pixel, Rng& rng) const {
         sum += eyePath(camera.generateRay(x + u, y + v), rng, -1, nullptr, EyeLight::ChainLight);
     }
     return sum / double(kChainSplits);
+}
+
+PhotonIntegrator::ChainStretch PhotonIntegrator::chainStretch(int v, const Ray& ray, WalkStart start, double tMax,
+                                                              bool emission) const {
+    const Volume& volume = *scene_.volumes()[size_t(v)].volume;
+    ChainStretch stretch;
+    RGB depth(0);
+    auto pass = [&](const Medium& medium, double column) {
+        if (emission && maxComponent(medium.params.emission) > 0) stretch.emitted += emittedOver(medium, depth, column);
+        depth += medium.sigmaT * column;
+        return true;
+    };
+    stretch.exit = volume.walkToExit(
+        ray, start, tMax,
+        [&](const WalkSegment& s) {
+            const double tIn = std::max(s.tIn, 0.0), tOut = std::min(s.tOut, tMax);
+            if (tOut > tIn) pass(volume.at(s.tet), volume.densityIntegral(s.tet, ray, tIn, tOut));
+            return s.tOut < tMax;
+        },
+        pass, [](const Medium&, double) { return true; });
+    stretch.transmittance = exp(-depth);
+    return stretch;
 }
 
 }  // namespace tetglow
