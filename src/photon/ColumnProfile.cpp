@@ -46,6 +46,9 @@ double ColumnProfile::column(double t) const {
 }
 
 RGB ColumnProfile::transmittanceIn(const Piece& p, double t) const {
+    // In a homogeneous volume the piece's rate is its extinction: no region lookup per call (the
+    // beam estimate asks this for every photon along every eye ray).
+    if (volume_.homogeneous()) return exp(-(p.depthIn + p.rate * (std::min(t, p.tOut) - p.tIn)));
     return exp(
         -(p.depthIn + volume_.at(p.tet).sigmaT * volume_.densityIntegral(p.tet, ray_, p.tIn, std::min(t, p.tOut))));
 }
