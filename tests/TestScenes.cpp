@@ -42,6 +42,17 @@ LightDesc pointLight(const glm::dvec3& position, const RGB& intensity) {
     return l;
 }
 
+LightDesc spotLight(const glm::dvec3& position, const glm::dvec3& lookAt, const RGB& intensity, double coneAngle,
+                    double coneDelta, double radius) {
+    LightDesc l = pointLight(position, intensity);
+    l.type = LightType::Spot;
+    l.lookAt = lookAt;
+    l.coneAngle = coneAngle;
+    l.coneDelta = coneDelta;
+    l.radius = radius;
+    return l;
+}
+
 LightDesc quadLight(const glm::dvec3& corner, const glm::dvec3& edge0, const glm::dvec3& edge1, const RGB& radiance) {
     LightDesc l;
     l.type = LightType::Quad;

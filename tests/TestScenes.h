@@ -14,6 +14,9 @@ MediumDesc sphereMedium(const RGB& sigmaA, const RGB& sigmaS, double g = 0, int 
 SceneDesc sceneWith(const MediumDesc& medium, int resolution);
 LightDesc environment(double radiance);
 LightDesc pointLight(const glm::dvec3& position, const RGB& intensity);
+// pbrt-v3's spot light, its angles in degrees; with a radius, a disk facing lookAt.
+LightDesc spotLight(const glm::dvec3& position, const glm::dvec3& lookAt, const RGB& intensity, double coneAngle,
+                    double coneDelta, double radius = 0);
 // A one-sided rectangle light: its front faces along cross(edge0, edge1).
 LightDesc quadLight(const glm::dvec3& corner, const glm::dvec3& edge0, const glm::dvec3& edge1, const RGB& radiance);
 // A glowing, scattering, absorbing sphere (chromatic) under a quad light in a sky: every kind of

@@ -4,9 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include "PhotonAgainstVolpath.h"
 #include "TestScenes.h"
-#include "render/IntegratorFactory.h"
-#include "render/Renderer.h"
 #include "sampling/Equiangular.h"
 #include "sampling/Rng.h"
 #include "scene/Light.h"
@@ -43,14 +42,7 @@ TEST(Equiangular, SamplesFollowTheirPdf) {
 // The clipped interval holds exactly the points inside the cone, and a spot light with a radius
 // lights no point outside its cone.
 TEST(LightCone, ClipKeepsExactlyThePointsInsideTheCone) {
-    LightDesc spot;
-    spot.type = LightType::Spot;
-    spot.position = {0.2, 2, 0.1};
-    spot.lookAt = {0, 0, 0};
-    spot.intensity = RGB(1);
-    spot.coneAngle = 20;
-    spot.coneDelta = 5;
-    spot.radius = 0.3;
+    const LightDesc spot = spotLight({0.2, 2, 0.1}, {0, 0, 0}, RGB(1), 20, 5, 0.3);
     const auto light = makeLight(spot, Bounds3{});
     const auto focus = light->focus();
     ASSERT_TRUE(focus && focus->cone);
@@ -80,64 +72,19 @@ TEST(LightCone, ClipKeepsExactlyThePointsInsideTheCone) {
     EXPECT_GT(lit, 500);
 }
 
-Image renderWith(const Scene& scene, IntegratorType type, uint64_t seed, int spp) {
-    IntegratorDesc integ;
-    integ.type = type;
-    integ.photons = 4000;
-    integ.seed = seed;
-    integ.spp = spp;
-    auto integrator = makeIntegrator(scene, integ);
-    RenderOptions options;
-    options.spp = spp;
-    options.seed = seed;
-    return render(scene, *integrator, options).image;
-}
-
-double meanOf(const Image& image) {
-    double sum = 0;
-    for (const auto& p : image.pixels) sum += average(RGB(p));
-    return sum / double(image.pixels.size());
-}
-
-double spread(const Image& a, const Image& b) {
-    double sum = 0;
-    for (size_t i = 0; i < a.pixels.size(); ++i) {
-        const double d = average(RGB(a.pixels[i])) - average(RGB(b.pixels[i]));
-        sum += d * d;
-    }
-    return sum / double(a.pixels.size());
-}
-
 // A thin medium crossed by a narrow spot light's beam: eye rays cross the beam in a sliver of
 // their length, where a distance drawn by transmittance rarely lands. Drawn in the cone towards
 // the light, photon mapping's single scattering keeps volpath's mean with a fraction of its noise.
 TEST(Equiangular, ANarrowSpotBeamKeepsItsMeanWithLessNoise) {
     SceneDesc desc = sceneWith(sphereMedium(RGB(0.02), RGB(0.15)), 24);
-    LightDesc spot;
-    spot.type = LightType::Spot;
-    spot.position = {0, 3, 0};
-    spot.lookAt = {0, 0, 0};
-    spot.intensity = RGB(400);
-    spot.coneAngle = 5;
-    spot.coneDelta = 1;
-    desc.lights.push_back(spot);
+    desc.lights.push_back(spotLight({0, 3, 0}, {0, 0, 0}, RGB(400), 5, 1));
     const Scene scene(std::move(desc));
-    const double reference = meanOf(renderWith(scene, IntegratorType::VolPath, 1, 4096));
-    ASSERT_GT(reference, 0.01);
-    const Image photonA = renderWith(scene, IntegratorType::Photon, 2, 16),
-                photonB = renderWith(scene, IntegratorType::Photon, 3, 16);
-    const Image volpathA = renderWith(scene, IntegratorType::VolPath, 4, 16),
-                volpathB = renderWith(scene, IntegratorType::VolPath, 5, 16);
-    const double photonMean = 0.5 * (meanOf(photonA) + meanOf(photonB));
-    const double photonSpread = spread(photonA, photonB), volpathSpread = spread(volpathA, volpathB);
-    std::printf("image mean: volpath %.5f, photon %.5f; spread of two renders: volpath %.4g, photon %.4g\n", reference,
-                photonMean, volpathSpread, photonSpread);
-    const double pixels = double(photonA.pixels.size());
-    const double sigma = std::sqrt(photonSpread / 4 / pixels + volpathSpread / 2 * 16 / 4096 / pixels);
+    const PhotonAgainstVolpath c = photonAgainstVolpath(scene, 4096, 16, 4000);
+    ASSERT_GT(c.reference, 0.01);
     // The photons' kernel adds a bias of its own; single scattering, most of the light, has none.
-    EXPECT_NEAR(photonMean, reference, 4 * sigma + 0.02 * reference);
+    EXPECT_NEAR(c.photonMean, c.reference, 4 * c.sigma + 0.02 * c.reference);
     // Drawn by transmittance alone, the photons' spread is volpath's (measured: 0.84 of it).
-    EXPECT_LT(photonSpread, volpathSpread / 3);
+    EXPECT_LT(c.photonSpread, c.volpathSpread / 3);
 }
 
 }  // namespace

@@ -4,9 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include "PhotonAgainstVolpath.h"
 #include "TestScenes.h"
-#include "render/IntegratorFactory.h"
-#include "render/Renderer.h"
+#include "scene/Camera.h"
 
 namespace tetglow::test {
 namespace {
@@ -42,54 +42,13 @@ SceneDesc lightBehindGlass() {
     return desc;
 }
 
-Image renderWith(const Scene& scene, IntegratorType type, uint64_t seed, int spp, int threads = 0) {
-    IntegratorDesc integ;
-    integ.type = type;
-    integ.photons = 2000;
-    integ.seed = seed;
-    auto integrator = makeIntegrator(scene, integ);
-    RenderOptions options;
-    options.spp = spp;
-    options.seed = seed;
-    options.threads = threads;
-    return render(scene, *integrator, options).image;
-}
-
-double mean(const Image& image) {
-    double sum = 0;
-    for (const auto& p : image.pixels) sum += average(RGB(p));
-    return sum / double(image.pixels.size());
-}
-
-// The mean squared difference of two independent renders: twice the per-pixel variance.
-double spread(const Image& a, const Image& b) {
-    double sum = 0;
-    for (size_t i = 0; i < a.pixels.size(); ++i) {
-        const double d = average(RGB(a.pixels[i])) - average(RGB(b.pixels[i]));
-        sum += d * d;
-    }
-    return sum / double(a.pixels.size());
-}
-
 TEST(SpecularChains, SplittingKeepsTheMeanAndCutsTheNoise) {
     const Scene scene(lightBehindGlass());
-    const double reference = mean(renderWith(scene, IntegratorType::VolPath, 1, 4096));
-    ASSERT_GT(reference, 0.05);  // the light shows through the glass
-    const Image photonA = renderWith(scene, IntegratorType::Photon, 2, 64),
-                photonB = renderWith(scene, IntegratorType::Photon, 3, 64);
-    const Image volpathA = renderWith(scene, IntegratorType::VolPath, 4, 64),
-                volpathB = renderWith(scene, IntegratorType::VolPath, 5, 64);
-    const double photonMean = 0.5 * (mean(photonA) + mean(photonB));
-    const double photonSpread = spread(photonA, photonB), volpathSpread = spread(volpathA, volpathB);
-    std::printf("image mean: volpath %.4f, photon %.4f; spread of two renders: volpath %.4g, photon %.4g\n", reference,
-                photonMean, volpathSpread, photonSpread);
-    // Within four standard errors of the two means (the spreads give the per-pixel variances;
-    // the reference's is volpath's at 4096 samples).
-    const double pixels = double(photonA.pixels.size());
-    const double sigma = std::sqrt(photonSpread / 4 / pixels + volpathSpread / 2 * 64 / 4096 / pixels);
-    EXPECT_NEAR(photonMean, reference, 4 * sigma);
+    const PhotonAgainstVolpath c = photonAgainstVolpath(scene, 4096, 64, 2000);
+    ASSERT_GT(c.reference, 0.05);  // the light shows through the glass
+    EXPECT_NEAR(c.photonMean, c.reference, 4 * c.sigma);
     // Five rays a pixel for the chain light: about a fifth of the variance.
-    EXPECT_LT(photonSpread, volpathSpread / 3);
+    EXPECT_LT(c.photonSpread, c.volpathSpread / 3);
 }
 
 // A small glowing medium behind the glass ball, brighter than anything else: the camera sees its
@@ -104,28 +63,18 @@ TEST(SpecularChains, AGlowingMediumBehindGlassIsSplitToo) {
     glow.emission = RGB(3000);
     desc.media.push_back(glow);
     const Scene scene(std::move(desc));
-    const double reference = mean(renderWith(scene, IntegratorType::VolPath, 1, 16384));
-    ASSERT_GT(reference, 0.05);
-    const Image photonA = renderWith(scene, IntegratorType::Photon, 2, 64),
-                photonB = renderWith(scene, IntegratorType::Photon, 3, 64);
-    const Image volpathA = renderWith(scene, IntegratorType::VolPath, 4, 64),
-                volpathB = renderWith(scene, IntegratorType::VolPath, 5, 64);
-    const double photonMean = 0.5 * (mean(photonA) + mean(photonB));
-    const double photonSpread = spread(photonA, photonB), volpathSpread = spread(volpathA, volpathB);
-    std::printf("image mean: volpath %.4f, photon %.4f; spread of two renders: volpath %.4g, photon %.4g\n", reference,
-                photonMean, volpathSpread, photonSpread);
-    const double pixels = double(photonA.pixels.size());
-    const double sigma = std::sqrt(photonSpread / 4 / pixels + volpathSpread / 2 * 64 / 16384 / pixels);
-    EXPECT_NEAR(photonMean, reference, 4 * sigma);
-    EXPECT_LT(photonSpread, volpathSpread / 4);
+    const PhotonAgainstVolpath c = photonAgainstVolpath(scene, 16384, 64, 2000);
+    ASSERT_GT(c.reference, 0.05);
+    EXPECT_NEAR(c.photonMean, c.reference, 4 * c.sigma);
+    EXPECT_LT(c.photonSpread, c.volpathSpread / 4);
 }
 
 // The pixels that split the chain light and their rays depend on the pixel and the pass only.
 TEST(SpecularChains, SameImageAtAnyThreadCount) {
     const Scene scene(lightBehindGlass());
-    const Image one = renderWith(scene, IntegratorType::Photon, 6, 4, 1),
-                two = renderWith(scene, IntegratorType::Photon, 6, 4, 2);
-    ASSERT_GT(mean(one), 0);
+    const Image one = renderImage(scene, IntegratorType::Photon, 6, 4, 2000, 1),
+                two = renderImage(scene, IntegratorType::Photon, 6, 4, 2000, 2);
+    ASSERT_GT(imageMean(one), 0);
     for (size_t i = 0; i < one.pixels.size(); ++i) ASSERT_EQ(one.pixels[i], two.pixels[i]) << "pixel " << i;
 }
 
