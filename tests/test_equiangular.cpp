@@ -37,6 +37,10 @@ TEST(Equiangular, SamplesFollowTheirPdf) {
         EXPECT_EQ(eq.pdf(a - 0.01), 0);
         EXPECT_EQ(eq.pdf(b + 0.01), 0);
     }
+    // An empty segment through the centre: nothing to draw, and nothing that is not a number.
+    const Equiangular empty(o, d, o + 0.5 * d, 0.5, 0.5);
+    EXPECT_EQ(empty.sample(0.3), 0.5);
+    EXPECT_EQ(empty.pdf(0.5), 0);
 }
 
 // The clipped interval holds exactly the points inside the cone, and a spot light with a radius

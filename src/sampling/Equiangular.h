@@ -17,7 +17,7 @@ public:
         : t0_(glm::dot(centre - o, d)) {
         // A ray through the centre has h = 0 and a pdf that does not integrate: keep h off 0 by
         // a sliver of the segment, which changes the pdf nowhere the segment stays away from it.
-        h_ = std::max(glm::length(o + t0_ * d - centre), 1e-7 * (std::abs(t0_) + b - a));
+        h_ = std::max({glm::length(o + t0_ * d - centre), 1e-7 * (std::abs(t0_) + b - a), 1e-30});
         thetaA_ = std::atan((a - t0_) / h_);
         thetaB_ = std::atan((b - t0_) / h_);
         a_ = a;
