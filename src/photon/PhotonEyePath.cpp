@@ -26,9 +26,15 @@ RGB PhotonIntegrator::eyePath(EyeBranch b, Rng& rng, int walkedToo, char* met) c
     for (int crossings = 0; crossings < kMaxCrossings; ++crossings) {
         auto hit = scene_.intersect(ray, state);
         WalkExit exit;
+        // Whether light that reaches the eye here (emitted along the stretch, or from an emitter
+        // it ends on) came along a specular chain, and whether this path gathers such light. A
+        // glowing medium seen along a chain is chain light too: the lure, seen by total internal
+        // reflection in the fish's skin, is a rare and bright sample.
+        const bool chain = b.depth > 0 && !b.gathering;
+        const bool gathersEmission = b.light == EyeLight::All || (b.light == EyeLight::ChainLight) == chain;
         if (state.inside() && b.light == EyeLight::ChainLight && !walksAny_) {
             const ChainStretch s =
-                chainStretch(state.volume, ray, state.start, hit ? hit->t : INFINITY, b.depth > 0 && !b.gathering);
+                chainStretch(state.volume, ray, state.start, hit ? hit->t : INFINITY, gathersEmission);
             L += beta * s.emitted;
             beta *= s.transmittance;
             if (isBlack(beta)) break;
@@ -51,11 +57,7 @@ RGB PhotonIntegrator::eyePath(EyeBranch b, Rng& rng, int walkedToo, char* met) c
             }
             if (met)
                 for (const auto& p : pieces) met[domainOf(state.volume, p.tet)] = 1;
-            // A glowing medium seen along a specular chain is chain light too: the lure, seen by
-            // total internal reflection in the fish's skin, is a rare and bright sample.
-            const bool chain = b.depth > 0 && !b.gathering;
-            if (b.light == EyeLight::All || (b.light == EyeLight::ChainLight) == chain)
-                L += beta * emittedAlong(state.volume, column);
+            if (gathersEmission) L += beta * emittedAlong(state.volume, column);
             if (b.light != EyeLight::ChainLight) L += beta * scatteredAlong(state.volume, ray, column, rng);
             beta *= exp(-column.depth());
             if (isBlack(beta)) break;
@@ -64,10 +66,8 @@ RGB PhotonIntegrator::eyePath(EyeBranch b, Rng& rng, int walkedToo, char* met) c
         const StretchEnd end = endStretch(scene_, hit, exit, ray, state);
         if (end == StretchEnd::Crossed) continue;
         if (end != StretchEnd::Surface) {
-            // Before a non-specular event every event was specular: depth counts the chain's.
-            const bool chain = b.depth > 0;
-            if (!b.gathering && (b.light == EyeLight::All || (b.light == EyeLight::ChainLight) == chain))
-                L += beta * scene_.emitted(ray, hit ? &*hit : nullptr);
+            // Emitters the final gather's bounce reaches were counted by next-event estimation.
+            if (!b.gathering && gathersEmission) L += beta * scene_.emitted(ray, hit ? &*hit : nullptr);
             break;
         }
         const MaterialDesc& material = scene_.material(*hit);
